@@ -1,0 +1,127 @@
+# SPDX-License-Identifier: MIT
+# arvo: a plain Makefile. `make` builds ./arvo; `make check` runs every suite.
+#   MODE=release (default) | debug        SANITIZE=1  (ASan + UBSan)
+#   make deps      installs the Debian packages arvo needs (as root)
+#   make install PREFIX=/usr/local DESTDIR=
+
+MODE     ?= release
+PREFIX   ?= /usr/local
+DESTDIR  ?=
+CC       ?= cc
+CXX      ?= c++
+BUILD    ?= build/$(MODE)$(if $(SANITIZE),-san)
+
+# The warning list (after Lua's makefile): everything below must stay silent.
+WARN = -Wall -Wextra -Wpedantic -Wshadow -Wundef -Wpointer-arith -Wcast-align \
+       -Wwrite-strings -Wmissing-prototypes -Wstrict-prototypes \
+       -Wmissing-declarations -Wformat=2 -Wvla -Wold-style-definition
+CXXWARN = -Wall -Wextra -Wpedantic -Wshadow
+
+ifeq ($(MODE),debug)
+  OPT = -O0 -g3
+else
+  OPT = -O2 -g
+endif
+ifdef SANITIZE
+  OPT += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+  LDSAN = -fsanitize=address,undefined
+endif
+
+PKGS     = OpenEXR OpenColorIO libpng
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+
+CPPFLAGS += -D_DEFAULT_SOURCE -MMD -MP
+CFLAGS   += -std=c11 $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
+CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
+LDLIBS   += $(PKG_LIBS) -lstdc++ -lm -pthread
+
+# Every .c under the source directories; main.c is the program's entry.
+SRCDIRS  = common lexer parser eval tracer
+LIB_C    = $(shell find $(SRCDIRS) -name '*.c' | sort)
+LIB_CXX  = $(shell find $(SRCDIRS) -name '*.cpp' | sort)
+LIB_OBJ  = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
+MAIN_OBJ = $(BUILD)/main.o
+
+UNIT_SRC = $(sort $(wildcard tests/unit/test_*.c))
+UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+
+ifeq ($(V),1)
+  Q =
+else
+  Q = @
+endif
+
+.PHONY: all clean check test unit deps install demo bench lint
+all: arvo
+
+arvo: $(BUILD)/arvo
+	$(Q)cp $< $@
+
+$(BUILD)/arvo: $(MAIN_OBJ) $(BUILD)/libarvo.a
+	@echo "  LD      $@"
+	$(Q)$(CC) $(OPT) $(LDSAN) -pthread -o $@ $^ $(LDLIBS)
+
+$(BUILD)/libarvo.a: $(LIB_OBJ)
+	@echo "  AR      $@"
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	@echo "  CXX     $<"
+	$(Q)$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
+
+$(BUILD)/tests/%: tests/unit/%.c $(BUILD)/libarvo.a
+	@mkdir -p $(dir $@)
+	@echo "  CC      $<"
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -MF $@.d -o $@ $< $(BUILD)/libarvo.a $(LDSAN) $(LDLIBS)
+
+unit: $(UNIT_BIN)
+
+# deps: install what arvo needs, only when something is missing.
+DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
+           opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
+           povray povray-includes hyperfine
+deps:
+	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
+	   grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing $$missing"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+check: deps
+	$(Q)$(MAKE) --no-print-directory all unit
+	$(Q)MODE=$(MODE) SANITIZE=$(SANITIZE) BUILD=$(BUILD) sh tests/run.sh
+
+test: check
+
+demo: deps
+	$(Q)$(MAKE) --no-print-directory all
+	./arvo -o demo.exr stdlib-scenes/demo.scn
+	./arvo -o demo.png stdlib-scenes/demo.scn
+
+bench: deps all
+	sh bench/run.sh
+
+lint:
+	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5
+
+install: arvo
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/arvo $(DESTDIR)$(PREFIX)/share/man/man1 $(DESTDIR)$(PREFIX)/share/man/man5
+	install -m 755 arvo $(DESTDIR)$(PREFIX)/bin/arvo
+	cp -R stdlib-scenes/. $(DESTDIR)$(PREFIX)/share/arvo/
+	install -m 644 man/arvo.1 $(DESTDIR)$(PREFIX)/share/man/man1/arvo.1
+	install -m 644 man/arvo-scn.5 $(DESTDIR)$(PREFIX)/share/man/man5/arvo-scn.5
+
+clean:
+	rm -rf build arvo
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,123 @@
+/* SPDX-License-Identifier: MIT */
+/* arena.c: allocation wrapper (with fault injection) and bump arenas. */
+#include "arena.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct arena_block {
+	struct arena_block *next; /* older block */
+	size_t size, used;        /* capacity and fill of data[] */
+	_Alignas(16) unsigned char data[];
+};
+
+static void default_oom(size_t n)
+{
+	fprintf(stderr, "arvo: error: out of memory (allocating %zu bytes)\n", n);
+	exit(70);
+}
+
+static void (*oom_handler)(size_t) = default_oom;
+static long fail_at = -1; /* from ARVO_FAIL_ALLOC; -1 until read, 0 when off */
+static long calls;
+
+void mem_set_oom(void (*handler)(size_t)) { oom_handler = handler ? handler : default_oom; }
+
+/* True when fault injection says this allocation must fail. */
+static int inject(void)
+{
+	if (fail_at < 0) {
+		const char *s = getenv("ARVO_FAIL_ALLOC");
+		fail_at = s ? atol(s) : 0;
+	}
+	return fail_at > 0 && ++calls == fail_at;
+}
+
+void *mem_realloc(void *p, size_t n)
+{
+	void *q = inject() ? NULL : realloc(p, n ? n : 1);
+	if (!q) {
+		oom_handler(n);
+		abort();
+	}
+	return q;
+}
+
+void *mem_alloc(size_t n) { return mem_realloc(NULL, n); }
+
+void *mem_calloc(size_t n, size_t size)
+{
+	if (size && n > SIZE_MAX / size) {
+		oom_handler(SIZE_MAX);
+		abort();
+	}
+	void *p = mem_alloc(n * size);
+	memset(p, 0, n * size);
+	return p;
+}
+
+char *mem_strndup(const char *s, size_t n)
+{
+	char *p = mem_alloc(n + 1);
+	memcpy(p, s, n);
+	p[n] = '\0';
+	return p;
+}
+
+char *mem_strdup(const char *s) { return mem_strndup(s, strlen(s)); }
+
+void arena_init(struct arena *a) { memset(a, 0, sizeof *a); }
+
+void *arena_alloc(struct arena *a, size_t n)
+{
+	n = (n + 15) & ~(size_t)15;
+	struct arena_block *b = a->head;
+	if (!b || b->size - b->used < n) {
+		size_t size = n > 65536 ? n : 65536;
+		b = mem_alloc(sizeof *b + size);
+		b->size = size;
+		b->used = 0;
+		b->next = a->head;
+		a->head = b;
+	}
+	void *p = b->data + b->used;
+	b->used += n;
+	a->used += n;
+	memset(p, 0, n);
+	return p;
+}
+
+char *arena_strndup(struct arena *a, const char *s, size_t n)
+{
+	char *p = arena_alloc(a, n + 1);
+	memcpy(p, s, n);
+	p[n] = '\0';
+	return p;
+}
+
+void arena_reset(struct arena *a)
+{
+	struct arena_block *b = a->head;
+	if (!b)
+		return;
+	while (b->next) {
+		struct arena_block *n = b->next;
+		free(b);
+		b = n;
+	}
+	b->used = 0;
+	a->head = b;
+	a->used = 0;
+}
+
+void arena_free(struct arena *a)
+{
+	for (struct arena_block *b = a->head, *n; b; b = n) {
+		n = b->next;
+		free(b);
+	}
+	a->head = NULL;
+	a->used = 0;
+}

@@ -1,0 +1,225 @@
+/* SPDX-License-Identifier: MIT */
+/* scene.h: the scene model the evaluator builds and the tracer renders.
+ *
+ * Everything here lives in the scene's arena (scene->arena) until scene_free.
+ * Geometry is stored in each primitive's own frame, as the user wrote it; the
+ * object's xform maps that frame to the world. Units and colours follow
+ * DESIGN.md §3: scene-linear Rec.709, point-light colour = intensity in W/sr. */
+#ifndef ARVO_SCENE_H
+#define ARVO_SCENE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "../common/arena.h"
+#include "../common/srcloc.h"
+#include "../common/vec.h"
+#include "../common/xform.h"
+
+/* ---- materials ---------------------------------------------------------- */
+
+enum pigment_kind { PIG_SOLID, PIG_CHECKER, PIG_GRADIENT, PIG_IMAGE };
+
+/* One entry of a colour_map: the colour at position pos in [0,1]. */
+struct map_entry {
+	double pos;       /* position in the pattern, ascending */
+	struct colour c;  /* colour there */
+};
+
+struct pigment {
+	enum pigment_kind kind;   /* which pattern */
+	struct colour c[2];       /* solid colour; checker's two colours */
+	struct vec3 axis;         /* gradient direction */
+	struct map_entry *map;    /* gradient colour_map (NULL: black→white) */
+	int nmap;                 /* entries in map */
+	const char *image;        /* image_map file, resolved path */
+	int image_type;           /* image_map: 0 planar (map_type 0) */
+	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
+	bool once;                /* image_map once */
+	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
+	struct xform xf;          /* pattern space → world */
+};
+
+struct finish {
+	struct colour ambient; /* ambient colour (rgb) */
+	double diffuse;        /* diffuse weight (POV default 0.6) */
+	double brilliance;     /* POV brilliance (default 1) */
+	double specular;       /* Blinn specular amount */
+	double roughness;      /* specular roughness (default 0.05) */
+	double phong;          /* Phong amount */
+	double phong_size;     /* Phong exponent (default 40) */
+	struct colour refl_min; /* reflection at normal incidence (or constant) */
+	struct colour refl_max; /* reflection at grazing (variable reflection) */
+	double refl_falloff;   /* reflection falloff exponent (default 1) */
+	bool refl_fresnel;     /* reflection { … fresnel on } */
+	bool refl_metallic;    /* reflection { … metallic } */
+	bool conserve_energy;  /* conserve_energy */
+	struct colour emission; /* emission colour */
+};
+
+struct interior {
+	double ior;                /* index of refraction (default 1) */
+	double dispersion;         /* violet/red index ratio (default 1: none) */
+	int dispersion_samples;    /* POV dispersion_samples (default 7) */
+	double fade_distance;      /* absorption distance (0: none) */
+	double fade_power;         /* absorption exponent (default 2 when set) */
+	struct colour fade_color;  /* colour at fade_distance */
+	double caustics;           /* POV's fake caustics value (parsed, unused) */
+};
+
+struct texture {
+	struct pigment pigment;
+	struct finish finish;
+	struct srcloc loc; /* where the texture was written */
+};
+
+/* ---- objects ------------------------------------------------------------ */
+
+enum object_kind {
+	OBJ_SPHERE, OBJ_PLANE, OBJ_BOX, OBJ_DISC, OBJ_CYLINDER, OBJ_CONE,
+	OBJ_TORUS, OBJ_TRIANGLE,
+	OBJ_UNION, OBJ_INTERSECTION, OBJ_DIFFERENCE, OBJ_MERGE,
+	OBJ_KIND_COUNT
+};
+
+enum object_flags {
+	OF_NO_SHADOW = 1u << 0,     /* casts no shadow */
+	OF_NO_IMAGE = 1u << 1,      /* invisible to camera rays */
+	OF_NO_REFLECTION = 1u << 2, /* invisible in reflections */
+	OF_HOLLOW = 1u << 3,        /* hollow (POV) */
+	OF_INVERSE = 1u << 4,       /* inside and outside swapped (CSG) */
+	OF_OPEN = 1u << 5,          /* cylinder/cone without caps */
+	OF_STURM = 1u << 6,         /* torus: sturm requested */
+	OF_DOUBLE_ILLUM = 1u << 7,  /* double_illuminate */
+};
+
+/* Illumination map request for a surface (issue: the light pass). */
+struct illum_spec {
+	int resolution; /* R×R map points over the (u,v) square; 0 = not given */
+	double cell;    /* map points this far apart in world units; 0 = not given */
+};
+
+/* POV-Ray photons { } on an object, kept for the light pass. */
+struct photon_spec {
+	bool target;       /* target [spacing multiplier] */
+	double spacing;    /* spacing multiplier (default 1) */
+	bool refraction;   /* refraction on|off */
+	bool reflection;   /* reflection on|off */
+	bool collect;      /* collect on|off (default on) */
+	bool pass_through; /* pass_through */
+};
+
+struct object {
+	enum object_kind kind;
+	struct srcloc loc; /* where the object was written */
+	union {
+		struct { struct vec3 c; double r; } sphere;
+		struct { struct vec3 n; double d; } plane;        /* n·p = d */
+		struct { struct vec3 lo, hi; } box;
+		struct { struct vec3 c, n; double r, hole; } disc; /* hole: inner radius */
+		struct { struct vec3 a, b; double r; } cylinder;   /* OF_OPEN: no caps */
+		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
+		struct { double major, minor; } torus;             /* about y, centred at origin */
+		struct { struct vec3 p[3]; } triangle;
+		struct { struct object **kids; int n; } csg;       /* CSG children */
+	} g;
+	struct xform xf;             /* object frame → world */
+	struct texture *tex;         /* NULL: inherit from parent, else default */
+	struct interior *interior;   /* NULL: inherit from parent, else default */
+	unsigned flags;              /* enum object_flags */
+	struct illum_spec illum;     /* illum_map { } */
+	struct photon_spec photons;  /* photons { } */
+	bool has_photons;            /* a photons { } block was given */
+};
+
+/* ---- lights and camera -------------------------------------------------- */
+
+enum light_kind { LIGHT_POINT, LIGHT_SPOT, LIGHT_PARALLEL };
+
+struct light {
+	enum light_kind kind;
+	struct srcloc loc;
+	struct vec3 pos;            /* position (after transforms) */
+	struct colour colour;       /* radiant intensity, W/sr per channel */
+	struct vec3 point_at;       /* spotlight/parallel target */
+	double radius, falloff;     /* spotlight cone, degrees */
+	double tightness;           /* spotlight tightness */
+	bool area;                  /* area_light */
+	struct vec3 axis1, axis2;   /* area light edges */
+	int size1, size2;           /* area light samples per edge */
+	int adaptive;               /* area light adaptive level */
+	bool jitter, circular, orient; /* area light options */
+	double fade_distance, fade_power; /* POV fading (0: none) */
+	bool shadowless;            /* casts no shadows, lights everything */
+	bool photons_refraction;    /* photons { refraction on } (default on) */
+	bool photons_reflection;    /* photons { reflection on } (default on) */
+};
+
+enum camera_kind { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
+
+/* The camera after POV-Ray's rules were applied: location, and the
+ * direction/up/right frame that spans the image (right's length is the image
+ * width at unit distance along direction, up's its height). */
+struct camera {
+	enum camera_kind kind;
+	struct srcloc loc;
+	struct vec3 location, direction, up, right, sky, look_at;
+	double angle;          /* horizontal field of view in degrees (0: from vectors) */
+	double aperture;       /* depth of field (0: pinhole) */
+	struct vec3 focal_point;
+	int blur_samples;
+};
+
+/* ---- global settings ---------------------------------------------------- */
+
+enum illum_method { ILLUM_POINT, ILLUM_SHAFT };
+enum illum_passes { PASSES_RGB, PASSES_SPECTRAL };
+
+struct illum_settings {
+	long rays;                 /* light-ray budget per light (0: default) */
+	enum illum_method method;
+	enum illum_passes passes;
+	bool given;                /* illumination { } or photons { } was present */
+	double spacing;            /* POV photons spacing (0: none) */
+	long count;                /* POV photons count (0: none) */
+	int max_depth;             /* light ray recursion limit (0: max_trace_level) */
+};
+
+struct global_settings {
+	double assumed_gamma;      /* parsed, recorded (output is linear) */
+	int max_trace_level;       /* default 5 */
+	double adc_bailout;        /* default 1/255 */
+	struct colour ambient_light; /* default 1 */
+	struct illum_settings illum;
+};
+
+struct scene {
+	struct arena arena;        /* owns everything below */
+	const char *name;          /* the scene file's name */
+	double version;            /* #version in force at the end (3.7 default) */
+	bool legacy_lights;        /* #version 3.x: POV-Ray's no-falloff light model */
+	struct camera camera;
+	bool has_camera;
+	struct colour background;
+	struct light *lights;
+	int nlights;
+	struct object **objects;   /* top-level objects */
+	int nobjects;
+	struct global_settings gs;
+};
+
+/* Defaults, as POV-Ray 3.7 has them. */
+void scene_init(struct scene *s);
+struct texture scene_default_texture(void);
+struct interior scene_default_interior(void);
+struct camera scene_default_camera(void);
+struct light scene_default_light(void);
+/* Appends to the scene's lists (arena-backed growth). */
+void scene_add_object(struct scene *s, struct object *o);
+void scene_add_light(struct scene *s, const struct light *l);
+/* Stable text for golden tests (--dump-scene). */
+void scene_dump(FILE *out, const struct scene *s);
+const char *scene_object_kind_name(enum object_kind k);
+void scene_free(struct scene *s);
+
+#endif
