@@ -1,0 +1,416 @@
+/* SPDX-License-Identifier: MIT */
+/* exrout.c: scanline EXR writer and reader on OpenEXRCore (DEPS.md §1), and
+ * the temp-file/rename and error helpers shared by tracer/output. */
+#include "exrout.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <openexr.h>
+
+#include "../../common/arena.h"
+
+/* ================= shared helpers ================= */
+
+static _Thread_local char err_buf[1024]; /* the last error of this thread */
+
+const char *out_errorf(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(err_buf, sizeof err_buf, fmt, ap);
+	va_end(ap);
+	return err_buf;
+}
+
+/* The process umask, read once (umask can only be read by setting it). */
+static mode_t file_mode(void)
+{
+	static mode_t mode = 01000; /* sentinel: not read yet */
+	if (mode == 01000) {
+		mode_t m = umask(022);
+		umask(m);
+		mode = 0666 & ~m;
+	}
+	return mode;
+}
+
+int out_tmp_create(const char *path, char *tmp, size_t tmplen)
+{
+	int n = snprintf(tmp, tmplen, "%s.tmp.XXXXXX", path);
+	if (n < 0 || (size_t)n >= tmplen) {
+		errno = ENAMETOOLONG;
+		return -1;
+	}
+	int fd = mkstemp(tmp);
+	if (fd >= 0 && fchmod(fd, file_mode()) != 0) {
+		int e = errno;
+		close(fd);
+		unlink(tmp);
+		errno = e;
+		return -1;
+	}
+	return fd;
+}
+
+const char *out_tmp_finish(const char *tmp, const char *path, int ok)
+{
+	if (ok && rename(tmp, path) == 0)
+		return NULL;
+	const char *err = ok ? out_errorf("cannot write '%s': rename: %s", path, strerror(errno))
+	                     : NULL;
+	unlink(tmp);
+	return err;
+}
+
+/* ================= OpenEXRCore plumbing ================= */
+
+/* User data of a context: the output fd and the first detailed message. */
+struct io {
+	int fd;         /* output file (writer), -1 for the reader */
+	char msg[512];  /* first error reported by the library, or "" */
+};
+
+/* Error handler: keeps the library's first message for our own report. */
+static void on_error(exr_const_context_t ctx, exr_result_t code, const char *msg)
+{
+	void *ud = NULL;
+	if (exr_get_user_data(ctx, &ud) != EXR_ERR_SUCCESS || !ud)
+		return;
+	struct io *io = ud;
+	if (!io->msg[0])
+		snprintf(io->msg, sizeof io->msg, "%s", msg ? msg : exr_get_error_code_as_string(code));
+}
+
+/* Custom write routine: pwrite to our temp file, retrying short writes. */
+static int64_t write_fd(exr_const_context_t ctx, void *ud, const void *buf, uint64_t sz,
+                        uint64_t off, exr_stream_error_func_ptr_t ecb)
+{
+	struct io *io = ud;
+	const char *p = buf;
+	uint64_t done = 0;
+	while (done < sz) {
+		ssize_t n = pwrite(io->fd, p + done, (size_t)(sz - done), (off_t)(off + done));
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n <= 0) {
+			ecb(ctx, EXR_ERR_WRITE_IO, "%s", n < 0 ? strerror(errno) : "short write");
+			return -1;
+		}
+		done += (uint64_t)n;
+	}
+	return (int64_t)sz;
+}
+
+/* The message for a failed call: the library's detail, else the code's text. */
+static const char *exr_msg(const struct io *io, exr_result_t rv)
+{
+	return io->msg[0] ? io->msg : exr_get_error_code_as_string(rv);
+}
+
+#define TRY(call)                                                                       \
+	do {                                                                                \
+		if ((rv = (call)) != EXR_ERR_SUCCESS)                                           \
+			return rv;                                                                  \
+	} while (0)
+
+/* ================= writer ================= */
+
+int out_exr_compression_parse(const char *name, enum out_exr_compression *out)
+{
+	static const char *const names[] = {"zip", "none", "zips", "piz", "rle"};
+	for (int i = 0; i < 5; i++)
+		if (name && strcmp(name, names[i]) == 0) {
+			*out = (enum out_exr_compression)i;
+			return 0;
+		}
+	return -1;
+}
+
+/* OpenEXRCore's compression for ours. */
+static exr_compression_t core_compression(enum out_exr_compression c)
+{
+	switch (c) {
+	case OUT_EXR_NONE: return EXR_COMPRESSION_NONE;
+	case OUT_EXR_ZIPS: return EXR_COMPRESSION_ZIPS;
+	case OUT_EXR_PIZ: return EXR_COMPRESSION_PIZ;
+	case OUT_EXR_RLE: return EXR_COMPRESSION_RLE;
+	case OUT_EXR_ZIP: break;
+	}
+	return EXR_COMPRESSION_ZIP;
+}
+
+/* Declares the part: size, compression, one channel per plane, attributes. */
+static exr_result_t write_header(exr_context_t ctx, const struct framebuffer *fb,
+                                 const struct out_exr_opts *o)
+{
+	static const exr_attr_chromaticities_t rec709 = {0.64f,  0.33f,  0.30f,   0.60f,
+	                                                 0.15f,  0.06f,  0.3127f, 0.3290f};
+	exr_result_t rv;
+	int part;
+	TRY(exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part));
+	TRY(exr_initialize_required_attr_simple(ctx, part, fb->w, fb->h,
+	                                        core_compression(o->compression)));
+	for (int i = 0; i < fb->count; i++) {
+		const char *name = fb->planes[i].name;
+		int half = o->half && strcmp(name, "Z") != 0;
+		TRY(exr_add_channel(ctx, part, name, half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
+		                    EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1));
+	}
+	TRY(exr_attr_set_chromaticities(ctx, part, "chromaticities", &rec709));
+	TRY(exr_attr_set_string(ctx, part, "software", "arvo " ARVO_VERSION));
+	if (o->scene)
+		TRY(exr_attr_set_string(ctx, part, "arvo:scene", o->scene));
+	return exr_write_header(ctx);
+}
+
+/* Points each channel of the encoder at rows [y, ...) of its plane, found by
+ * NAME: the file stores channels sorted, not in the framebuffer's order. */
+static exr_result_t bind_planes(exr_encode_pipeline_t *enc, const struct framebuffer *fb, int y)
+{
+	for (int i = 0; i < enc->channel_count; i++) {
+		exr_coding_channel_info_t *ch = &enc->channels[i];
+		const float *p = fb_find(fb, ch->channel_name);
+		if (!p)
+			return EXR_ERR_INVALID_ARGUMENT;
+		ch->user_data_type = EXR_PIXEL_FLOAT;
+		ch->user_bytes_per_element = 4;
+		ch->user_pixel_stride = 4;
+		ch->user_line_stride = 4 * fb->w;
+		ch->encode_from_ptr = (const uint8_t *)(p + (size_t)y * (size_t)fb->w);
+	}
+	return EXR_ERR_SUCCESS;
+}
+
+/* Encodes and writes every scanline chunk. */
+static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb)
+{
+	exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+	exr_result_t rv = EXR_ERR_SUCCESS;
+	int lpc = 1, inited = 0;
+	if ((rv = exr_get_scanlines_per_chunk(ctx, 0, &lpc)) != EXR_ERR_SUCCESS)
+		return rv;
+	for (int y = 0; y < fb->h && rv == EXR_ERR_SUCCESS; y += lpc) {
+		exr_chunk_info_t ci;
+		rv = exr_write_scanline_chunk_info(ctx, 0, y, &ci);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = inited ? exr_encoding_update(ctx, 0, &ci, &enc)
+			            : exr_encoding_initialize(ctx, 0, &ci, &enc);
+		if (rv != EXR_ERR_SUCCESS)
+			break;
+		inited = 1;
+		rv = bind_planes(&enc, fb, y);
+		if (rv == EXR_ERR_SUCCESS && y == 0)
+			rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = exr_encoding_run(ctx, 0, &enc);
+	}
+	if (inited) {
+		exr_result_t rd = exr_encoding_destroy(ctx, &enc);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = rd;
+	}
+	return rv;
+}
+
+/* Writes the whole file through io->fd; returns NULL or an error. */
+static const char *write_file(struct io *io, const char *path, const struct framebuffer *fb,
+                              const struct out_exr_opts *o)
+{
+	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+	exr_context_t ctx = NULL;
+	init.user_data = io;
+	init.write_fn = write_fd;
+	init.error_handler_fn = on_error;
+	exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+	if (rv == EXR_ERR_SUCCESS)
+		rv = write_header(ctx, fb, o);
+	if (rv == EXR_ERR_SUCCESS)
+		rv = write_pixels(ctx, fb);
+	if (ctx) {
+		exr_result_t rf = exr_finish(&ctx);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = rf;
+	}
+	return rv == EXR_ERR_SUCCESS ? NULL : out_errorf("cannot write '%s': %s", path, exr_msg(io, rv));
+}
+
+const char *out_exr_write(const struct framebuffer *fb, const char *path,
+                          const struct out_exr_opts *opts)
+{
+	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL};
+	const struct out_exr_opts *o = opts ? opts : &defaults;
+	if (!fb || fb->count == 0)
+		return out_errorf("cannot write '%s': the image has no channels", path);
+	if ((unsigned)o->compression > OUT_EXR_RLE)
+		return out_errorf("cannot write '%s': unknown compression %d", path, (int)o->compression);
+	char tmp[4096];
+	struct io io = {.fd = out_tmp_create(path, tmp, sizeof tmp)};
+	if (io.fd < 0)
+		return out_errorf("cannot write '%s': %s", path, strerror(errno));
+	const char *err = write_file(&io, path, fb, o);
+	if (close(io.fd) != 0 && !err)
+		err = out_errorf("cannot write '%s': %s", path, strerror(errno));
+	const char *err2 = out_tmp_finish(tmp, path, err == NULL);
+	return err ? err : err2;
+}
+
+/* ================= reader ================= */
+
+/* Copies the header facts the caller asked for into info. */
+static void read_info(exr_const_context_t ctx, const exr_attr_chlist_t *cl,
+                      struct out_exr_info *info)
+{
+	exr_attr_chromaticities_t c;
+	const char *s;
+	int32_t len;
+	memset(info, 0, sizeof *info);
+	if (exr_attr_get_chromaticities(ctx, 0, "chromaticities", &c) == EXR_ERR_SUCCESS) {
+		const float v[8] = {c.red_x,  c.red_y,  c.green_x, c.green_y,
+		                    c.blue_x, c.blue_y, c.white_x, c.white_y};
+		memcpy(info->chroma, v, sizeof v);
+		info->has_chroma = 1;
+	}
+	if (exr_attr_get_string(ctx, 0, "software", &len, &s) == EXR_ERR_SUCCESS)
+		snprintf(info->software, sizeof info->software, "%.*s", (int)len, s);
+	if (exr_attr_get_string(ctx, 0, "arvo:scene", &len, &s) == EXR_ERR_SUCCESS)
+		snprintf(info->scene, sizeof info->scene, "%.*s", (int)len, s);
+	info->half = 1;
+	for (int i = 0; i < cl->num_channels; i++)
+		if (cl->entries[i].pixel_type != EXR_PIXEL_HALF)
+			info->half = 0;
+}
+
+/* Points every channel of the decoder at its plane (ALL channels: decoding a
+ * subset crashes the core on 3-channel half files, DEPS.md §1 pitfall 2).
+ * UINT channels are decoded as uint32 into the float plane, converted later. */
+static exr_result_t bind_decode(exr_decode_pipeline_t *dec, struct framebuffer *fb, int row)
+{
+	for (int i = 0; i < dec->channel_count; i++) {
+		exr_coding_channel_info_t *ch = &dec->channels[i];
+		float *p = fb_find(fb, ch->channel_name);
+		if (!p)
+			return EXR_ERR_INVALID_ARGUMENT;
+		ch->user_data_type = ch->data_type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
+		ch->user_bytes_per_element = 4;
+		ch->user_pixel_stride = 4;
+		ch->user_line_stride = 4 * fb->w;
+		ch->decode_to_ptr = (uint8_t *)(p + (size_t)row * (size_t)fb->w);
+	}
+	return EXR_ERR_SUCCESS;
+}
+
+/* Reads and decodes every chunk of part 0 into fb. */
+static exr_result_t read_pixels(exr_const_context_t ctx, struct framebuffer *fb, int ymin)
+{
+	exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+	exr_result_t rv = EXR_ERR_SUCCESS;
+	int lpc = 1, inited = 0;
+	if ((rv = exr_get_scanlines_per_chunk(ctx, 0, &lpc)) != EXR_ERR_SUCCESS)
+		return rv;
+	for (int y = ymin; y < ymin + fb->h && rv == EXR_ERR_SUCCESS; y += lpc) {
+		exr_chunk_info_t ci;
+		rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = inited ? exr_decoding_update(ctx, 0, &ci, &dec)
+			            : exr_decoding_initialize(ctx, 0, &ci, &dec);
+		if (rv != EXR_ERR_SUCCESS)
+			break;
+		rv = bind_decode(&dec, fb, ci.start_y - ymin);
+		if (rv == EXR_ERR_SUCCESS && !inited)
+			rv = exr_decoding_choose_default_routines(ctx, 0, &dec);
+		inited = 1;
+		if (rv == EXR_ERR_SUCCESS)
+			rv = exr_decoding_run(ctx, 0, &dec);
+	}
+	if (inited) {
+		exr_result_t rd = exr_decoding_destroy(ctx, &dec);
+		if (rv == EXR_ERR_SUCCESS)
+			rv = rd;
+	}
+	return rv;
+}
+
+/* Converts planes that were decoded as uint32 into floats, in place. */
+static void uint_to_float(struct framebuffer *fb, const exr_attr_chlist_t *cl)
+{
+	size_t n = (size_t)fb->w * (size_t)fb->h;
+	for (int i = 0; i < cl->num_channels; i++) {
+		if (cl->entries[i].pixel_type != EXR_PIXEL_UINT)
+			continue;
+		float *p = fb_find(fb, cl->entries[i].name.str);
+		for (size_t k = 0; k < n; k++) {
+			uint32_t u;
+			memcpy(&u, p + k, 4);
+			p[k] = (float)u;
+		}
+	}
+}
+
+/* Checks part 0 is a readable scanline image; sets *w *h *ymin and *cl. */
+static const char *check_part(exr_const_context_t ctx, const char *path, int *w, int *h,
+                              int *ymin, const exr_attr_chlist_t **cl)
+{
+	exr_storage_t st;
+	exr_attr_box2i_t dw;
+	if (exr_get_storage(ctx, 0, &st) != EXR_ERR_SUCCESS || st != EXR_STORAGE_SCANLINE)
+		return out_errorf("cannot read '%s': only scanline EXR images are supported", path);
+	if (exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
+	    exr_get_channels(ctx, 0, cl) != EXR_ERR_SUCCESS || !*cl || (*cl)->num_channels < 1)
+		return out_errorf("cannot read '%s': bad header", path);
+	int64_t ww = (int64_t)dw.max.x - dw.min.x + 1, hh = (int64_t)dw.max.y - dw.min.y + 1;
+	if (ww < 1 || hh < 1 || ww * hh > ((int64_t)1 << 28))
+		return out_errorf("cannot read '%s': unsupported size %lldx%lld", path, (long long)ww,
+		                  (long long)hh);
+	for (int i = 0; i < (*cl)->num_channels; i++)
+		if ((*cl)->entries[i].x_sampling != 1 || (*cl)->entries[i].y_sampling != 1)
+			return out_errorf("cannot read '%s': subsampled channel '%s' is not supported",
+			                  path, (*cl)->entries[i].name.str);
+	*w = (int)ww, *h = (int)hh, *ymin = dw.min.y;
+	return NULL;
+}
+
+const char *out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info)
+{
+	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+	exr_context_t ctx = NULL;
+	struct io io = {.fd = -1};
+	*out = NULL;
+	init.user_data = &io;
+	init.error_handler_fn = on_error;
+	exr_result_t rv = exr_start_read(&ctx, path, &init);
+	if (rv != EXR_ERR_SUCCESS) {
+		const char *e = out_errorf("cannot read '%s': %s", path, exr_msg(&io, rv));
+		if (ctx)
+			exr_finish(&ctx);
+		return e;
+	}
+	const exr_attr_chlist_t *cl = NULL;
+	int w = 0, h = 0, ymin = 0;
+	const char *err = check_part(ctx, path, &w, &h, &ymin, &cl);
+	struct framebuffer *fb = NULL;
+	if (!err) {
+		fb = fb_new(w, h);
+		for (int i = 0; i < cl->num_channels; i++)
+			fb_plane(fb, cl->entries[i].name.str);
+		if ((rv = read_pixels(ctx, fb, ymin)) != EXR_ERR_SUCCESS)
+			err = out_errorf("cannot read '%s': %s", path, exr_msg(&io, rv));
+	}
+	if (!err) {
+		uint_to_float(fb, cl);
+		if (info)
+			read_info(ctx, cl, info);
+		*out = fb;
+	} else {
+		fb_free(fb);
+	}
+	exr_finish(&ctx);
+	return err;
+}

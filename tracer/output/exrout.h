@@ -1,0 +1,76 @@
+/* SPDX-License-Identifier: MIT */
+/* exrout.h: OpenEXR output and input through the OpenEXR C API (OpenEXRCore),
+ * plus the temp-file-and-rename and error-message helpers every writer of
+ * tracer/output shares.
+ *
+ * Errors: functions returning `const char *` return NULL on success, or a
+ * message ("cannot write 'a.exr': ...") in a per-thread buffer that stays
+ * valid until the next failing out_/img_ call on the same thread. They never
+ * exit. Names avoid the exr_ prefix, which OpenEXRCore owns. */
+#ifndef ARVO_EXROUT_H
+#define ARVO_EXROUT_H
+
+#include <stddef.h>
+
+#include "framebuffer.h"
+
+#ifndef ARVO_VERSION
+#define ARVO_VERSION "0.1.0" /* the Makefile may pass -DARVO_VERSION="..." */
+#endif
+
+enum out_exr_compression {
+	OUT_EXR_ZIP = 0, /* zlib, 16 scanlines per block (the default) */
+	OUT_EXR_NONE,    /* uncompressed */
+	OUT_EXR_ZIPS,    /* zlib, one scanline per block */
+	OUT_EXR_PIZ,     /* wavelet, 32 scanlines per block */
+	OUT_EXR_RLE      /* run-length */
+};
+
+struct out_exr_opts {
+	int half;                             /* 1: 16-bit half pixels ("Z" stays float); 0: float */
+	enum out_exr_compression compression; /* OUT_EXR_ZIP when zero-initialised */
+	const char *scene;                    /* "arvo:scene" string attribute, or NULL for none */
+};
+
+/* What out_exr_read found in the header besides the pixels. */
+struct out_exr_info {
+	int has_chroma;   /* 1 when a chromaticities attribute was present */
+	float chroma[8];  /* red x,y  green x,y  blue x,y  white x,y */
+	int half;         /* 1 when every channel is stored as half */
+	char software[128]; /* the "software" attribute, or "" */
+	char scene[256];  /* the "arvo:scene" attribute, or "" */
+};
+
+/* Parses "none" "zip" "zips" "piz" "rle" into *out; returns 0, or -1 when the
+ * name is unknown (out untouched). */
+int out_exr_compression_parse(const char *name, enum out_exr_compression *out);
+
+/* Writes every plane of fb as one channel of a scanline EXR at path (with
+ * Rec.709/D65 chromaticities and software "arvo <version>"). opts NULL means
+ * float + zip. Writes to "<path>.tmp.XXXXXX" and renames it into place only
+ * on success; on failure the temp file is removed and path is untouched. */
+const char *out_exr_write(const struct framebuffer *fb, const char *path,
+                          const struct out_exr_opts *opts);
+
+/* Reads a single-part scanline EXR: every channel becomes a float plane of a
+ * new framebuffer (*out, free with fb_free) named as in the file. info may be
+ * NULL. The data window's origin is dropped (pixel (0,0) is its corner). */
+const char *out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info);
+
+/* ---- helpers shared by the writers of tracer/output ---- */
+
+/* Formats an error message into the per-thread buffer and returns it. */
+const char *out_errorf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Creates "<path>.tmp.XXXXXX" (mode 0666 & ~umask) beside path; writes its
+ * name into tmp (tmplen bytes) and returns an open fd, or -1 (errno set). */
+int out_tmp_create(const char *path, char *tmp, size_t tmplen);
+/* Finishes a temp file: on ok, renames tmp to path (returns NULL, or an
+ * error after removing tmp); when !ok, just removes tmp and returns NULL. */
+const char *out_tmp_finish(const char *tmp, const char *path, int ok);
+
+#endif

@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* framebuffer.h: named float planes of one image (the renderer's film).
+ *
+ * A plane is w*h floats, row-major, row 0 at the top. Plane names follow the
+ * EXR channel convention: "R" "G" "B" (beauty), "direct.R", "albedo.G",
+ * "caustic.B", "N.X", "Z", ... Planes are created on first use and zeroed.
+ * Iteration (fb_count/fb_name/fb_data) is in a stable order that does not
+ * depend on the order of creation: beauty R G B A first, then the layers in
+ * alphabetical order, each layer's channels as R G B A X Y Z then others. */
+#ifndef ARVO_FRAMEBUFFER_H
+#define ARVO_FRAMEBUFFER_H
+
+struct fb_plane {
+	char *name;  /* channel name, e.g. "caustic.R" */
+	float *data; /* w*h floats, row-major, top row first */
+};
+
+struct framebuffer {
+	int w, h;                /* size in pixels */
+	int count;               /* planes in use */
+	int cap;                 /* allocated entries of planes[] */
+	struct fb_plane *planes; /* sorted in the stable iteration order */
+};
+
+/* A framebuffer with no planes; w and h must be >= 1. Never returns NULL. */
+struct framebuffer *fb_new(int w, int h);
+/* The plane called name, created (zeroed) if absent. The pointer stays valid
+ * until fb_free, even when more planes are added. */
+float *fb_plane(struct framebuffer *fb, const char *name);
+/* The plane called name, or NULL when there is none (never creates). */
+float *fb_find(const struct framebuffer *fb, const char *name);
+/* Number of planes, and the i-th name/data in the stable order. */
+int fb_count(const struct framebuffer *fb);
+const char *fb_name(const struct framebuffer *fb, int i);
+float *fb_data(const struct framebuffer *fb, int i);
+void fb_free(struct framebuffer *fb);
+
+#endif
