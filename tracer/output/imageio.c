@@ -1,0 +1,217 @@
+/* SPDX-License-Identifier: MIT */
+/* imageio.c: PNG (libpng) and EXR (OpenEXRCore) image loading to linear floats. */
+#include "imageio.h"
+
+#include <errno.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <png.h>
+
+#include "../../common/arena.h"
+#include "exrout.h"
+#include "ocio_shim.h"
+#include "pngout.h"
+
+/* ================= PNG ================= */
+
+struct png_rd {
+	jmp_buf jb;        /* where libpng errors return to */
+	char msg[256];     /* libpng's message */
+	png_bytep *rows;   /* row pointers into data */
+	unsigned char *data; /* decoded 8- or 16-bit samples */
+};
+
+/* libpng error callback: records the message and unwinds to read_png. */
+static void on_error(png_structp png, png_const_charp msg)
+{
+	struct png_rd *r = png_get_error_ptr(png);
+	snprintf(r->msg, sizeof r->msg, "%s", msg);
+	longjmp(r->jb, 1);
+}
+
+/* Ignores libpng warnings (e.g. about unknown chunks). */
+static void on_warning(png_structp png, png_const_charp msg)
+{
+	(void)png;
+	(void)msg;
+}
+
+/* Sets up transforms so every PNG decodes to RGB or RGBA, 8 or 16 bits. */
+static void set_transforms(png_structp png, png_infop info)
+{
+	int ct = png_get_color_type(png, info);
+	if (ct == PNG_COLOR_TYPE_PALETTE)
+		png_set_palette_to_rgb(png);
+	if (ct == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
+		png_set_expand_gray_1_2_4_to_8(png);
+	if (png_get_valid(png, info, PNG_INFO_tRNS))
+		png_set_tRNS_to_alpha(png);
+	if (ct == PNG_COLOR_TYPE_GRAY || ct == PNG_COLOR_TYPE_GRAY_ALPHA)
+		png_set_gray_to_rgb(png);
+	png_set_interlace_handling(png);
+	png_read_update_info(png, info);
+}
+
+/* Converts the decoded samples into im->px (values in [0,1], still encoded). */
+static void samples_to_float(const struct png_rd *r, int depth, struct img *im)
+{
+	size_t n = (size_t)im->w * (size_t)im->h * (size_t)im->nch;
+	im->px = mem_alloc(n * sizeof(float));
+	for (size_t i = 0; i < n; i++)
+		im->px[i] = depth == 16
+		                ? (float)((r->data[2 * i] << 8) | r->data[2 * i + 1]) / 65535.0f
+		                : (float)r->data[i] / 255.0f;
+}
+
+/* Decodes the PNG on fp into im. Returns 0, or -1 with r->msg set. */
+static int read_png(FILE *fp, struct png_rd *r, struct img *im)
+{
+	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, on_error, on_warning);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	if (!info) {
+		png_destroy_read_struct(&png, NULL, NULL);
+		snprintf(r->msg, sizeof r->msg, "libpng: out of memory");
+		return -1;
+	}
+	if (setjmp(r->jb)) {
+		png_destroy_read_struct(&png, &info, NULL);
+		return -1;
+	}
+	png_set_user_limits(png, 1u << 15, 1u << 15);
+	png_init_io(png, fp);
+	png_read_info(png, info);
+	set_transforms(png, info);
+	int depth = png_get_bit_depth(png, info);
+	im->w = (int)png_get_image_width(png, info);
+	im->h = (int)png_get_image_height(png, info);
+	im->nch = png_get_channels(png, info);
+	size_t stride = png_get_rowbytes(png, info);
+	r->data = mem_alloc(stride * (size_t)im->h);
+	r->rows = mem_alloc((size_t)im->h * sizeof *r->rows);
+	for (int y = 0; y < im->h; y++)
+		r->rows[y] = r->data + (size_t)y * stride;
+	png_read_image(png, r->rows);
+	png_read_end(png, NULL);
+	png_destroy_read_struct(&png, &info, NULL);
+	samples_to_float(r, depth, im);
+	return 0;
+}
+
+/* Loads a PNG file into im (encoded values; no colour conversion yet). */
+static const char *load_png(const char *path, struct img *im)
+{
+	FILE *fp = fopen(path, "rb");
+	if (!fp)
+		return out_errorf("cannot read '%s': %s", path, strerror(errno));
+	struct png_rd r = {.msg = ""};
+	int rc = read_png(fp, &r, im);
+	fclose(fp);
+	free(r.rows);
+	free(r.data);
+	return rc ? out_errorf("cannot read '%s': %s", path, r.msg) : NULL;
+}
+
+/* ================= EXR ================= */
+
+/* Picks the colour planes of an EXR: R,G,B (A), else Y, else the first. */
+static void pick_planes(const struct framebuffer *fb, const float *pl[4], int *nch)
+{
+	pl[0] = fb_find(fb, "R"), pl[1] = fb_find(fb, "G"), pl[2] = fb_find(fb, "B");
+	pl[3] = fb_find(fb, "A");
+	if (!pl[0] && !pl[1] && !pl[2]) {
+		const float *y = fb_find(fb, "Y");
+		pl[0] = pl[1] = pl[2] = y ? y : fb->planes[0].data;
+	}
+	*nch = pl[3] ? 4 : 3;
+}
+
+/* Loads an EXR file into im (interleaving its planes; missing ones are 0). */
+static const char *load_exr(const char *path, struct img *im)
+{
+	struct framebuffer *fb;
+	const char *err = out_exr_read(path, &fb, NULL);
+	if (err)
+		return err;
+	const float *pl[4];
+	pick_planes(fb, pl, &im->nch);
+	im->w = fb->w, im->h = fb->h;
+	size_t n = (size_t)fb->w * (size_t)fb->h;
+	im->px = mem_alloc(n * (size_t)im->nch * sizeof(float));
+	for (size_t i = 0; i < n; i++)
+		for (int c = 0; c < im->nch; c++)
+			im->px[i * (size_t)im->nch + (size_t)c] = pl[c] ? pl[c][i] : 0.0f;
+	fb_free(fb);
+	return NULL;
+}
+
+/* ================= colour ================= */
+
+/* Converts the colour of im in place from space src to scene_linear. */
+static const char *to_linear(struct img *im, const char *config, const char *src)
+{
+	struct ocio_config *cfg;
+	char msg[512];
+	const char *err = out_ocio_load(config, &cfg);
+	if (err)
+		return err;
+	struct ocio_proc *p = ocio_proc_convert(cfg, src, "scene_linear", msg, sizeof msg);
+	size_t n = (size_t)im->w * (size_t)im->h;
+	float *rgb = p ? mem_alloc(n * 3 * sizeof(float)) : NULL;
+	for (size_t i = 0; p && i < n; i++)
+		memcpy(rgb + 3 * i, im->px + i * (size_t)im->nch, 3 * sizeof(float));
+	if (!p || ocio_proc_apply_rgb(p, rgb, (long)n, msg, sizeof msg) != 0)
+		err = out_errorf("cannot convert colours from '%s': %s", src, msg);
+	for (size_t i = 0; !err && i < n; i++)
+		memcpy(im->px + i * (size_t)im->nch, rgb + 3 * i, 3 * sizeof(float));
+	free(rgb);
+	ocio_proc_free(p);
+	ocio_config_free(cfg);
+	return err;
+}
+
+/* The first bytes of path, to tell the format; returns how many were read. */
+static size_t read_magic(const char *path, unsigned char *buf, size_t n)
+{
+	FILE *fp = fopen(path, "rb");
+	if (!fp)
+		return 0;
+	size_t k = fread(buf, 1, n, fp);
+	fclose(fp);
+	return k;
+}
+
+const char *img_load(const char *path, const struct img_opts *opts, struct img *out)
+{
+	static const struct img_opts defaults = {NULL, NULL, 0};
+	const struct img_opts *o = opts ? opts : &defaults;
+	unsigned char m[8];
+	memset(out, 0, sizeof *out);
+	errno = 0;
+	size_t k = read_magic(path, m, sizeof m);
+	int is_png = k == 8 && png_sig_cmp(m, 0, 8) == 0;
+	int is_exr = k >= 4 && m[0] == 0x76 && m[1] == 0x2f && m[2] == 0x31 && m[3] == 0x01;
+	const char *err;
+	if (is_png)
+		err = load_png(path, out);
+	else if (is_exr)
+		err = load_exr(path, out);
+	else
+		err = k == 0 ? out_errorf("cannot read '%s': %s", path,
+		                          errno ? strerror(errno) : "empty file")
+		             : out_errorf("cannot read '%s': not a PNG or OpenEXR image", path);
+	const char *src = o->colorspace ? o->colorspace : is_png ? IMG_TEXTURE_SPACE : NULL;
+	if (!err && !o->raw && src)
+		err = to_linear(out, o->ocio_config, src);
+	if (err)
+		img_free(out);
+	return err;
+}
+
+void img_free(struct img *im)
+{
+	free(im->px);
+	memset(im, 0, sizeof *im);
+}

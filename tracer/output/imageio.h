@@ -1,0 +1,31 @@
+/* SPDX-License-Identifier: MIT */
+/* imageio.h: reading images for image_map, as linear floats.
+ *
+ * PNG (8/16-bit; gray, gray+alpha, RGB, RGBA, palette) is decoded with
+ * libpng and its colour converted from the config's "sRGB - Texture" space
+ * to the scene_linear working space through OCIO. EXR (via out_exr_read) is
+ * taken as already scene-linear: R,G,B[,A], or Y replicated to grey, or the
+ * first channel. Alpha is never colour-converted. Errors follow exrout.h. */
+#ifndef ARVO_IMAGEIO_H
+#define ARVO_IMAGEIO_H
+
+#define IMG_TEXTURE_SPACE "sRGB - Texture" /* what 8/16-bit PNGs are taken to be */
+
+struct img {
+	int w, h;  /* size in pixels */
+	int nch;   /* 3 (RGB) or 4 (RGBA, straight alpha) */
+	float *px; /* w*h*nch floats, row-major, top row first */
+};
+
+struct img_opts {
+	const char *ocio_config; /* explicit config path, or NULL ($OCIO, then shipped) */
+	const char *colorspace;  /* source space override; NULL: IMG_TEXTURE_SPACE for PNG, none for EXR */
+	int raw;                 /* 1: no colour conversion at all (data maps: bump, normal) */
+};
+
+/* Loads path (format from its magic bytes) into *out; opts may be NULL.
+ * On failure *out is zeroed. Free with img_free. */
+const char *img_load(const char *path, const struct img_opts *opts, struct img *out);
+void img_free(struct img *im);
+
+#endif

@@ -1,0 +1,303 @@
+/* SPDX-License-Identifier: MIT */
+/* pngout.c: beauty → OCIO display/view → clamp → 8 bits → PNG (libpng). */
+#include "pngout.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <pthread.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <png.h>
+
+#include "../../common/arena.h"
+#include "exrout.h"
+#include "ocio_shim.h"
+
+/* ================= config resolution ================= */
+
+static char default_cfg[PATH_MAX]; /* found shipped config, or "" */
+static pthread_once_t default_once = PTHREAD_ONCE_INIT;
+
+/* True when dir/rel is a readable file; leaves the joined path in out. */
+static int try_path(char *out, size_t n, const char *dir, const char *rel)
+{
+	int k = snprintf(out, n, "%s/%s", dir, rel);
+	return k > 0 && (size_t)k < n && access(out, R_OK) == 0;
+}
+
+/* Looks beside the executable: <dir>/stdlib-scenes, <dir>/../share/arvo and
+ * the stdlib-scenes of up to three parents of dir. */
+static int find_near_exe(char *out, size_t n)
+{
+	char dir[PATH_MAX];
+	ssize_t len = readlink("/proc/self/exe", dir, sizeof dir - 1);
+	if (len <= 0)
+		return 0;
+	dir[len] = '\0';
+	char *slash = strrchr(dir, '/');
+	if (!slash)
+		return 0;
+	*slash = '\0';
+	if (try_path(out, n, dir, "../share/arvo/ocio/config.ocio"))
+		return 1;
+	for (int up = 0; up < 4; up++) {
+		if (try_path(out, n, dir, "stdlib-scenes/ocio/config.ocio"))
+			return 1;
+		if (!(slash = strrchr(dir, '/')) || slash == dir)
+			break;
+		*slash = '\0';
+	}
+	return 0;
+}
+
+/* Runs once: fills default_cfg following the documented search order. */
+static void find_default(void)
+{
+	const char *env = getenv("ARVO_DATA_DIR");
+	if (env && *env && try_path(default_cfg, sizeof default_cfg, env, "ocio/config.ocio"))
+		return;
+#ifdef ARVO_DATA_DIR
+	if (try_path(default_cfg, sizeof default_cfg, ARVO_DATA_DIR, "ocio/config.ocio"))
+		return;
+#endif
+	if (find_near_exe(default_cfg, sizeof default_cfg))
+		return;
+	default_cfg[0] = '\0';
+}
+
+const char *out_default_ocio_config(void)
+{
+	pthread_once(&default_once, find_default);
+	return default_cfg[0] ? default_cfg : NULL;
+}
+
+const char *out_ocio_config_path(const char *explicit_path)
+{
+	if (explicit_path && *explicit_path)
+		return explicit_path;
+	const char *env = getenv("OCIO");
+	if (env && *env)
+		return env;
+	return out_default_ocio_config();
+}
+
+const char *out_ocio_load(const char *explicit_path, struct ocio_config **cfg)
+{
+	char msg[512];
+	const char *path = out_ocio_config_path(explicit_path);
+	*cfg = NULL;
+	if (!path)
+		return out_errorf("no OCIO config: give --ocio-config, set $OCIO, or install "
+		                  "ocio/config.ocio (set $ARVO_DATA_DIR to its directory)");
+	*cfg = ocio_config_load(path, msg, sizeof msg);
+	return *cfg ? NULL : out_errorf("cannot load OCIO config '%s': %s", path, msg);
+}
+
+/* ================= display and view ================= */
+
+/* An error naming the bad choice and listing every valid display/view. */
+static const char *bad_choice(const struct ocio_config *cfg, const char *what, const char *name)
+{
+	char list[700];
+	ocio_describe_views(cfg, list, sizeof list);
+	return out_errorf("unknown OCIO %s '%s'; valid displays and views:\n%s", what, name, list);
+}
+
+/* True when view is one of display's views. */
+static int has_view(const struct ocio_config *cfg, const char *display, const char *view)
+{
+	for (int i = 0; i < ocio_view_count(cfg, display); i++)
+		if (strcmp(ocio_view_name(cfg, display, i), view) == 0)
+			return 1;
+	return 0;
+}
+
+const char *out_ocio_pick_view(const struct ocio_config *cfg, const char *display,
+                               const char *view, const char **disp_out, const char **view_out)
+{
+	if (!display)
+		display = ocio_view_count(cfg, OUT_DEFAULT_DISPLAY) > 0 ? OUT_DEFAULT_DISPLAY
+		                                                        : ocio_default_display(cfg);
+	if (!display || ocio_view_count(cfg, display) == 0)
+		return bad_choice(cfg, "display", display ? display : "(none)");
+	if (!view)
+		view = has_view(cfg, display, OUT_DEFAULT_VIEW) ? OUT_DEFAULT_VIEW
+		                                                : ocio_default_view(cfg, display);
+	if (!view || !has_view(cfg, display, view))
+		return bad_choice(cfg, "view", view ? view : "(none)");
+	*disp_out = display;
+	*view_out = view;
+	return NULL;
+}
+
+const char *out_ocio_list_views(const char *explicit_path, char *buf, size_t len)
+{
+	struct ocio_config *cfg;
+	const char *err = out_ocio_load(explicit_path, &cfg);
+	if (err)
+		return err;
+	ocio_describe_views(cfg, buf, len);
+	ocio_config_free(cfg);
+	return NULL;
+}
+
+/* ================= pixels ================= */
+
+/* Display value → byte: NaN and negatives → 0, clamp at 1, round. */
+static unsigned char quantise(float v)
+{
+	if (!(v > 0.0f))
+		return 0;
+	if (v >= 1.0f)
+		return 255;
+	return (unsigned char)(v * 255.0f + 0.5f);
+}
+
+/* Packs R,G,B planes into interleaved floats (missing G/B read as 0). */
+static float *pack_rgb(const struct framebuffer *fb, size_t n)
+{
+	const float *pl[3] = {fb_find(fb, "R"), fb_find(fb, "G"), fb_find(fb, "B")};
+	float *rgb = mem_alloc(n * 3 * sizeof(float));
+	for (size_t i = 0; i < n; i++)
+		for (int c = 0; c < 3; c++)
+			rgb[3 * i + (size_t)c] = pl[c] ? pl[c][i] : 0.0f;
+	return rgb;
+}
+
+/* Builds the display processor for opts; *cfg must be freed by the caller. */
+static const char *make_proc(const struct out_png_opts *o, struct ocio_config **cfg,
+                             struct ocio_proc **proc)
+{
+	char msg[512];
+	const char *disp, *view;
+	const char *err = out_ocio_load(o->ocio_config, cfg);
+	if (!err)
+		err = out_ocio_pick_view(*cfg, o->display, o->view, &disp, &view);
+	if (err)
+		return err;
+	*proc = ocio_proc_display(*cfg, o->source, disp, view, msg, sizeof msg);
+	return *proc ? NULL : out_errorf("OCIO: %s", msg);
+}
+
+const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
+                           unsigned char *rgb8)
+{
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL};
+	const struct out_png_opts *o = opts ? opts : &defaults;
+	if (!fb_find(fb, "R"))
+		return out_errorf("the image has no beauty channels (R, G, B)");
+	struct ocio_config *cfg = NULL;
+	struct ocio_proc *proc = NULL;
+	const char *err = make_proc(o, &cfg, &proc);
+	if (!err) {
+		char msg[512];
+		size_t n = (size_t)fb->w * (size_t)fb->h;
+		float *rgb = pack_rgb(fb, n);
+		if (ocio_proc_apply_rgb(proc, rgb, (long)n, msg, sizeof msg) != 0)
+			err = out_errorf("OCIO: %s", msg);
+		for (size_t i = 0; !err && i < 3 * n; i++)
+			rgb8[i] = quantise(rgb[i]);
+		free(rgb);
+	}
+	ocio_proc_free(proc);
+	ocio_config_free(cfg);
+	return err;
+}
+
+/* ================= libpng ================= */
+
+struct png_err {
+	jmp_buf jb;     /* where libpng errors return to */
+	char msg[256];  /* libpng's message */
+};
+
+/* libpng error callback: records the message and unwinds to write_rows. */
+static void on_png_error(png_structp png, png_const_charp msg)
+{
+	struct png_err *e = png_get_error_ptr(png);
+	snprintf(e->msg, sizeof e->msg, "%s", msg);
+	longjmp(e->jb, 1);
+}
+
+/* libpng warnings are not worth a message on a render's stderr. */
+static void on_png_warning(png_structp png, png_const_charp msg)
+{
+	(void)png;
+	(void)msg;
+}
+
+/* Writes w*h RGB8 pixels as a PNG to fp; returns 0 or -1 with e->msg set. */
+static int write_rows(FILE *fp, const unsigned char *rgb8, int w, int h, struct png_err *e)
+{
+	png_structp png =
+	    png_create_write_struct(PNG_LIBPNG_VER_STRING, e, on_png_error, on_png_warning);
+	png_infop info = png ? png_create_info_struct(png) : NULL;
+	if (!info) {
+		png_destroy_write_struct(&png, NULL);
+		snprintf(e->msg, sizeof e->msg, "libpng: out of memory");
+		return -1;
+	}
+	if (setjmp(e->jb)) {
+		png_destroy_write_struct(&png, &info);
+		return -1;
+	}
+	png_init_io(png, fp);
+	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
+	             PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_text text = {.compression = PNG_TEXT_COMPRESSION_NONE,
+	                 .key = (png_charp) "Software",
+	                 .text = (png_charp) "arvo " ARVO_VERSION};
+	png_set_text(png, info, &text, 1);
+	png_write_info(png, info);
+	for (int y = 0; y < h; y++)
+		png_write_row(png, rgb8 + (size_t)y * (size_t)w * 3);
+	png_write_end(png, info);
+	png_destroy_write_struct(&png, &info);
+	return 0;
+}
+
+/* Writes the PNG into the already-open temp file fd (which it closes). */
+static const char *write_png_fd(int fd, const char *path, const unsigned char *rgb8, int w, int h)
+{
+	struct png_err e = {.msg = ""};
+	FILE *fp = fdopen(fd, "wb");
+	if (!fp) {
+		close(fd);
+		return out_errorf("cannot write '%s': %s", path, strerror(errno));
+	}
+	int rc = write_rows(fp, rgb8, w, h, &e);
+	if (fflush(fp) != 0 || ferror(fp)) {
+		if (rc == 0)
+			snprintf(e.msg, sizeof e.msg, "%s", strerror(errno));
+		rc = -1;
+	}
+	if (fclose(fp) != 0 && rc == 0) {
+		snprintf(e.msg, sizeof e.msg, "%s", strerror(errno));
+		rc = -1;
+	}
+	return rc ? out_errorf("cannot write '%s': %s", path, e.msg) : NULL;
+}
+
+const char *out_png_write(const struct framebuffer *fb, const char *path,
+                          const struct out_png_opts *opts)
+{
+	unsigned char *rgb8 = mem_alloc((size_t)fb->w * (size_t)fb->h * 3);
+	const char *err = out_png_encode(fb, opts, rgb8);
+	if (!err) {
+		char tmp[4096];
+		int fd = out_tmp_create(path, tmp, sizeof tmp);
+		if (fd < 0) {
+			err = out_errorf("cannot write '%s': %s", path, strerror(errno));
+		} else {
+			err = write_png_fd(fd, path, rgb8, fb->w, fb->h);
+			const char *err2 = out_tmp_finish(tmp, path, err == NULL);
+			err = err ? err : err2;
+		}
+	}
+	free(rgb8);
+	return err;
+}
