@@ -1,0 +1,301 @@
+/* SPDX-License-Identifier: MIT */
+/* test_exrout.c: framebuffer planes, EXR write/read round trips (float and
+ * half, every compression), header attributes, and failed writes that must
+ * leave an existing file untouched with no temp file behind. */
+#include <dirent.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "../../tracer/output/exrout.h"
+#include "../../tracer/output/framebuffer.h"
+#include "test.h"
+
+static char dir[64]; /* scratch directory of this run */
+
+/* dir/name in a static buffer (one at a time). */
+static const char *in_dir(const char *name)
+{
+	static char p[256];
+	snprintf(p, sizeof p, "%s/%s", dir, name);
+	return p;
+}
+
+/* Number of entries of dir whose name contains ".tmp.". */
+static int count_tmp(void)
+{
+	DIR *d = opendir(dir);
+	int n = 0;
+	for (struct dirent *e; d && (e = readdir(d));)
+		n += strstr(e->d_name, ".tmp.") != NULL;
+	if (d)
+		closedir(d);
+	return n;
+}
+
+static const char *const names[] = {"caustic.B", "Z", "N.Y", "B", "albedo.R", "direct.G",
+                                    "G", "N.X", "caustic.R", "R", "direct.R", "albedo.G",
+                                    "direct.B", "N.Z", "caustic.G", "albedo.B"};
+#define NNAMES ((int)(sizeof names / sizeof names[0]))
+
+/* A 37x23 framebuffer (odd sizes: partial last chunks) with distinct values
+ * per plane, including negatives, large values and small ones. */
+static struct framebuffer *make_fb(void)
+{
+	struct framebuffer *fb = fb_new(37, 23);
+	for (int k = 0; k < NNAMES; k++) {
+		float *p = fb_plane(fb, names[k]);
+		for (int i = 0; i < fb->w * fb->h; i++)
+			p[i] = (float)((i * 7919 + k * 104729) % 1000 - 200) * 0.0137f * (float)(k + 1);
+	}
+	return fb;
+}
+
+static void t_fb_order(void)
+{
+	struct framebuffer *fb = make_fb();
+	static const char *const want[] = {"R", "G", "B", "Z", "N.X", "N.Y", "N.Z", "albedo.R",
+	                                   "albedo.G", "albedo.B", "caustic.R", "caustic.G",
+	                                   "caustic.B", "direct.R", "direct.G", "direct.B"};
+	CHECK(fb_count(fb) == NNAMES);
+	for (int i = 0; i < NNAMES && i < fb_count(fb); i++)
+		CHECK_STR(fb_name(fb, i), want[i]);
+	float *r = fb_find(fb, "R");
+	CHECK(fb_plane(fb, "R") == r);
+	CHECK(fb_find(fb, "nope") == NULL);
+	float *x = fb_plane(fb, "x.A");
+	CHECK(x && x[0] == 0.0f && x[fb->w * fb->h - 1] == 0.0f);
+	CHECK(fb_find(fb, "R") == r); /* pointers survive growth */
+	CHECK(fb_name(fb, NNAMES + 5) == NULL);
+	fb_free(fb);
+}
+
+/* Writes fb with opts, reads it back and compares every plane: exact for
+ * float (and for Z), within half precision otherwise. */
+static void roundtrip(const struct out_exr_opts *o, const char *file)
+{
+	struct framebuffer *fb = make_fb(), *rd = NULL;
+	struct out_exr_info info;
+	const char *path = in_dir(file);
+	const char *err = out_exr_write(fb, path, o);
+	CHECK(err == NULL);
+	if (err)
+		printf("# %s\n", err);
+	err = out_exr_read(path, &rd, &info);
+	CHECK(err == NULL);
+	if (!rd) {
+		fb_free(fb);
+		return;
+	}
+	CHECK(rd->w == 37 && rd->h == 23 && fb_count(rd) == NNAMES);
+	double maxerr = 0;
+	for (int k = 0; k < fb_count(fb); k++) {
+		const float *a = fb_data(fb, k), *b = fb_find(rd, fb_name(fb, k));
+		CHECK_STR(fb_name(rd, k), fb_name(fb, k));
+		int exact = !o->half || strcmp(fb_name(fb, k), "Z") == 0;
+		for (int i = 0; b && i < fb->w * fb->h; i++) {
+			double e = fabs((double)a[i] - (double)b[i]);
+			double tol = exact ? 0.0 : fabs(a[i]) * (1.0 / 2048) + 6e-8;
+			if (e > tol)
+				maxerr = e > maxerr ? e : maxerr;
+		}
+	}
+	CHECK(maxerr == 0.0);
+	CHECK(info.half == 0); /* Z is float even in half files */
+	CHECK(info.has_chroma);
+	CHECK_NEAR(info.chroma[0], 0.64, 1e-6);
+	CHECK_NEAR(info.chroma[1], 0.33, 1e-6);
+	CHECK_NEAR(info.chroma[2], 0.30, 1e-6);
+	CHECK_NEAR(info.chroma[3], 0.60, 1e-6);
+	CHECK_NEAR(info.chroma[4], 0.15, 1e-6);
+	CHECK_NEAR(info.chroma[5], 0.06, 1e-6);
+	CHECK_NEAR(info.chroma[6], 0.3127, 1e-6);
+	CHECK_NEAR(info.chroma[7], 0.3290, 1e-6);
+	CHECK_STR(info.software, "arvo " ARVO_VERSION);
+	CHECK_STR(info.scene, o->scene ? o->scene : "");
+	CHECK(count_tmp() == 0);
+	fb_free(fb);
+	fb_free(rd);
+}
+
+static void t_float_all_compressions(void)
+{
+	static const char *const comp[] = {"zip", "none", "zips", "piz", "rle"};
+	for (int c = 0; c < 5; c++) {
+		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test"};
+		char file[32];
+		CHECK(out_exr_compression_parse(comp[c], &o.compression) == 0);
+		CHECK((int)o.compression == c);
+		snprintf(file, sizeof file, "f_%s.exr", comp[c]);
+		roundtrip(&o, file);
+	}
+	enum out_exr_compression dummy = OUT_EXR_PIZ;
+	CHECK(out_exr_compression_parse("b44", &dummy) == -1 && dummy == OUT_EXR_PIZ);
+}
+
+static void t_half(void)
+{
+	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL};
+	roundtrip(&o, "h_piz.exr");
+	o.compression = OUT_EXR_ZIP;
+	roundtrip(&o, "h_zip.exr");
+}
+
+/* A 3-channel half file (the case that crashed a partial decode) read back
+ * with known values; the RGB-only half file must report half storage. */
+static void t_half_rgb(void)
+{
+	struct framebuffer *fb = fb_new(5, 3), *rd = NULL;
+	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
+	for (int i = 0; i < 15; i++)
+		p[0][i] = 0.5f * (float)i, p[1][i] = 0.1f, p[2][i] = -1.0f / 3.0f;
+	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL};
+	struct out_exr_info info;
+	CHECK(out_exr_write(fb, in_dir("rgb_half.exr"), &o) == NULL);
+	CHECK(out_exr_read(in_dir("rgb_half.exr"), &rd, &info) == NULL);
+	if (rd) {
+		CHECK(info.half == 1);
+		CHECK(fb_find(rd, "R")[14] == 7.0f);
+		CHECK_NEAR(fb_find(rd, "G")[3], 0.0999755859375, 0); /* nearest half to 0.1 */
+		CHECK_NEAR(fb_find(rd, "B")[7], -0.333251953125, 0);
+	}
+	fb_free(rd);
+	fb_free(fb);
+}
+
+/* OIIO's idiff accepts our files and sees float == half for exact values. */
+static void t_idiff(void)
+{
+	if (system("command -v idiff >/dev/null 2>&1") != 0) {
+		printf("# skip: idiff not installed\n");
+		return;
+	}
+	char cmd[512];
+	snprintf(cmd, sizeof cmd, "cd %s && idiff -q f_zip.exr f_zip.exr >/dev/null 2>&1", dir);
+	CHECK(system(cmd) == 0);
+	snprintf(cmd, sizeof cmd, "cd %s && idiff -q f_piz.exr f_rle.exr >/dev/null 2>&1", dir);
+	CHECK(system(cmd) == 0);
+	snprintf(cmd, sizeof cmd, "cd %s && exrheader f_zip.exr 2>&1 | grep -q 'software.*arvo'", dir);
+	CHECK(system(cmd) == 0);
+}
+
+/* Writes "old" bytes to path. */
+static void put_old(const char *path)
+{
+	FILE *f = fopen(path, "wb");
+	if (f) {
+		fputs("old contents", f);
+		fclose(f);
+	}
+}
+
+/* True when path still holds exactly "old contents". */
+static int is_old(const char *path)
+{
+	char buf[64] = "";
+	FILE *f = fopen(path, "rb");
+	size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+	if (f)
+		fclose(f);
+	buf[n] = '\0';
+	return strcmp(buf, "old contents") == 0;
+}
+
+/* A write that fails half-way (file size limit) must not touch the old file. */
+static void t_failed_write_midway(void)
+{
+	char path[256];
+	snprintf(path, sizeof path, "%s", in_dir("keep.exr"));
+	put_old(path);
+	struct framebuffer *fb = fb_new(256, 256);
+	float *r = fb_plane(fb, "R");
+	for (int i = 0; i < 256 * 256; i++)
+		r[i] = (float)i;
+	struct rlimit old, lim;
+	getrlimit(RLIMIT_FSIZE, &old);
+	lim = old;
+	lim.rlim_cur = 4096;
+	signal(SIGXFSZ, SIG_IGN);
+	setrlimit(RLIMIT_FSIZE, &lim);
+	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL};
+	const char *err = out_exr_write(fb, path, &o);
+	setrlimit(RLIMIT_FSIZE, &old);
+	CHECK(err != NULL);
+	if (err) {
+		printf("# expected error: %s\n", err);
+		CHECK(strstr(err, "keep.exr") != NULL);
+	}
+	CHECK(is_old(path));
+	CHECK(count_tmp() == 0);
+	fb_free(fb);
+}
+
+/* Unwritable or missing directories give an error, never a crash. */
+static void t_failed_write_dir(void)
+{
+	struct framebuffer *fb = fb_new(4, 4);
+	fb_plane(fb, "R");
+	char path[256];
+	snprintf(path, sizeof path, "%s/no/such/dir/x.exr", dir);
+	const char *err = out_exr_write(fb, path, NULL);
+	CHECK(err != NULL && strstr(err, "no/such/dir/x.exr") != NULL);
+	if (geteuid() != 0) { /* root can write anywhere: skip the chmod case */
+		char sub[256];
+		snprintf(sub, sizeof sub, "%s/ro", dir);
+		mkdir(sub, 0755);
+		snprintf(path, sizeof path, "%s/ro/keep.exr", dir);
+		put_old(path);
+		chmod(sub, 0555);
+		CHECK(out_exr_write(fb, path, NULL) != NULL);
+		CHECK(is_old(path));
+		chmod(sub, 0755);
+		unlink(path);
+		rmdir(sub);
+	}
+	struct framebuffer *empty = fb_new(2, 2);
+	CHECK(out_exr_write(empty, in_dir("empty.exr"), NULL) != NULL);
+	CHECK(access(in_dir("empty.exr"), F_OK) != 0);
+	fb_free(empty);
+	fb_free(fb);
+}
+
+static void t_read_errors(void)
+{
+	struct framebuffer *rd = (struct framebuffer *)&rd;
+	const char *err = out_exr_read(in_dir("missing.exr"), &rd, NULL);
+	CHECK(err != NULL && rd == NULL);
+	put_old(in_dir("junk.exr"));
+	err = out_exr_read(in_dir("junk.exr"), &rd, NULL);
+	CHECK(err != NULL && rd == NULL);
+	if (err)
+		printf("# expected error: %s\n", err);
+}
+
+int main(void)
+{
+	snprintf(dir, sizeof dir, "%s/arvo-exr-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+	if (!mkdtemp(dir)) {
+		perror("mkdtemp");
+		return 1;
+	}
+	RUN(t_fb_order);
+	RUN(t_float_all_compressions);
+	RUN(t_half);
+	RUN(t_half_rgb);
+	RUN(t_idiff);
+	RUN(t_failed_write_midway);
+	RUN(t_failed_write_dir);
+	RUN(t_read_errors);
+	if (getenv("ARVO_KEEP_TMP"))
+		return test_done();
+	char cmd[128];
+	snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+	if (system(cmd) != 0)
+		printf("# could not remove %s\n", dir);
+	return test_done();
+}
