@@ -189,6 +189,37 @@ static exr_result_t bind_planes(exr_encode_pipeline_t *enc, const struct framebu
 	return EXR_ERR_SUCCESS;
 }
 
+/* The library's compress routine, wrapped by compress_fixed (per thread). */
+static _Thread_local exr_result_t (*core_compress)(exr_encode_pipeline_t *);
+
+/* OpenEXRCore 3.1.5 stores the compressed bytes when they are exactly as
+ * long as the raw data, but readers take a chunk of raw length as raw
+ * (openexr issue #2306, fixed upstream in 2026): a 2x4 float ZIP image came
+ * back as garbage. Whenever compression does not shrink a chunk, store it
+ * raw, as the file format requires. */
+static exr_result_t compress_fixed(exr_encode_pipeline_t *enc)
+{
+	exr_result_t rv = core_compress(enc);
+	if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes >= enc->packed_bytes &&
+	    enc->compressed_buffer != enc->packed_buffer &&
+	    enc->compressed_alloc_size >= enc->packed_bytes) {
+		memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+		enc->compressed_bytes = enc->packed_bytes;
+	}
+	return rv;
+}
+
+/* Picks the library's routines, then interposes compress_fixed. */
+static exr_result_t choose_routines(exr_context_t ctx, exr_encode_pipeline_t *enc)
+{
+	exr_result_t rv = exr_encoding_choose_default_routines(ctx, 0, enc);
+	if (rv == EXR_ERR_SUCCESS && enc->compress_fn) {
+		core_compress = enc->compress_fn;
+		enc->compress_fn = compress_fixed;
+	}
+	return rv;
+}
+
 /* Encodes and writes every scanline chunk. */
 static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb)
 {
@@ -208,7 +239,7 @@ static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb
 		inited = 1;
 		rv = bind_planes(&enc, fb, y);
 		if (rv == EXR_ERR_SUCCESS && y == 0)
-			rv = exr_encoding_choose_default_routines(ctx, 0, &enc);
+			rv = choose_routines(ctx, &enc);
 		if (rv == EXR_ERR_SUCCESS)
 			rv = exr_encoding_run(ctx, 0, &enc);
 	}

@@ -1,0 +1,314 @@
+/* SPDX-License-Identifier: MIT */
+/* test_png.c: PNG output through the OCIO views (8-bit values of known
+ * pixels, read back with libpng), its failure modes, and image loading for
+ * image_map (PNG through "sRGB - Texture", EXR as linear). */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <png.h>
+
+#include "../../tracer/output/exrout.h"
+#include "../../tracer/output/framebuffer.h"
+#include "../../tracer/output/imageio.h"
+#include "../../tracer/output/pngout.h"
+#include "test.h"
+
+static char dir[64]; /* scratch directory of this run */
+
+/* dir/name in one of two rotating static buffers. */
+static const char *in_dir(const char *name)
+{
+	static char p[2][256];
+	static int k;
+	k ^= 1;
+	snprintf(p[k], sizeof p[k], "%s/%s", dir, name);
+	return p[k];
+}
+
+#define NPIX 8
+static const float pix[NPIX][3] = {
+    {0.18f, 0.18f, 0.18f}, {1, 1, 1},    {0.5f, 0.2f, 0.1f}, {50, 5, 1},
+    {10, 0.5f, 0.05f},     {0, 0, 0},    {-1, -1, -1},       {0.25f, 0.75f, 0},
+};
+/* Expected bytes: DEPS.md's table values * 255, rounded. */
+static const int want_standard[NPIX][3] = {
+    {118, 118, 118}, {255, 255, 255}, {188, 124, 89}, {255, 255, 255},
+    {255, 188, 63},  {0, 0, 0},       {0, 0, 0},      {137, 225, 0},
+};
+static const int want_aces[NPIX][3] = {
+    {91, 91, 91},    {207, 207, 207}, {159, 100, 64}, {255, 251, 237},
+    {255, 213, 135}, {0, 0, 0},       {0, 0, 0},      {-1, -1, -1}, /* -1: not checked */
+};
+static const int want_raw[NPIX][3] = {
+    {46, 46, 46}, {255, 255, 255}, {128, 51, 26}, {255, 255, 255},
+    {255, 128, 13}, {0, 0, 0},     {0, 0, 0},     {64, 191, 0},
+};
+
+/* An 8x1 framebuffer of the pixels above. */
+static struct framebuffer *make_fb(void)
+{
+	struct framebuffer *fb = fb_new(NPIX, 1);
+	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
+	for (int i = 0; i < NPIX; i++)
+		for (int c = 0; c < 3; c++)
+			p[c][i] = pix[i][c];
+	fb_plane(fb, "Z")[0] = 5; /* extra planes are ignored */
+	return fb;
+}
+
+/* Reads an 8-bit RGB PNG with libpng's simplified API into buf (w*h*3). */
+static int read_png8(const char *path, unsigned char *buf, int w, int h)
+{
+	png_image im;
+	memset(&im, 0, sizeof im);
+	im.version = PNG_IMAGE_VERSION;
+	if (!png_image_begin_read_from_file(&im, path))
+		return -1;
+	int ok = im.width == (unsigned)w && im.height == (unsigned)h && im.format == PNG_FORMAT_RGB;
+	im.format = PNG_FORMAT_RGB;
+	if (!ok) {
+		png_image_free(&im);
+		return -1;
+	}
+	return png_image_finish_read(&im, NULL, buf, 0, NULL) ? 0 : -1;
+}
+
+/* Writes with view (NULL = default), reads back, compares with want (±tol). */
+static void check_png(const char *view, const int want[NPIX][3], int tol)
+{
+	struct framebuffer *fb = make_fb();
+	struct out_png_opts o = {NULL, NULL, view, NULL};
+	const char *path = in_dir("v.png");
+	const char *err = out_png_write(fb, path, &o);
+	CHECK(err == NULL);
+	if (err)
+		printf("# %s\n", err);
+	unsigned char got[NPIX * 3], enc[NPIX * 3];
+	CHECK(read_png8(path, got, NPIX, 1) == 0);
+	CHECK(out_png_encode(fb, &o, enc) == NULL);
+	CHECK(memcmp(got, enc, sizeof got) == 0);
+	for (int i = 0; i < NPIX; i++)
+		for (int c = 0; c < 3; c++)
+			if (want[i][c] >= 0)
+				CHECK_NEAR(got[3 * i + c], want[i][c], tol);
+	fb_free(fb);
+}
+
+static void t_standard(void) { check_png("Standard", want_standard, 0); }
+static void t_aces_default(void) { check_png(NULL, want_aces, 1); }
+static void t_raw(void) { check_png("Raw", want_raw, 0); }
+
+/* The default view desaturates a bright orange; Standard keeps it saturated. */
+static void t_highlight_desaturation(void)
+{
+	CHECK(want_aces[4][2] - want_standard[4][2] > 50);
+}
+
+/* NaN and a missing R plane: no crash, clear results. */
+static void t_odd_inputs(void)
+{
+	struct framebuffer *fb = fb_new(2, 1);
+	float *r = fb_plane(fb, "R");
+	r[0] = NAN, r[1] = 0.5f;
+	unsigned char enc[6];
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL};
+	CHECK(out_png_encode(fb, &o, enc) == NULL);
+	CHECK(enc[0] == 0 && enc[3] == 128 && enc[4] == 0 && enc[5] == 0);
+	struct framebuffer *nob = fb_new(2, 1);
+	fb_plane(nob, "Z");
+	CHECK(out_png_encode(nob, &o, enc) != NULL);
+	fb_free(nob);
+	fb_free(fb);
+}
+
+/* Failures leave the old file and no temp file; bad views list valid ones. */
+static void t_failures(void)
+{
+	struct framebuffer *fb = make_fb();
+	const char *path = in_dir("old.png");
+	FILE *f = fopen(path, "wb");
+	if (f) {
+		fputs("old", f);
+		fclose(f);
+	}
+	struct out_png_opts o = {NULL, NULL, "Filmic", NULL};
+	const char *err = out_png_write(fb, path, &o);
+	CHECK(err && strstr(err, "Filmic") && strstr(err, "\"Standard\""));
+	o.view = NULL;
+	o.display = "DCI-P3";
+	CHECK(out_png_write(fb, path, &o) != NULL);
+	o.display = NULL;
+	o.ocio_config = "/nonexistent/config.ocio";
+	err = out_png_write(fb, path, &o);
+	CHECK(err && strstr(err, "/nonexistent/config.ocio"));
+	char buf[8] = "";
+	f = fopen(path, "rb");
+	CHECK(f && fread(buf, 1, 7, f) == 3 && strcmp(buf, "old") == 0);
+	if (f)
+		fclose(f);
+	char bad[256];
+	snprintf(bad, sizeof bad, "%s/missing/dir.png", dir);
+	CHECK(out_png_write(fb, bad, NULL) != NULL);
+	char cmd[160];
+	snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp\\.'", dir);
+	CHECK(system(cmd) != 0);
+	fb_free(fb);
+}
+
+/* ---- image loading ---- */
+
+/* Writes w*h pixels of format fmt (simplified API, 8-bit) to path. */
+static int write_png8(const char *path, const unsigned char *buf, int w, int h, png_uint_32 fmt)
+{
+	png_image im;
+	memset(&im, 0, sizeof im);
+	im.version = PNG_IMAGE_VERSION;
+	im.width = (png_uint_32)w, im.height = (png_uint_32)h, im.format = fmt;
+	return png_image_write_to_file(&im, path, 0, buf, 0, NULL) ? 0 : -1;
+}
+
+static void t_load_png_rgb(void)
+{
+	static const unsigned char px[] = {128, 255, 0, 64, 10, 200};
+	CHECK(write_png8(in_dir("tex.png"), px, 2, 1, PNG_FORMAT_RGB) == 0);
+	struct img im;
+	const char *err = img_load(in_dir("tex.png"), NULL, &im);
+	CHECK(err == NULL);
+	if (err)
+		printf("# %s\n", err);
+	CHECK(im.w == 2 && im.h == 1 && im.nch == 3);
+	if (im.px) {
+		CHECK_NEAR(im.px[0], 0.2158605, 1e-4); /* sRGB EOTF of 128/255 */
+		CHECK_NEAR(im.px[1], 1.0, 1e-4);
+		CHECK_NEAR(im.px[2], 0.0, 1e-5);
+		CHECK_NEAR(im.px[3], 0.0512695, 1e-4);
+		CHECK_NEAR(im.px[4], 0.0030353, 1e-4); /* linear toe */
+		CHECK_NEAR(im.px[5], 0.5775804, 1e-4);
+	}
+	img_free(&im);
+	struct img_opts raw = {NULL, NULL, 1};
+	CHECK(img_load(in_dir("tex.png"), &raw, &im) == NULL);
+	if (im.px)
+		CHECK_NEAR(im.px[0], 128.0 / 255.0, 1e-6);
+	img_free(&im);
+}
+
+/* Grey+alpha: grey expands to RGB and is decoded; alpha stays as stored. */
+static void t_load_png_gray_alpha(void)
+{
+	static const unsigned char px[] = {128, 128, 255, 0};
+	CHECK(write_png8(in_dir("ga.png"), px, 2, 1, PNG_FORMAT_GA) == 0);
+	struct img im;
+	CHECK(img_load(in_dir("ga.png"), NULL, &im) == NULL);
+	CHECK(im.nch == 4);
+	if (im.px && im.nch == 4) {
+		for (int c = 0; c < 3; c++)
+			CHECK_NEAR(im.px[c], 0.2158605, 1e-4);
+		CHECK_NEAR(im.px[3], 128.0 / 255.0, 1e-6);
+		CHECK_NEAR(im.px[4], 1.0, 1e-4);
+		CHECK_NEAR(im.px[7], 0.0, 0);
+	}
+	img_free(&im);
+}
+
+/* A 16-bit RGB PNG written with the classic API keeps 16-bit precision. */
+static void t_load_png16(void)
+{
+	FILE *f = fopen(in_dir("p16.png"), "wb");
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	png_infop info = png_create_info_struct(png);
+	if (!f || !png || !info || setjmp(png_jmpbuf(png))) {
+		CHECK(0);
+		return;
+	}
+	png_init_io(png, f);
+	png_set_IHDR(png, info, 1, 1, 16, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+	             PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_write_info(png, info);
+	unsigned char row[6] = {0x80, 0x00, 0xff, 0xff, 0x00, 0x01}; /* big-endian */
+	png_write_row(png, row);
+	png_write_end(png, info);
+	png_destroy_write_struct(&png, &info);
+	fclose(f);
+	struct img im;
+	CHECK(img_load(in_dir("p16.png"), NULL, &im) == NULL);
+	if (im.px) {
+		CHECK_NEAR(im.px[0], 0.2140609, 1e-4); /* EOTF(32768/65535) */
+		CHECK_NEAR(im.px[1], 1.0, 1e-4);
+		CHECK_NEAR(im.px[2], 1.0 / 65535 / 12.92, 1e-6);
+	}
+	img_free(&im);
+}
+
+static void t_load_exr(void)
+{
+	struct framebuffer *fb = fb_new(3, 2);
+	const char *nm[4] = {"R", "G", "B", "A"};
+	for (int c = 0; c < 4; c++)
+		for (int i = 0; i < 6; i++)
+			fb_plane(fb, nm[c])[i] = (float)(c * 10 + i) * 0.25f - 1.0f;
+	CHECK(out_exr_write(fb, in_dir("m.exr"), NULL) == NULL);
+	struct img im;
+	CHECK(img_load(in_dir("m.exr"), NULL, &im) == NULL);
+	CHECK(im.w == 3 && im.h == 2 && im.nch == 4);
+	for (int i = 0; im.px && i < 6; i++)
+		for (int c = 0; c < 4; c++)
+			CHECK(im.px[4 * i + c] == fb_find(fb, nm[c])[i]);
+	img_free(&im);
+	fb_free(fb);
+	fb = fb_new(2, 2);
+	fb_plane(fb, "Y")[3] = 0.75f;
+	CHECK(out_exr_write(fb, in_dir("y.exr"), NULL) == NULL);
+	CHECK(img_load(in_dir("y.exr"), NULL, &im) == NULL);
+	CHECK(im.nch == 3 && im.px && im.px[9] == 0.75f && im.px[11] == 0.75f && im.px[0] == 0);
+	img_free(&im);
+	fb_free(fb);
+}
+
+static void t_load_errors(void)
+{
+	struct img im;
+	CHECK(img_load(in_dir("nope.png"), NULL, &im) != NULL && im.px == NULL);
+	FILE *f = fopen(in_dir("bad.png"), "wb");
+	if (f) {
+		fwrite("\x89PNG\r\n\x1a\n garbage", 1, 16, f);
+		fclose(f);
+	}
+	const char *err = img_load(in_dir("bad.png"), NULL, &im);
+	CHECK(err != NULL && im.px == NULL);
+	if (err)
+		printf("# expected error: %s\n", err);
+	struct img_opts o = {NULL, "No Such Space", 0};
+	CHECK(img_load(in_dir("tex.png"), &o, &im) != NULL && im.px == NULL);
+	CHECK(img_load(in_dir("old.png"), NULL, &im) != NULL);
+}
+
+int main(void)
+{
+	snprintf(dir, sizeof dir, "%s/arvo-png-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+	if (!mkdtemp(dir)) {
+		perror("mkdtemp");
+		return 1;
+	}
+	RUN(t_standard);
+	RUN(t_aces_default);
+	RUN(t_raw);
+	RUN(t_highlight_desaturation);
+	RUN(t_odd_inputs);
+	RUN(t_failures);
+	RUN(t_load_png_rgb);
+	RUN(t_load_png_gray_alpha);
+	RUN(t_load_png16);
+	RUN(t_load_exr);
+	RUN(t_load_errors);
+	if (getenv("ARVO_KEEP_TMP"))
+		return test_done();
+	char cmd[128];
+	snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+	if (system(cmd) != 0)
+		printf("# could not remove %s\n", dir);
+	return test_done();
+}
