@@ -182,8 +182,46 @@ static void t_config_resolution(void)
 	CHECK(strstr(list, "\"Raw\"") != NULL);
 }
 
-int main(void)
+/* $ARVO_DATA_DIR wins over the executable's neighbourhood; a directory
+ * without ocio/config.ocio falls through. Runs this binary again with
+ * --print-default, since the search result is cached per process. */
+static void t_data_dir_env(void)
 {
+	char dir[64] = "/tmp/arvo-ocio-XXXXXX", cmd[512], out[512] = "";
+	if (!mkdtemp(dir)) {
+		CHECK(0);
+		return;
+	}
+	snprintf(cmd, sizeof cmd, "mkdir -p %s/ocio && cp '%s' %s/ocio/config.ocio", dir,
+	         out_default_ocio_config(), dir);
+	CHECK(system(cmd) == 0);
+	snprintf(cmd, sizeof cmd, "ARVO_DATA_DIR=%s /proc/%d/exe --print-default", dir, (int)getpid());
+	FILE *p = popen(cmd, "r");
+	if (p && fgets(out, sizeof out, p))
+		out[strcspn(out, "\n")] = '\0';
+	if (p)
+		pclose(p);
+	snprintf(cmd, sizeof cmd, "%s/ocio/config.ocio", dir);
+	CHECK_STR(out, cmd);
+	snprintf(cmd, sizeof cmd, "ARVO_DATA_DIR=/nonexistent /proc/%d/exe --print-default", (int)getpid());
+	p = popen(cmd, "r");
+	out[0] = '\0';
+	if (p && fgets(out, sizeof out, p))
+		out[strcspn(out, "\n")] = '\0';
+	if (p)
+		pclose(p);
+	CHECK_STR(out, out_default_ocio_config());
+	snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+	CHECK(system(cmd) == 0);
+}
+
+int main(int argc, char **argv)
+{
+	if (argc > 1 && strcmp(argv[1], "--print-default") == 0) {
+		const char *p = out_default_ocio_config();
+		printf("%s\n", p ? p : "(none)");
+		return 0;
+	}
 	RUN(t_default_config_found);
 	RUN(t_displays_views);
 	RUN(t_view_standard);
@@ -192,6 +230,7 @@ int main(void)
 	RUN(t_source_space);
 	RUN(t_texture_to_linear);
 	RUN(t_config_resolution);
+	RUN(t_data_dir_env);
 	ocio_config_free(cfg);
 	return test_done();
 }
