@@ -1,0 +1,238 @@
+/* SPDX-License-Identifier: MIT */
+/* shape.c: dispatch from the scene's objects to the primitive files, the
+ * object↔world conversions, and the area helpers the primitives share. */
+#include "shape.h"
+
+#include <math.h>
+
+#include "shapes/prim.h"
+
+/* The primitive table, indexed by enum object_kind (NULL for CSG kinds). */
+static const struct prim_ops *const ops_of[OBJ_KIND_COUNT] = {
+	[OBJ_SPHERE] = &shape_sphere_ops,     [OBJ_PLANE] = &shape_plane_ops,
+	[OBJ_BOX] = &shape_box_ops,           [OBJ_DISC] = &shape_disc_ops,
+	[OBJ_CYLINDER] = &shape_cylinder_ops, [OBJ_CONE] = &shape_cone_ops,
+	[OBJ_TORUS] = &shape_torus_ops,       [OBJ_TRIANGLE] = &shape_triangle_ops,
+};
+
+static const struct prim_ops *ops(const struct object *o)
+{
+	return (unsigned)o->kind < OBJ_KIND_COUNT ? ops_of[o->kind] : NULL;
+}
+
+/* ==== intersection ======================================================= */
+
+/* The world ray expressed in the object's frame (same t). */
+static struct ray local_ray(const struct object *o, const struct ray *r)
+{
+	return (struct ray){xf_inv_point(&o->xf, r->o), xf_inv_vector(&o->xf, r->d)};
+}
+
+/* Fills a world hit from a local one. */
+static void to_world(const struct object *o, const struct ray *r, const struct local_hit *lh,
+                     struct hit *h)
+{
+	struct vec3 n = v_norm(xf_normal(&o->xf, lh->n));
+	if (o->flags & OF_INVERSE)
+		n = v_neg(n);
+	h->t = lh->t;
+	h->p = xf_point(&o->xf, lh->p);
+	h->n = n;
+	h->u = lh->u;
+	h->v = lh->v;
+	h->dpdu = xf_vector(&o->xf, lh->dpdu);
+	h->dpdv = xf_vector(&o->xf, lh->dpdv);
+	h->obj = o;
+	h->entering = v_dot(r->d, n) < 0;
+}
+
+bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                     struct hit *h)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, h);
+	struct ray lr = local_ray(o, r);
+	struct local_hit lh;
+	if (!p->intersect(o, &lr, tmin, tmax, &lh))
+		return false;
+	to_world(o, r, &lh, h);
+	return true;
+}
+
+bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
+{
+	const struct prim_ops *p = ops(o);
+	struct hit h;
+	if (!p)
+		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, &h);
+	struct ray lr = local_ray(o, r);
+	struct local_hit lh;
+	return p->intersect(o, &lr, tmin, tmax, &lh);
+}
+
+bool shape_inside(const struct object *o, struct vec3 world_p)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return csg_is_csg(o) && csg_inside(o, world_p);
+	bool in = p->inside(o, xf_inv_point(&o->xf, world_p));
+	return (o->flags & OF_INVERSE) ? !in : in;
+}
+
+/* ==== bounds ============================================================= */
+
+static bool box_finite(struct bbox b)
+{
+	return isfinite(b.lo.x) && isfinite(b.lo.y) && isfinite(b.lo.z) && isfinite(b.hi.x) &&
+	       isfinite(b.hi.y) && isfinite(b.hi.z);
+}
+
+struct bbox shape_bounds(const struct object *o)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return csg_is_csg(o) ? csg_bounds(o) : bbox_empty();
+	struct bbox b = p->bounds(o);
+	return box_finite(b) ? xf_bbox(&o->xf, b) : prim_infinite_box();
+}
+
+struct bbox shape_solid_bounds(const struct object *o)
+{
+	if (csg_is_csg(o))
+		return csg_solid_bounds(o);
+	if ((o->flags & OF_INVERSE) || o->kind == OBJ_PLANE)
+		return prim_infinite_box();
+	return shape_bounds(o);
+}
+
+bool shape_bounded(const struct object *o) { return box_finite(shape_bounds(o)); }
+
+/* ==== parametrisation ===================================================== */
+
+bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
+                    struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	const struct prim_ops *ps = ops(o);
+	struct vec3 lp, lu, lv;
+	if (!ps || !ps->uv_point(o, u, v, &lp, &lu, &lv))
+		return false;
+	if (p)
+		*p = xf_point(&o->xf, lp);
+	if (dpdu)
+		*dpdu = xf_vector(&o->xf, lu);
+	if (dpdv)
+		*dpdv = xf_vector(&o->xf, lv);
+	return true;
+}
+
+bool shape_uv_range(const struct object *o, struct uv_range *out)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return false;
+	*out = p->uv_range(o);
+	return true;
+}
+
+double shape_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p || !(u1 > u0) || !(v1 > v0))
+		return 0;
+	return p->cell_area(o, u0, u1, v0, v1);
+}
+
+double shape_area(const struct object *o)
+{
+	struct uv_range d;
+	if (!shape_uv_range(o, &d))
+		return 0;
+	if (!d.bounded)
+		return INFINITY;
+	return shape_cell_area(o, d.u0, d.u1, d.v0, d.v1);
+}
+
+/* ==== helpers for the primitives ========================================= */
+
+bool shape_similarity(const struct object *o, double *area_scale)
+{
+	const double(*m)[4] = o->xf.m;
+	double g[3][3];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			g[i][j] = m[0][i] * m[0][j] + m[1][i] * m[1][j] + m[2][i] * m[2][j];
+	double s2 = (g[0][0] + g[1][1] + g[2][2]) / 3, tol = 1e-13 * s2;
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			if (fabs(g[i][j] - (i == j ? s2 : 0)) > tol)
+				return false;
+	*area_scale = s2;
+	return true;
+}
+
+void shape_basis(struct vec3 w, struct vec3 *e1, struct vec3 *e2)
+{
+	struct vec3 a = fabs(w.x) < 0.9 ? v3(1, 0, 0) : v3(0, 0, 1);
+	*e1 = v_norm(v_madd(a, w, -v_dot(a, w)));
+	*e2 = v_cross(w, *e1);
+}
+
+double shape_planar_scale(const struct object *o, struct vec3 n)
+{
+	struct vec3 t1, t2;
+	shape_basis(v_norm(n), &t1, &t2);
+	return v_len(v_cross(xf_vector(&o->xf, t1), xf_vector(&o->xf, t2)));
+}
+
+/* Gauss–Legendre nodes and weights on [-1,1], 5 and 7 points. */
+static const double gl5_x[5] = {-0.9061798459386640, -0.5384693101056831, 0,
+                                0.5384693101056831, 0.9061798459386640};
+static const double gl5_w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                0.4786286704993665, 0.2369268850561891};
+static const double gl7_x[7] = {-0.9491079123427585, -0.7415311855993945, -0.4058451513773972,
+                                0, 0.4058451513773972, 0.7415311855993945, 0.9491079123427585};
+static const double gl7_w[7] = {0.1294849661688697, 0.2797053914892767, 0.3818300505051189,
+                                0.4179591836734694, 0.3818300505051189, 0.2797053914892767,
+                                0.1294849661688697};
+
+/* ‖∂T/∂u × ∂T/∂v‖ in the world at (u,v). */
+static double jacobian(const struct object *o, double u, double v)
+{
+	struct vec3 du, dv;
+	if (!shape_uv_point(o, u, v, NULL, &du, &dv))
+		return 0;
+	return v_len(v_cross(du, dv));
+}
+
+/* Tensor Gauss–Legendre rule with n points per axis over the cell. */
+static double gl_rule(const struct object *o, int n, const double *x, const double *w,
+                      double u0, double u1, double v0, double v1)
+{
+	double hu = 0.5 * (u1 - u0), hv = 0.5 * (v1 - v0), mu = u0 + hu, mv = v0 + hv, s = 0;
+	for (int i = 0; i < n; i++)
+		for (int j = 0; j < n; j++)
+			s += w[i] * w[j] * jacobian(o, mu + hu * x[i], mv + hv * x[j]);
+	return s * hu * hv;
+}
+
+/* Adaptive cubature: accept the 7-point result where it agrees with the
+ * 5-point one, else split the cell in four (depth-limited). */
+static double adapt(const struct object *o, double u0, double u1, double v0, double v1,
+                    int depth)
+{
+	double a7 = gl_rule(o, 7, gl7_x, gl7_w, u0, u1, v0, v1);
+	double a5 = gl_rule(o, 5, gl5_x, gl5_w, u0, u1, v0, v1);
+	if (fabs(a7 - a5) <= 1e-12 * fabs(a7) || depth >= 8)
+		return a7;
+	double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+	return adapt(o, u0, um, v0, vm, depth + 1) + adapt(o, um, u1, v0, vm, depth + 1) +
+	       adapt(o, u0, um, vm, v1, depth + 1) + adapt(o, um, u1, vm, v1, depth + 1);
+}
+
+double shape_integrate_area(const struct object *o, double u0, double u1, double v0, double v1)
+{
+	if (!(u1 > u0) || !(v1 > v0))
+		return 0;
+	return adapt(o, u0, u1, v0, v1, 0);
+}

@@ -1,0 +1,98 @@
+/* SPDX-License-Identifier: MIT */
+/* plane.c: plane { n, d }, the set n·p = d; inside is n·p < d (POV-Ray).
+ *
+ * Parametrisation (object frame), unbounded, in object-frame length units:
+ * with n̂ = n/|n|, the origin o = (d/|n|)·n̂ and the orthonormal in-plane axes
+ * e1, e2 of shape_basis(n̂) (e1 = x made perpendicular to n̂, or z when n̂ is
+ * near x; e2 = n̂ × e1):
+ *
+ *     T(u,v) = o + u·e1 + v·e2,   ∂T/∂u = e1,  ∂T/∂v = e2,
+ *     ∂T/∂u × ∂T/∂v = n̂            (‖·‖ = 1, never vanishes)
+ *
+ * For plane { y, 0 }: e1 = x, e2 = −z, so u = x and v = −z. In the world the
+ * partials are scaled by the object's transform; a cell's area is
+ * (u1−u0)(v1−v0) times the transform's area factor for the plane. */
+#include <math.h>
+
+#include "prim.h"
+
+/* Unit normal, offset along it, and the in-plane axes. */
+struct pframe {
+	struct vec3 n, e1, e2; /* n̂ and the in-plane axes */
+	double d;              /* n̂·p = d on the plane */
+};
+
+static bool pl_frame(const struct object *o, struct pframe *f)
+{
+	double l = v_len(o->g.plane.n);
+	if (!(l > 0))
+		return false;
+	f->n = v_scale(o->g.plane.n, 1 / l);
+	f->d = o->g.plane.d / l;
+	shape_basis(f->n, &f->e1, &f->e2);
+	return true;
+}
+
+static bool pl_uv_point(const struct object *o, double u, double v, struct vec3 *p,
+                        struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	struct pframe f;
+	if (!pl_frame(o, &f))
+		return false;
+	if (p)
+		*p = v_madd(v_madd(v_scale(f.n, f.d), f.e1, u), f.e2, v);
+	if (dpdu)
+		*dpdu = f.e1;
+	if (dpdv)
+		*dpdv = f.e2;
+	return true;
+}
+
+static bool pl_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	struct pframe f;
+	if (!pl_frame(o, &f))
+		return false;
+	double den = v_dot(f.n, r->d);
+	if (den == 0)
+		return false;
+	double t = (f.d - v_dot(f.n, r->o)) / den;
+	if (!(t > tmin && t < tmax))
+		return false;
+	struct vec3 p = ray_at(*r, t);
+	lh->t = t;
+	lh->u = v_dot(p, f.e1);
+	lh->v = v_dot(p, f.e2);
+	lh->p = v_madd(v_madd(v_scale(f.n, f.d), f.e1, lh->u), f.e2, lh->v);
+	lh->n = f.n;
+	lh->dpdu = f.e1;
+	lh->dpdv = f.e2;
+	return true;
+}
+
+static bool pl_inside(const struct object *o, struct vec3 p)
+{
+	return v_dot(o->g.plane.n, p) < o->g.plane.d;
+}
+
+static struct bbox pl_bounds(const struct object *o)
+{
+	(void)o;
+	return prim_infinite_box();
+}
+
+static struct uv_range pl_uv_range(const struct object *o)
+{
+	(void)o;
+	return (struct uv_range){-INFINITY, INFINITY, -INFINITY, INFINITY, false, false, false};
+}
+
+static double pl_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
+{
+	return (u1 - u0) * (v1 - v0) * shape_planar_scale(o, o->g.plane.n);
+}
+
+const struct prim_ops shape_plane_ops = {
+	pl_intersect, pl_inside, pl_bounds, pl_uv_point, pl_uv_range, pl_cell_area,
+};

@@ -1,0 +1,101 @@
+/* SPDX-License-Identifier: MIT */
+/* prim.h: what each primitive file under tracer/shapes/ supplies to shape.c.
+ *
+ * A primitive works in its own frame: shape.c turns the world ray into that
+ * frame (t is unchanged, the direction is not normalised), calls the table
+ * below, and turns the local hit back into a world hit. Only cell_area sees
+ * the transform, because area does not transform by a single factor. */
+#ifndef ARVO_PRIM_H
+#define ARVO_PRIM_H
+
+#include <math.h>
+#include <stdbool.h>
+
+#include "../shape.h"
+
+/* A hit in the primitive's own frame. */
+struct local_hit {
+	double t;               /* ray parameter (same as in the world) */
+	struct vec3 p;          /* point on the surface */
+	struct vec3 n;          /* outward normal, any non-zero length */
+	double u, v;            /* surface parameters */
+	struct vec3 dpdu, dpdv; /* partials of T(u,v) in the object frame */
+};
+
+/* The operations of one primitive kind, all in the object frame. */
+struct prim_ops {
+	/* Nearest hit with tmin < t < tmax. */
+	bool (*intersect)(const struct object *o, const struct ray *r, double tmin, double tmax,
+	                  struct local_hit *lh);
+	/* Strictly inside the solid (no OF_INVERSE handling). */
+	bool (*inside)(const struct object *o, struct vec3 p);
+	/* Object-frame bounds; ±INFINITY when unbounded. */
+	struct bbox (*bounds)(const struct object *o);
+	/* T(u,v) and its partials (any of the outputs may be NULL). */
+	bool (*uv_point)(const struct object *o, double u, double v, struct vec3 *p,
+	                 struct vec3 *dpdu, struct vec3 *dpdv);
+	/* The (u,v) domain. */
+	struct uv_range (*uv_range)(const struct object *o);
+	/* World area over the cell (see shape_cell_area). */
+	double (*cell_area)(const struct object *o, double u0, double u1, double v0, double v1);
+};
+
+extern const struct prim_ops shape_sphere_ops, shape_plane_ops, shape_box_ops, shape_disc_ops,
+	shape_cylinder_ops, shape_cone_ops, shape_torus_ops, shape_triangle_ops;
+
+/* ---- helpers shared by the primitives (shape.c) ------------------------- */
+
+/* When o->xf's linear part is a rotation times a uniform scale s (possibly
+ * mirrored), stores s² (the area factor) and returns true. */
+bool shape_similarity(const struct object *o, double *area_scale);
+/* World area of one unit of object-frame area on a plane with normal n. */
+double shape_planar_scale(const struct object *o, struct vec3 n);
+/* ∬ ‖∂T/∂u × ∂T/∂v‖ (world) over the cell by adaptive Gauss–Legendre; the
+ * integrand must be smooth on the cell (callers split at seams). */
+double shape_integrate_area(const struct object *o, double u0, double u1, double v0, double v1);
+/* An orthonormal basis e1, e2 with e1 × e2 = w (w unit): e1 is the x axis
+ * (or z when w is near x) made perpendicular to w. */
+void shape_basis(struct vec3 w, struct vec3 *e1, struct vec3 *e2);
+
+/* Real roots of a·t² + b·t + c = 0 (a ≠ 0), t0 ≤ t1, without cancellation.
+ * disc is b² − 4ac, passed in so callers may compute it more accurately. */
+static inline bool prim_quadratic(double a, double b, double c, double disc, double *t0,
+                                  double *t1)
+{
+	if (disc < 0 || a == 0)
+		return false;
+	double q = -0.5 * (b + copysign(sqrt(disc), b));
+	double r0 = q / a, r1 = q != 0 ? c / q : r0;
+	*t0 = fmin(r0, r1);
+	*t1 = fmax(r0, r1);
+	return true;
+}
+
+/* Length of the overlap of [a0,a1] and [b0,b1] (0 when disjoint). */
+static inline double prim_overlap(double a0, double a1, double b0, double b1)
+{
+	double lo = fmax(a0, b0), hi = fmin(a1, b1);
+	return hi > lo ? hi - lo : 0;
+}
+
+/* x wrapped into [0,1). */
+static inline double prim_wrap01(double x)
+{
+	x -= floor(x);
+	return x >= 1 ? 0 : x;
+}
+
+/* atan2(y,x)/2π in [0,1). */
+static inline double prim_turns(double y, double x)
+{
+	double a = atan2(y, x) / (2 * M_PI);
+	return a < 0 ? (a + 1 < 1 ? a + 1 : 0) : a;
+}
+
+/* An infinite box. */
+static inline struct bbox prim_infinite_box(void)
+{
+	return (struct bbox){v3(-INFINITY, -INFINITY, -INFINITY), v3(INFINITY, INFINITY, INFINITY)};
+}
+
+#endif

@@ -1,0 +1,128 @@
+/* SPDX-License-Identifier: MIT */
+/* sphere.c: sphere { c, r }.
+ *
+ * Parametrisation (object frame), φ = 2πu, θ = πv, (u,v) ∈ [0,1]²:
+ *
+ *     T(u,v) = c + r·(sinθ cosφ, −cosθ, −sinθ sinφ)
+ *
+ * v = 0 is the south pole (c − r·y), v = 1 the north pole; u = 0 is the
+ * half-meridian through +x, and u grows from +x towards −z (counter-clockwise
+ * seen from +y). u wraps (seam at u = 0 ≡ 1).
+ *
+ *     ∂T/∂u = 2πr·sinθ·(−sinφ, 0, −cosφ)
+ *     ∂T/∂v = πr·(cosθ cosφ, sinθ, −cosθ sinφ)
+ *     ∂T/∂u × ∂T/∂v = 2π²r²·sinθ·n̂      (outward; 0 at both poles)
+ *
+ * Cell area: 2πr²·(u1−u0)·(cos πv0 − cos πv1), finite at the poles (a pole
+ * cell is a spherical cap zone). Under a non-uniform scale the area is
+ * integrated numerically (the integrand stays smooth). */
+#include <math.h>
+
+#include "prim.h"
+
+#define S_C(o) ((o)->g.sphere.c)
+#define S_R(o) ((o)->g.sphere.r)
+
+static bool sph_uv_point(const struct object *o, double u, double v, struct vec3 *p,
+                         struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	double r = S_R(o), phi = 2 * M_PI * u, th = M_PI * v;
+	double sp = sin(phi), cp = cos(phi), st = sin(th), ct = cos(th);
+	if (!(r > 0))
+		return false;
+	if (p)
+		*p = v_add(S_C(o), v3(r * st * cp, -r * ct, -r * st * sp));
+	if (dpdu)
+		*dpdu = v3(-2 * M_PI * r * st * sp, 0, -2 * M_PI * r * st * cp);
+	if (dpdv)
+		*dpdv = v3(M_PI * r * ct * cp, M_PI * r * st, -M_PI * r * ct * sp);
+	return true;
+}
+
+/* (u,v) of a point q = (p − c)/r on the unit sphere; atan2 keeps θ accurate
+ * near the poles, where acos would not be. */
+static void sph_uv(struct vec3 q, double *u, double *v)
+{
+	*u = prim_turns(-q.z, q.x);
+	*v = atan2(sqrt(q.x * q.x + q.z * q.z), -q.y) / M_PI;
+}
+
+/* Ray–sphere roots. The discriminant is computed as 4a·(r² − |f⊥|²), f⊥ the
+ * part of (o − c) perpendicular to d, which keeps precision for distant rays
+ * (pbrt-v4's formulation). */
+static bool sph_roots(const struct object *o, const struct ray *r, double *t0, double *t1)
+{
+	struct vec3 f = v_sub(r->o, S_C(o)), d = r->d;
+	double a = v_dot(d, d), b = 2 * v_dot(f, d), c = v_dot(f, f) - S_R(o) * S_R(o);
+	if (!(a > 0))
+		return false;
+	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);
+	double rr = S_R(o), lp = v_len(perp);
+	double disc = 4 * a * (rr + lp) * (rr - lp);
+	return prim_quadratic(a, b, c, disc, t0, t1);
+}
+
+static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct local_hit *lh)
+{
+	double t0, t1, t;
+	if (!(S_R(o) > 0) || !sph_roots(o, r, &t0, &t1))
+		return false;
+	if (t0 > tmin && t0 < tmax)
+		t = t0;
+	else if (t1 > tmin && t1 < tmax)
+		t = t1;
+	else
+		return false;
+	struct vec3 q = v_sub(ray_at(*r, t), S_C(o));
+	double l = v_len(q);
+	if (!(l > 0))
+		return false;
+	q = v_scale(q, 1 / l); /* reproject onto the surface */
+	lh->t = t;
+	lh->p = v_madd(S_C(o), q, S_R(o));
+	lh->n = q;
+	sph_uv(q, &lh->u, &lh->v);
+	return sph_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
+}
+
+static bool sph_inside(const struct object *o, struct vec3 p)
+{
+	struct vec3 f = v_sub(p, S_C(o));
+	return v_dot(f, f) < S_R(o) * S_R(o);
+}
+
+static struct bbox sph_bounds(const struct object *o)
+{
+	double r = fabs(S_R(o));
+	return (struct bbox){v_sub(S_C(o), v3(r, r, r)), v_add(S_C(o), v3(r, r, r))};
+}
+
+static struct uv_range sph_uv_range(const struct object *o)
+{
+	(void)o;
+	return (struct uv_range){0, 1, 0, 1, true, true, false};
+}
+
+/* cos πa − cos πb, written as a product so small cells near the poles keep
+ * their precision. */
+static double cos_diff(double a, double b)
+{
+	return 2 * sin(M_PI * 0.5 * (a + b)) * sin(M_PI * 0.5 * (b - a));
+}
+
+static double sph_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
+{
+	double s2;
+	v0 = fmax(v0, 0);
+	v1 = fmin(v1, 1);
+	if (!(v1 > v0) || !(S_R(o) > 0))
+		return 0;
+	if (!shape_similarity(o, &s2))
+		return shape_integrate_area(o, u0, u1, v0, v1);
+	return s2 * 2 * M_PI * S_R(o) * S_R(o) * (u1 - u0) * cos_diff(v0, v1);
+}
+
+const struct prim_ops shape_sphere_ops = {
+	sph_intersect, sph_inside, sph_bounds, sph_uv_point, sph_uv_range, sph_cell_area,
+};

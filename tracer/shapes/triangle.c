@@ -1,0 +1,122 @@
+/* SPDX-License-Identifier: MIT */
+/* triangle.c: triangle { p0, p1, p2 }. Flat: nothing is inside it (POV-Ray),
+ * unless OF_INVERSE makes everything inside.
+ *
+ * Parametrisation (object frame): barycentric, with e1 = p1 − p0,
+ * e2 = p2 − p0:
+ *
+ *     T(u,v) = p0 + u·e1 + v·e2,   (u,v) ∈ [0,1]², on the surface for u + v ≤ 1
+ *     ∂T/∂u = e1,  ∂T/∂v = e2,  ∂T/∂u × ∂T/∂v = e1 × e2   (constant, the normal)
+ *
+ * The "outward" normal is e1 × e2 (counter-clockwise p0 → p1 → p2). Half of
+ * the unit square (u + v > 1) lies off the triangle: T extends the plane
+ * there, and a cell's area counts only the part with u, v ≥ 0, u + v ≤ 1
+ * (exact, under any affine transform). */
+#include <math.h>
+
+#include "prim.h"
+
+#define TP(o, i) ((o)->g.triangle.p[i])
+
+static bool tr_uv_point(const struct object *o, double u, double v, struct vec3 *p,
+                        struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
+	if (p)
+		*p = v_madd(v_madd(TP(o, 0), e1, u), e2, v);
+	if (dpdu)
+		*dpdu = e1;
+	if (dpdv)
+		*dpdv = e2;
+	return true;
+}
+
+/* Möller–Trumbore in double precision; edges are inclusive. */
+static bool tr_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
+	struct vec3 pv = v_cross(r->d, e2);
+	double det = v_dot(e1, pv);
+	if (det == 0 || !isfinite(det))
+		return false;
+	double inv = 1 / det;
+	struct vec3 s = v_sub(r->o, TP(o, 0));
+	double u = v_dot(s, pv) * inv;
+	if (u < 0 || u > 1)
+		return false;
+	struct vec3 qv = v_cross(s, e1);
+	double v = v_dot(r->d, qv) * inv;
+	if (v < 0 || u + v > 1)
+		return false;
+	double t = v_dot(e2, qv) * inv;
+	if (!(t > tmin && t < tmax))
+		return false;
+	lh->t = t;
+	lh->u = u;
+	lh->v = v;
+	lh->p = v_madd(v_madd(TP(o, 0), e1, u), e2, v);
+	lh->n = v_cross(e1, e2);
+	lh->dpdu = e1;
+	lh->dpdv = e2;
+	return true;
+}
+
+static bool tr_inside(const struct object *o, struct vec3 p)
+{
+	(void)o;
+	(void)p;
+	return false;
+}
+
+static struct bbox tr_bounds(const struct object *o)
+{
+	struct bbox b = bbox_empty();
+	for (int i = 0; i < 3; i++)
+		b = bbox_add(b, TP(o, i));
+	return b;
+}
+
+static struct uv_range tr_uv_range(const struct object *o)
+{
+	(void)o;
+	return (struct uv_range){0, 1, 0, 1, true, false, false};
+}
+
+/* Area of {u0≤u≤u1, v0≤v≤v1, u+v≤1} for a rectangle already inside the
+ * positive quadrant: the rectangle minus the corner cut off by u + v = 1. */
+static double clipped_area(double u0, double u1, double v0, double v1)
+{
+	double full = (u1 - u0) * (v1 - v0);
+	double over = u1 + v1 - 1; /* how far the top-right corner is past the line */
+	if (over <= 0)
+		return full;
+	if (u0 + v0 >= 1)
+		return 0;
+	/* the cut corner is a right triangle of leg "over", minus what sticks
+	 * out past the rectangle's left and bottom edges */
+	double cut = 0.5 * over * over;
+	double lx = over - (u1 - u0), ly = over - (v1 - v0);
+	if (lx > 0)
+		cut -= 0.5 * lx * lx;
+	if (ly > 0)
+		cut -= 0.5 * ly * ly;
+	return full - cut;
+}
+
+static double tr_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
+{
+	u0 = fmax(u0, 0);
+	v0 = fmax(v0, 0);
+	u1 = fmin(u1, 1);
+	v1 = fmin(v1, 1);
+	if (!(u1 > u0) || !(v1 > v0))
+		return 0;
+	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
+	double jac = v_len(v_cross(xf_vector(&o->xf, e1), xf_vector(&o->xf, e2)));
+	return clipped_area(u0, u1, v0, v1) * jac;
+}
+
+const struct prim_ops shape_triangle_ops = {
+	tr_intersect, tr_inside, tr_bounds, tr_uv_point, tr_uv_range, tr_cell_area,
+};
