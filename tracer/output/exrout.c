@@ -42,6 +42,7 @@ static mode_t file_mode(void)
 	return mode;
 }
 
+/* mkstemp beside the target, then the mode a plain fopen would have given. */
 int out_tmp_create(const char *path, char *tmp, size_t tmplen)
 {
 	int n = snprintf(tmp, tmplen, "%s.tmp.XXXXXX", path);
@@ -60,6 +61,7 @@ int out_tmp_create(const char *path, char *tmp, size_t tmplen)
 	return fd;
 }
 
+/* Commit (rename) or abandon (unlink) a temp file; unlink also after a failed rename. */
 const char *out_tmp_finish(const char *tmp, const char *path, int ok)
 {
 	if (ok && rename(tmp, path) == 0)
@@ -123,6 +125,7 @@ static const char *exr_msg(const struct io *io, exr_result_t rv)
 
 /* ================= writer ================= */
 
+/* Index in names[] is the enum value (OUT_EXR_ZIP is 0, the default). */
 int out_exr_compression_parse(const char *name, enum out_exr_compression *out)
 {
 	static const char *const names[] = {"zip", "none", "zips", "piz", "rle"};
@@ -273,6 +276,7 @@ static const char *write_file(struct io *io, const char *path, const struct fram
 	return rv == EXR_ERR_SUCCESS ? NULL : out_errorf("cannot write '%s': %s", path, exr_msg(io, rv));
 }
 
+/* Validates, writes to a temp file through our fd, then renames or removes it. */
 const char *out_exr_write(const struct framebuffer *fb, const char *path,
                           const struct out_exr_opts *opts)
 {
@@ -408,6 +412,7 @@ static const char *check_part(exr_const_context_t ctx, const char *path, int *w,
 	return NULL;
 }
 
+/* Opens, checks the header, decodes all channels; on error nothing leaks and *out stays NULL. */
 const char *out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info)
 {
 	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

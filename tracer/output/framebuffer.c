@@ -7,6 +7,7 @@
 
 #include "../../common/arena.h"
 
+/* Sizes below 1 are raised to 1 so every plane has storage. */
 struct framebuffer *fb_new(int w, int h)
 {
 	struct framebuffer *fb = mem_calloc(1, sizeof *fb);
@@ -87,6 +88,7 @@ float *fb_data(const struct framebuffer *fb, int i)
 	return i >= 0 && i < fb->count ? fb->planes[i].data : NULL;
 }
 
+/* Frees every plane, its name, and fb itself; NULL is allowed. */
 void fb_free(struct framebuffer *fb)
 {
 	if (!fb)

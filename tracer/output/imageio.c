@@ -183,6 +183,7 @@ static size_t read_magic(const char *path, unsigned char *buf, size_t n)
 	return k;
 }
 
+/* Sniffs the format, decodes, then converts colour unless raw (alpha untouched). */
 const char *img_load(const char *path, const struct img_opts *opts, struct img *out)
 {
 	static const struct img_opts defaults = {NULL, NULL, 0};

@@ -28,6 +28,8 @@ static void set_err(char *err, size_t errlen, const char *msg)
 		std::snprintf(err, errlen, "%s", msg ? msg : "unknown OpenColorIO error");
 }
 
+/* CreateFromFile (never CreateFromEnv: with $OCIO unset it returns a raw config
+ * and prints to stderr), then validate(). */
 extern "C" struct ocio_config *ocio_config_load(const char *path, char *err, size_t errlen)
 {
 	try {
@@ -135,6 +137,7 @@ extern "C" int ocio_has_colorspace(const struct ocio_config *cfg, const char *na
 	}
 }
 
+/* One line per display: "Display": "View", ... (for --help and errors). */
 extern "C" size_t ocio_describe_views(const struct ocio_config *cfg, char *buf, size_t len)
 {
 	try {
@@ -164,6 +167,7 @@ static ocio_proc *wrap(const OCIO::ConstProcessorRcPtr &p)
 	return r;
 }
 
+/* src (default scene_linear role) → display/view, forward direction. */
 extern "C" struct ocio_proc *ocio_proc_display(const struct ocio_config *cfg, const char *src,
                                                const char *display, const char *view,
                                                char *err, size_t errlen)
@@ -181,6 +185,7 @@ extern "C" struct ocio_proc *ocio_proc_display(const struct ocio_config *cfg, co
 	return nullptr;
 }
 
+/* Colour space (or role) to colour space, e.g. texture decoding. */
 extern "C" struct ocio_proc *ocio_proc_convert(const struct ocio_config *cfg, const char *src,
                                                const char *dst, char *err, size_t errlen)
 {
@@ -194,6 +199,7 @@ extern "C" struct ocio_proc *ocio_proc_convert(const struct ocio_config *cfg, co
 	return nullptr;
 }
 
+/* In place on npix packed RGB triples, as one npix x 1 image. */
 extern "C" int ocio_proc_apply_rgb(const struct ocio_proc *p, float *rgb, long npix, char *err,
                                    size_t errlen)
 {

@@ -69,12 +69,14 @@ static void find_default(void)
 	default_cfg[0] = '\0';
 }
 
+/* Thread-safe: the search runs once per process. */
 const char *out_default_ocio_config(void)
 {
 	pthread_once(&default_once, find_default);
 	return default_cfg[0] ? default_cfg : NULL;
 }
 
+/* explicit > $OCIO > shipped. */
 const char *out_ocio_config_path(const char *explicit_path)
 {
 	if (explicit_path && *explicit_path)
@@ -85,6 +87,7 @@ const char *out_ocio_config_path(const char *explicit_path)
 	return out_default_ocio_config();
 }
 
+/* Resolves the path and loads it, naming the path in any error. */
 const char *out_ocio_load(const char *explicit_path, struct ocio_config **cfg)
 {
 	char msg[512];
@@ -116,6 +119,7 @@ static int has_view(const struct ocio_config *cfg, const char *display, const ch
 	return 0;
 }
 
+/* Defaults fall back to the config's own defaults when our names are absent. */
 const char *out_ocio_pick_view(const struct ocio_config *cfg, const char *display,
                                const char *view, const char **disp_out, const char **view_out)
 {
@@ -134,6 +138,7 @@ const char *out_ocio_pick_view(const struct ocio_config *cfg, const char *displa
 	return NULL;
 }
 
+/* For --help: load, describe, free. */
 const char *out_ocio_list_views(const char *explicit_path, char *buf, size_t len)
 {
 	struct ocio_config *cfg;
@@ -183,6 +188,7 @@ static const char *make_proc(const struct out_png_opts *o, struct ocio_config **
 	return *proc ? NULL : out_errorf("OCIO: %s", msg);
 }
 
+/* pack → OCIO display/view → clamp → round to bytes (deterministic, no dither). */
 const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
                            unsigned char *rgb8)
 {
@@ -282,6 +288,7 @@ static const char *write_png_fd(int fd, const char *path, const unsigned char *r
 	return rc ? out_errorf("cannot write '%s': %s", path, e.msg) : NULL;
 }
 
+/* Encodes first (so OCIO errors never create a file), then temp file + rename. */
 const char *out_png_write(const struct framebuffer *fb, const char *path,
                           const struct out_png_opts *opts)
 {
