@@ -1,0 +1,38 @@
+/* SPDX-License-Identifier: MIT */
+/* bvh.h: a bounding volume hierarchy over the scene's objects.
+ *
+ * Top-level unions (not inverted) are flattened into their children, which
+ * can be traced independently; intersection, difference, merge and inverted
+ * unions stay whole as leaves. Unbounded objects (planes, CSG containing
+ * them, inverted primitives) are kept apart and tested on every ray. The
+ * hierarchy is built with the binned surface area heuristic and traversed
+ * iteratively, nearest child first. */
+#ifndef ARVO_BVH_H
+#define ARVO_BVH_H
+
+#include <stdbool.h>
+
+#include "shape.h"
+
+struct bvh;
+
+/* Builds the hierarchy over objs[0..n); the objects must outlive it. */
+struct bvh *bvh_build(struct object **objs, int n);
+/* Nearest hit with tmin < t < tmax over every object (as shape_intersect). */
+bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                   struct hit *h);
+/* Any hit with tmin < t < tmax (shadow rays). */
+bool bvh_occluded(const struct bvh *b, const struct ray *r, double tmin, double tmax);
+/* The same, ignoring leaves whose flags share a bit with skip (e.g.
+ * OF_NO_SHADOW for shadow rays, OF_NO_IMAGE for camera rays). */
+bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                        unsigned skip, struct hit *h);
+bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                       unsigned skip);
+/* Leaves after flattening: bounded ones in the tree, and unbounded ones. */
+int bvh_count(const struct bvh *b, int *unbounded);
+/* World bounds of everything bounded in the tree (empty when none). */
+struct bbox bvh_bounds(const struct bvh *b);
+void bvh_free(struct bvh *b);
+
+#endif
