@@ -146,6 +146,11 @@ static bool to_intersect(const struct object *o, const struct ray *r, double tmi
 	struct vec3 d = v_scale(r->d, 1 / L);
 	double tc = -v_dot(r->o, d); /* unit-speed distance to the nearest point */
 	struct vec3 q = v_madd(r->o, d, tc);
+	/* a second step removes what cancellation left of q·d for distant
+	 * origins: the quartic below assumes q·d = 0 exactly */
+	double tc2 = -v_dot(q, d);
+	q = v_madd(q, d, tc2);
+	tc += tc2;
 	struct vec3 qs = v_scale(q, 1 / sc);
 	double reach = 1 + 1e-9, half = reach * reach - v_dot(qs, qs);
 	if (!(half > 0))

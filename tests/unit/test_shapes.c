@@ -1,0 +1,572 @@
+/* SPDX-License-Identifier: MIT */
+/* test_shapes.c: geometric property tests of the primitives (tracer/shape.h):
+ * known hits, no re-hit of convex shapes from their own surface under random
+ * transforms, (u,v) → point → (u,v) round trips through intersection,
+ * partials against finite differences, cell areas against analytic areas,
+ * and torus hit accuracy at grazing incidence and from far away. Every
+ * random test uses fixed seeds (geo_rand.h). */
+#include <stdio.h>
+
+#include "geo_rand.h"
+#include "test.h"
+
+static const enum object_kind all_kinds[] = {OBJ_SPHERE, OBJ_PLANE,  OBJ_BOX,   OBJ_DISC,
+                                             OBJ_CYLINDER, OBJ_CONE, OBJ_TORUS, OBJ_TRIANGLE};
+static const enum object_kind convex_kinds[] = {OBJ_SPHERE,   OBJ_PLANE, OBJ_BOX,     OBJ_DISC,
+                                                OBJ_CYLINDER, OBJ_CONE,  OBJ_TRIANGLE};
+#define NKINDS(a) ((int)(sizeof(a) / sizeof(a[0])))
+
+static bool is_flat(enum object_kind k) { return k == OBJ_PLANE || k == OBJ_DISC || k == OBJ_TRIANGLE; }
+
+static double dist(struct vec3 a, struct vec3 b) { return v_len(v_sub(a, b)); }
+
+/* ==== known values ======================================================= */
+
+static void t_sphere_known(void)
+{
+	struct object o = mk_obj(OBJ_SPHERE);
+	o.g.sphere.c = v3(1, 2, 3);
+	o.g.sphere.r = 2;
+	struct ray r = {v3(1, 2, -7), v3(0, 0, 1)};
+	struct hit h;
+	CHECK(shape_intersect(&o, &r, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 8, 1e-12);
+	CHECK_NEAR(h.n.z, -1, 1e-12);
+	CHECK(h.entering);
+	CHECK(h.obj == &o);
+	/* (0,0,−1) relative: θ = π/2, φ = π/2 (T's z is −sinθ sinφ) */
+	CHECK_NEAR(h.u, 0.25, 1e-12);
+	CHECK_NEAR(h.v, 0.5, 1e-12);
+	CHECK(shape_intersect(&o, &r, 8.5, INFINITY, &h));
+	CHECK_NEAR(h.t, 12, 1e-12);
+	CHECK(!h.entering);
+	CHECK(!shape_intersect(&o, &r, 0, 7.9, &h));
+	CHECK(shape_inside(&o, v3(1, 2, 3)));
+	CHECK(!shape_inside(&o, v3(1, 2, 5.01)));
+	CHECK_NEAR(shape_area(&o), 16 * M_PI, 1e-12);
+	o.flags |= OF_INVERSE;
+	CHECK(!shape_inside(&o, v3(1, 2, 3)));
+	CHECK(shape_intersect(&o, &r, 0, INFINITY, &h));
+	CHECK_NEAR(h.n.z, 1, 1e-12);
+	CHECK(!h.entering);
+}
+
+static void t_plane_box_known(void)
+{
+	struct object p = mk_obj(OBJ_PLANE);
+	p.g.plane.n = v3(0, 2, 0); /* not unit: plane y = 0.5 */
+	p.g.plane.d = 1;
+	struct ray r = {v3(3, 5, -2), v3(0, -1, 0)};
+	struct hit h;
+	CHECK(shape_intersect(&p, &r, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 4.5, 1e-12);
+	CHECK_NEAR(h.n.y, 1, 1e-15);
+	CHECK_NEAR(h.u, 3, 1e-12);  /* u = x */
+	CHECK_NEAR(h.v, 2, 1e-12);  /* v = −z */
+	CHECK(shape_inside(&p, v3(0, 0, 0)));
+	CHECK(!shape_bounded(&p));
+	CHECK_NEAR(shape_cell_area(&p, 0, 2, 0, 3), 6, 1e-12);
+
+	struct object b = mk_obj(OBJ_BOX);
+	b.g.box.lo = v3(1, 1, 1); /* corners given swapped on purpose */
+	b.g.box.hi = v3(-1, -2, -3);
+	struct ray rb = {v3(-5, 0, 0), v3(2, 0, 0)};
+	CHECK(shape_intersect(&b, &rb, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 2, 1e-12);
+	CHECK_NEAR(h.n.x, -1, 1e-15);
+	/* −x face: u ∈ [0,⅓], v ∈ [0,½]; at y = 0, z = 0: s = 1 − (0+2)/3, w = (0+3)/4 */
+	CHECK_NEAR(h.u, (1 - 2.0 / 3) / 3, 1e-12);
+	CHECK_NEAR(h.v, 0.75 / 2, 1e-12);
+	CHECK_NEAR(shape_area(&b), 2 * (2 * 3 + 3 * 4 + 4 * 2), 1e-12);
+	CHECK(shape_inside(&b, v3(0.5, -1.5, -2.5)));
+	CHECK(!shape_inside(&b, v3(0.5, -1.5, -3.5)));
+}
+
+static void t_round_shapes_known(void)
+{
+	struct hit h;
+	struct object c = mk_obj(OBJ_CYLINDER);
+	c.g.cylinder.a = v3(0, 0, 0);
+	c.g.cylinder.b = v3(0, 2, 0);
+	c.g.cylinder.r = 1;
+	struct ray r = {v3(0, 5, 0.5), v3(0, -1, 0)};
+	CHECK(shape_intersect(&c, &r, 0, INFINITY, &h)); /* top cap */
+	CHECK_NEAR(h.t, 3, 1e-12);
+	CHECK_NEAR(h.n.y, 1, 1e-15);
+	CHECK_NEAR(h.v, (1 + 2 + 0.5) / 4, 1e-12);
+	c.flags |= OF_OPEN;
+	struct ray rs = {v3(-5, 1, 0), v3(1, 0, 0)};
+	CHECK(shape_intersect(&c, &rs, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 4, 1e-12);
+	CHECK_NEAR(h.v, 0.5, 1e-12);
+	CHECK(!shape_intersect(&c, &r, 0, INFINITY, &h)); /* straight down the open tube */
+
+	struct object k = mk_obj(OBJ_CONE);
+	k.g.cone.a = v3(0, 0, 0);
+	k.g.cone.b = v3(0, 1, 0);
+	k.g.cone.ra = 1;
+	k.g.cone.rb = 0;
+	struct ray rk = {v3(-5, 0.5, 0), v3(1, 0, 0)};
+	CHECK(shape_intersect(&k, &rk, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 4.5, 1e-12);
+	CHECK_NEAR(h.n.x, -M_SQRT1_2, 1e-12);
+	CHECK_NEAR(h.n.y, M_SQRT1_2, 1e-12);
+	CHECK_NEAR(shape_area(&k), M_PI * M_SQRT2 + M_PI, 1e-12);
+
+	struct object d = mk_obj(OBJ_DISC);
+	d.g.disc.c = v3(0, 0, 1);
+	d.g.disc.n = v3(0, 0, -3);
+	d.g.disc.r = 2;
+	d.g.disc.hole = 1;
+	struct ray rd = {v3(1.5, 0, 5), v3(0, 0, -1)};
+	CHECK(shape_intersect(&d, &rd, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 4, 1e-12);
+	CHECK_NEAR(h.n.z, -1, 1e-15);
+	CHECK(!h.entering);
+	CHECK_NEAR(h.v, 0.5, 1e-12);
+	rd.o.x = 0.5; /* through the hole */
+	CHECK(!shape_intersect(&d, &rd, 0, INFINITY, &h));
+	CHECK_NEAR(shape_area(&d), 3 * M_PI, 1e-12);
+
+	struct object t = mk_obj(OBJ_TRIANGLE);
+	t.g.triangle.p[0] = v3(0, 0, 0);
+	t.g.triangle.p[1] = v3(2, 0, 0);
+	t.g.triangle.p[2] = v3(0, 2, 0);
+	struct ray rt = {v3(0.5, 0.25, 3), v3(0, 0, -1)};
+	CHECK(shape_intersect(&t, &rt, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 3, 1e-15);
+	CHECK_NEAR(h.u, 0.25, 1e-15);
+	CHECK_NEAR(h.v, 0.125, 1e-15);
+	CHECK_NEAR(h.n.z, 1, 1e-15);
+	CHECK_NEAR(shape_area(&t), 2, 1e-15);
+}
+
+/* ==== (1) no re-hit from the surface ====================================== */
+
+/* A random point on the surface (away from seams and edges). */
+static struct vec3 surface_point(const struct object *o)
+{
+	struct uv_range d;
+	struct vec3 p = v3(0, 0, 0);
+	shape_uv_range(o, &d);
+	double u = d.bounded ? rndr(0.01, 0.99) : rndr(-5, 5), v = d.bounded ? rndr(0.01, 0.99) : rndr(-5, 5);
+	if (o->kind == OBJ_TRIANGLE)
+		while (u + v > 0.98)
+			u = rndr(0.01, 0.98), v = rndr(0.01, 0.98);
+	shape_uv_point(o, u, v, &p, NULL, NULL);
+	return p;
+}
+
+/* A direction in the hemisphere about n, at least ~1e-3 from the tangent
+ * plane (both sides when two_sided). Returns false when unlucky. */
+static bool away_dir(struct vec3 n, bool two_sided, struct vec3 *d)
+{
+	*d = rnd_dir();
+	double c = v_dot(*d, n);
+	if (fabs(c) < 1e-3)
+		return false;
+	if (c < 0 && !two_sided)
+		*d = v_madd(*d, n, -2 * c);
+	return true;
+}
+
+/* Spawns rays off hit h of o; returns how many re-hit o. */
+static int spawn_from(const struct object *o, const struct hit *h, double eps, int *tries)
+{
+	int fails = 0;
+	for (int j = 0; j < 8; j++) {
+		struct vec3 d;
+		if (!away_dir(h->n, is_flat(o->kind), &d))
+			continue;
+		struct ray s = {h->p, d};
+		struct hit h2;
+		(*tries)++;
+		if (shape_intersect(o, &s, eps, INFINITY, &h2)) {
+			if (fails++ == 0)
+				printf("#   kind %d re-hit at t=%g (cos %g)\n", o->kind, h2.t, v_dot(d, h->n));
+		}
+	}
+	return fails;
+}
+
+static void t_no_rehit_convex(void)
+{
+	rng_seed(1);
+	for (int k = 0; k < NKINDS(convex_kinds); k++) {
+		int fails = 0, tries = 0;
+		for (int i = 0; i < 400; i++) {
+			struct object o = rnd_prim(convex_kinds[k], false);
+			o.xf = rnd_xform(i % 4 == 0, true);
+			double sc = obj_scale(&o), eps = 1e-9 * sc;
+			struct vec3 q = surface_point(&o);
+			struct ray r = {v_madd(q, rnd_dir(), 2 * sc), v3(0, 0, 0)};
+			r.d = v_norm(v_sub(q, r.o));
+			struct hit h, h2;
+			if (!shape_intersect(&o, &r, 0, INFINITY, &h))
+				continue;
+			fails += spawn_from(&o, &h, eps, &tries);
+			/* and off the exit point of solids, from inside */
+			struct ray in = {h.p, r.d};
+			if (!is_flat(o.kind) && shape_intersect(&o, &in, eps, INFINITY, &h2))
+				fails += spawn_from(&o, &h2, eps, &tries);
+		}
+		printf("# kind %d: %d re-hits in %d rays\n", convex_kinds[k], fails, tries);
+		CHECK(fails == 0);
+		CHECK(tries > 2000);
+	}
+}
+
+/* ==== (2) uv → point → uv ================================================= */
+
+/* Seams of the cylinder/cone meridian layout (docs/parametrisations.md). */
+static int seams(const struct object *o, double s[2])
+{
+	bool caps = !(o->flags & OF_OPEN);
+	double ca, cb, side;
+	if (o->kind == OBJ_CYLINDER) {
+		ca = cb = caps ? o->g.cylinder.r : 0;
+		side = v_len(v_sub(o->g.cylinder.b, o->g.cylinder.a));
+	} else if (o->kind == OBJ_CONE) {
+		ca = caps ? o->g.cone.ra : 0;
+		cb = caps ? o->g.cone.rb : 0;
+		side = hypot(v_len(v_sub(o->g.cone.b, o->g.cone.a)), o->g.cone.rb - o->g.cone.ra);
+	} else {
+		return 0;
+	}
+	double len = ca + side + cb;
+	s[0] = ca / len;
+	s[1] = (ca + side) / len;
+	return 2;
+}
+
+/* A random (u,v) at least `m` from every seam, edge and pole. */
+static void rnd_uv(const struct object *o, double m, double *u, double *v)
+{
+	double s[2];
+	int ns = seams(o, s);
+	for (;;) {
+		if (o->kind == OBJ_PLANE) {
+			*u = rndr(-10, 10), *v = rndr(-10, 10);
+			return;
+		}
+		*u = rndr(m, 1 - m), *v = rndr(m, 1 - m);
+		if (o->kind == OBJ_TRIANGLE && *u + *v > 1 - m)
+			continue;
+		if (o->kind == OBJ_BOX) { /* keep off the atlas' face boundaries */
+			double fu = 3 * *u - floor(3 * *u), fv = 2 * *v - floor(2 * *v);
+			if (fu < m || fu > 1 - m || fv < m || fv > 1 - m)
+				continue;
+		}
+		bool near = false;
+		for (int i = 0; i < ns; i++)
+			near |= fabs(*v - s[i]) < m;
+		if (!near)
+			return;
+	}
+}
+
+/* One round trip; returns false (and reports) on a mismatch. */
+static bool round_trip(const struct object *o, double u, double v)
+{
+	struct vec3 p, du, dv;
+	CHECK(shape_uv_point(o, u, v, &p, &du, &dv));
+	struct vec3 cr = v_cross(du, dv), n = v_norm(cr);
+	double sc = obj_scale(o);
+	struct ray r = {v_madd(p, n, 1e-4 * sc), v_neg(n)};
+	struct hit h;
+	if (!shape_intersect(o, &r, 0, INFINITY, &h)) {
+		printf("#   kind %d: no hit at uv (%.6f, %.6f)\n", o->kind, u, v);
+		return false;
+	}
+	double orient = v_dot(h.n, cr) * xf_det(&o->xf);
+	bool ok = fabs(h.u - u) < 1e-9 && fabs(h.v - v) < 1e-9 && dist(h.p, p) < 1e-9 * sc &&
+	          orient > 0 && fabs(fabs(v_dot(h.n, n)) - 1) < 1e-9 &&
+	          dist(h.dpdu, du) < 1e-7 * v_len(du) && dist(h.dpdv, dv) < 1e-7 * v_len(dv);
+	if (!ok)
+		printf("#   kind %d: uv (%.12f, %.12f) -> (%.12f, %.12f), |dp| %g, orient %g\n", o->kind,
+		       u, v, h.u, h.v, dist(h.p, p), orient);
+	return ok;
+}
+
+static void t_uv_round_trip(void)
+{
+	rng_seed(2);
+	for (int k = 0; k < NKINDS(all_kinds); k++) {
+		int bad = 0;
+		for (int i = 0; i < 600; i++) {
+			struct object o = rnd_prim(all_kinds[k], i % 3 == 1);
+			o.xf = rnd_xform(i % 4 == 0, true);
+			double u, v;
+			rnd_uv(&o, 0.01, &u, &v);
+			bad += !round_trip(&o, u, v);
+		}
+		CHECK(bad == 0);
+	}
+}
+
+/* ==== (3) partials against finite differences ============================= */
+
+/* Relative disagreement of the analytic partial a with the central
+ * difference of T along (eu,ev) with step h. */
+static double fd_error(const struct object *o, double u, double v, double eu, double ev,
+                       double h, struct vec3 a)
+{
+	struct vec3 p1, p0;
+	shape_uv_point(o, u + eu * h, v + ev * h, &p1, NULL, NULL);
+	shape_uv_point(o, u - eu * h, v - ev * h, &p0, NULL, NULL);
+	struct vec3 fd = v_scale(v_sub(p1, p0), 0.5 / h);
+	return dist(fd, a) / (v_len(a) + 1e-6 * obj_scale(o));
+}
+
+static void t_partials_fd(void)
+{
+	rng_seed(3);
+	for (int k = 0; k < NKINDS(all_kinds); k++) {
+		double worst = 0;
+		for (int i = 0; i < 500; i++) {
+			struct object o = rnd_prim(all_kinds[k], i % 3 == 1);
+			o.xf = rnd_xform(false, true);
+			double u, v, h = o.kind == OBJ_PLANE ? 1e-4 : 1e-6;
+			struct vec3 p, du, dv;
+			rnd_uv(&o, 0.01, &u, &v);
+			shape_uv_point(&o, u, v, &p, &du, &dv);
+			worst = fmax(worst, fd_error(&o, u, v, 1, 0, h, du));
+			worst = fmax(worst, fd_error(&o, u, v, 0, 1, h, dv));
+		}
+		printf("# kind %d: worst relative partial error %.3g\n", all_kinds[k], worst);
+		CHECK(worst < 1e-5);
+	}
+}
+
+/* ==== (4) cell areas ====================================================== */
+
+/* Σ of shape_cell_area over an nu×nv grid on [u0,u1]×[v0,v1]. */
+static double grid_sum(const struct object *o, int nu, int nv, double u0, double u1, double v0,
+                       double v1)
+{
+	double s = 0;
+	for (int i = 0; i < nu; i++)
+		for (int j = 0; j < nv; j++)
+			s += shape_cell_area(o, u0 + (u1 - u0) * i / nu, u0 + (u1 - u0) * (i + 1) / nu,
+			                     v0 + (v1 - v0) * j / nv, v0 + (v1 - v0) * (j + 1) / nv);
+	return s;
+}
+
+#define CHECK_REL(a, b, rel) CHECK_NEAR((a) / (b), 1.0, rel)
+
+static void t_cell_area_totals(void)
+{
+	rng_seed(4);
+	struct xform sim = xf_then(xf_then(xf_scale(v3(1.7, 1.7, 1.7)), xf_rotate(v3(10, 20, 30))),
+	                           xf_translate(v3(1, 2, 3)));
+	double s2 = 1.7 * 1.7;
+	struct object o = mk_obj(OBJ_SPHERE);
+	o.g.sphere.r = 1.3;
+	o.xf = sim;
+	CHECK_REL(grid_sum(&o, 37, 23, 0, 1, 0, 1), 4 * M_PI * 1.69 * s2, 1e-12);
+
+	o = mk_obj(OBJ_BOX); /* grid lines do not follow the face blocks */
+	o.g.box.lo = v3(0, 0, 0), o.g.box.hi = v3(1, 2, 3);
+	o.xf = xf_then(xf_scale(v3(2, 3, 0.5)), xf_rotate(v3(30, 0, 60))); /* non-uniform: exact */
+	CHECK_REL(grid_sum(&o, 7, 5, 0, 1, 0, 1), 2 * (2 * 6 + 6 * 1.5 + 1.5 * 2), 1e-12);
+
+	o = mk_obj(OBJ_CYLINDER);
+	o.g.cylinder.a = v3(0, -1, 0), o.g.cylinder.b = v3(0, 1, 0), o.g.cylinder.r = 0.5;
+	o.xf = sim;
+	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), (2 * M_PI * 0.5 * 2 + 2 * M_PI * 0.25) * s2, 1e-12);
+	o.xf = xf_scale(v3(1, 3, 1)); /* stretched along the axis: the side goes numeric */
+	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), 2 * M_PI * 0.5 * 6 + 2 * M_PI * 0.25, 1e-9);
+	o.flags |= OF_OPEN;
+	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), 2 * M_PI * 0.5 * 6, 1e-9);
+
+	o = mk_obj(OBJ_CONE);
+	o.g.cone.a = v3(0, 0, 0), o.g.cone.b = v3(0, 0, 2), o.g.cone.ra = 1, o.g.cone.rb = 0.25;
+	o.xf = sim;
+	double slant = hypot(2, 0.75);
+	CHECK_REL(grid_sum(&o, 11, 17, 0, 1, 0, 1), (M_PI * 1.25 * slant + M_PI * (1 + 0.0625)) * s2,
+	          1e-12);
+
+	o = mk_obj(OBJ_TORUS);
+	o.g.torus.major = 2, o.g.torus.minor = 0.5;
+	o.xf = sim;
+	CHECK_REL(grid_sum(&o, 13, 11, 0, 1, 0, 1), 4 * M_PI * M_PI * 2 * 0.5 * s2, 1e-12);
+	o.g.torus.major = 0.5, o.g.torus.minor = 1; /* spindle: |R + r cosθ| */
+	double ta = acos(-0.5);
+	CHECK_REL(grid_sum(&o, 13, 11, 0, 1, 0, 1),
+	          2 * M_PI * 1 * (4 * 0.5 * ta - 2 * M_PI * 0.5 + 4 * sin(ta)) * s2, 1e-12);
+
+	o = mk_obj(OBJ_DISC);
+	o.g.disc.n = v3(0, 1, 0), o.g.disc.r = 2, o.g.disc.hole = 0.5;
+	o.xf = xf_scale(v3(3, 7, 0.5));
+	CHECK_REL(grid_sum(&o, 10, 10, 0, 1, 0, 1), M_PI * (4 - 0.25) * 1.5, 1e-12);
+
+	o = mk_obj(OBJ_TRIANGLE);
+	o.g.triangle.p[1] = v3(1, 0, 0), o.g.triangle.p[2] = v3(0, 1, 0);
+	o.xf = xf_scale(v3(2, 3, 5));
+	CHECK_REL(grid_sum(&o, 7, 9, 0, 1, 0, 1), 3, 1e-12);
+	CHECK_NEAR(shape_cell_area(&o, 0.6, 0.9, 0.6, 0.9), 0, 0); /* beyond u + v = 1 */
+
+	o = mk_obj(OBJ_PLANE);
+	o.g.plane.n = v3(0, 0, 1);
+	o.xf = xf_scale(v3(2, 3, 5));
+	CHECK_REL(grid_sum(&o, 4, 4, -1, 1, -2, 2), 8 * 6, 1e-12);
+}
+
+/* Spheroids (a sphere scaled along its polar axis, y) take the numeric path. */
+static void t_cell_area_spheroid(void)
+{
+	struct object o = mk_obj(OBJ_SPHERE);
+	o.g.sphere.r = 1;
+	double a = 1.5, c = 3, e = sqrt(1 - a * a / (c * c));
+	o.xf = xf_then(xf_scale(v3(a, c, a)), xf_rotate(v3(20, 40, 60)));
+	double prolate = 2 * M_PI * a * a * (1 + c / (a * e) * asin(e));
+	CHECK_REL(grid_sum(&o, 16, 16, 0, 1, 0, 1), prolate, 1e-9);
+	CHECK_REL(shape_area(&o), prolate, 1e-9);
+	c = 0.5, e = sqrt(1 - c * c / (a * a));
+	o.xf = xf_scale(v3(a, c, a));
+	double oblate = 2 * M_PI * a * a * (1 + (1 - e * e) / e * atanh(e));
+	CHECK_REL(grid_sum(&o, 16, 16, 0, 1, 0, 1), oblate, 1e-9);
+	/* pole cells are finite and add up */
+	double cap = shape_cell_area(&o, 0, 1, 0, 1.0 / 64), parts = 0;
+	for (int i = 0; i < 8; i++)
+		parts += shape_cell_area(&o, i / 8.0, (i + 1) / 8.0, 0, 1.0 / 64);
+	CHECK(isfinite(cap) && cap > 0);
+	CHECK_REL(parts, cap, 1e-10);
+}
+
+/* Pole, apex and centre cells: finite, equal to the analytic cap or zone. */
+static void t_cell_area_singular(void)
+{
+	struct object o = mk_obj(OBJ_SPHERE);
+	o.g.sphere.r = 2;
+	for (int n = 4; n <= 4096; n *= 8) {
+		double dv = 1.0 / n, cap = 2 * M_PI * 4 * 2 * pow(sin(M_PI * dv / 2), 2);
+		double south = shape_cell_area(&o, 0, 1, 0, dv), north = shape_cell_area(&o, 0, 1, 1 - dv, 1);
+		CHECK(isfinite(south) && south > 0);
+		CHECK_REL(south, cap, 1e-12);
+		CHECK_REL(north, cap, 1e-12);
+		CHECK_REL(shape_cell_area(&o, 0.25, 0.5, 0, dv), cap / 4, 1e-12);
+		/* a zone next to the pole: 2πr²(cos θ0 − cos θ1) */
+		CHECK_REL(shape_cell_area(&o, 0, 1, dv, 2 * dv),
+		          2 * M_PI * 4 * (cos(M_PI * dv) - cos(2 * M_PI * dv)), 1e-10);
+	}
+	struct object k = mk_obj(OBJ_CONE); /* open cone, apex at b */
+	k.g.cone.b = v3(0, 1, 0), k.g.cone.ra = 1, k.g.cone.rb = 0, k.flags = OF_OPEN;
+	double dv = 1e-3, apex = shape_cell_area(&k, 0, 1, 1 - dv, 1);
+	CHECK(isfinite(apex) && apex > 0);
+	CHECK_REL(apex, M_PI * dv * M_SQRT2 * dv, 1e-10); /* small cone of slant √2·dv */
+	struct object d = mk_obj(OBJ_DISC);
+	d.g.disc.n = v3(0, 0, 1), d.g.disc.r = 3;
+	CHECK_REL(shape_cell_area(&d, 0, 0.5, 0, 0.01), 0.5 * M_PI * 0.03 * 0.03, 1e-12);
+}
+
+/* ==== (5) torus accuracy =================================================== */
+
+/* Distance of a world point to the torus surface, in its own frame. */
+static double torus_dist(const struct object *o, struct vec3 wp)
+{
+	struct vec3 p = xf_inv_point(&o->xf, wp);
+	double k = sqrt(p.x * p.x + p.z * p.z) - o->g.torus.major;
+	return fabs(sqrt(k * k + p.y * p.y) - o->g.torus.minor);
+}
+
+static void t_torus_known(void)
+{
+	struct object o = mk_obj(OBJ_TORUS);
+	o.g.torus.major = 2, o.g.torus.minor = 0.5;
+	struct hit h;
+	struct ray r = {v3(-10, 0, 0), v3(1, 0, 0)};
+	CHECK(shape_intersect(&o, &r, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 7.5, 1e-13);
+	CHECK_NEAR(h.n.x, -1, 1e-13);
+	CHECK(shape_intersect(&o, &r, 7.5, INFINITY, &h));
+	CHECK_NEAR(h.t, 8.5, 1e-13);
+	CHECK(!h.entering);
+	CHECK(shape_intersect(&o, &r, 9, INFINITY, &h)); /* the hole, then the far side */
+	CHECK_NEAR(h.t, 11.5, 1e-13);
+	struct ray ry = {v3(2, -5, 0), v3(0, 3, 0)};
+	CHECK(shape_intersect(&o, &ry, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 1.5, 1e-13);
+	CHECK_NEAR(h.v, 0.75, 1e-13);
+	struct ray miss = {v3(-10, 0.5 + 1e-9, 0), v3(1, 0, 0)};
+	CHECK(!shape_intersect(&o, &miss, 0, INFINITY, &h));
+	CHECK(shape_inside(&o, v3(0, 0, 2.2)) && !shape_inside(&o, v3(0, 0, 0)));
+}
+
+/* Rays tangent to the surface at a random point, pushed inwards by 10^-11 …
+ * 10^-3 of the tube radius: each must be hit before it reaches that inner
+ * point (when it starts outside), and every hit must be on the surface. */
+static void t_torus_grazing(void)
+{
+	rng_seed(5);
+	int hits = 0, missed = 0;
+	double worst = 0;
+	for (int i = 0; i < 4000; i++) {
+		struct object o = rnd_prim(OBJ_TORUS, false);
+		o.xf = rnd_xform(i % 2 == 0, true);
+		double u = rnd(), v = rnd(), sc = o.g.torus.major + o.g.torus.minor;
+		struct vec3 p, du, dv;
+		shape_uv_point(&o, u, v, &p, &du, &dv);
+		struct vec3 n = v_norm(v_cross(du, dv)), t = v_norm(v_madd(du, dv, rndr(-3, 3)));
+		t = v_norm(v_madd(t, n, -v_dot(t, n))); /* tangent */
+		double depth = pow(10, rndr(-11, -3)) * obj_scale(&o);
+		struct vec3 target = v_madd(p, n, xf_det(&o.xf) > 0 ? -depth : depth);
+		struct ray r = {v_madd(target, t, -2 * obj_scale(&o)), t};
+		struct hit h;
+		bool got = shape_intersect(&o, &r, 0, INFINITY, &h);
+		if (got) {
+			hits++;
+			worst = fmax(worst, torus_dist(&o, h.p) / sc);
+		}
+		if (!shape_inside(&o, r.o) && shape_inside(&o, target) &&
+		    (!got || h.t > 2 * obj_scale(&o) * (1 + 1e-9)))
+			missed++;
+	}
+	printf("# grazing: %d hits, %d missed entries, worst distance %.3g·scale\n", hits, missed,
+	       worst);
+	CHECK(hits > 3500);
+	CHECK(missed == 0);
+	CHECK(worst < 1e-9);
+}
+
+/* Rays from 10³ … 10⁶ scales away, aimed at a random surface point. */
+static void t_torus_far(void)
+{
+	rng_seed(6);
+	int hits = 0;
+	double worst = 0;
+	for (int i = 0; i < 4000; i++) {
+		struct object o = rnd_prim(OBJ_TORUS, false);
+		o.xf = rnd_xform(i % 2 == 0, true);
+		double sc = o.g.torus.major + o.g.torus.minor;
+		struct vec3 p;
+		shape_uv_point(&o, rnd(), rnd(), &p, NULL, NULL);
+		struct vec3 from = v_madd(p, rnd_dir(), pow(10, rndr(3, 6)) * obj_scale(&o));
+		struct ray r = {from, v_sub(p, from)};
+		struct hit h;
+		if (!shape_intersect(&o, &r, 0, INFINITY, &h))
+			continue;
+		hits++;
+		worst = fmax(worst, torus_dist(&o, h.p) / sc);
+	}
+	printf("# far: %d hits, worst distance %.3g·scale\n", hits, worst);
+	CHECK(hits > 3900);
+	CHECK(worst < 1e-9);
+}
+
+int main(void)
+{
+	RUN(t_sphere_known);
+	RUN(t_plane_box_known);
+	RUN(t_round_shapes_known);
+	RUN(t_no_rehit_convex);
+	RUN(t_uv_round_trip);
+	RUN(t_partials_fd);
+	RUN(t_cell_area_totals);
+	RUN(t_cell_area_spheroid);
+	RUN(t_cell_area_singular);
+	RUN(t_torus_known);
+	RUN(t_torus_grazing);
+	RUN(t_torus_far);
+	return test_done();
+}
