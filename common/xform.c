@@ -11,7 +11,7 @@ static void mat_identity(double m[3][4])
 }
 
 /* r = a·b, both affine 3x4 with implied bottom row. */
-static void mat_mul(double r[3][4], const double a[3][4], const double b[3][4])
+static void mat_mul(double r[3][4], double a[3][4], double b[3][4])
 {
 	double t[3][4];
 	for (int i = 0; i < 3; i++) {
@@ -26,7 +26,7 @@ static void mat_mul(double r[3][4], const double a[3][4], const double b[3][4])
 }
 
 /* Inverts an affine matrix; returns false when singular. */
-static bool mat_inverse(double r[3][4], const double a[3][4])
+static bool mat_inverse(double r[3][4], double a[3][4])
 {
 	double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
 	double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
@@ -74,11 +74,17 @@ struct xform xf_scale(struct vec3 s)
 	return x;
 }
 
-/* Rotation by angle a (radians) about coordinate axis k, as POV-Ray computes it. */
-static struct xform rot_axis(int k, double a)
+/* Rotation by deg degrees about coordinate axis k, as POV-Ray computes it. */
+static struct xform rot_axis(int k, double deg)
 {
 	struct xform x = xf_identity();
-	double c = cos(a), s = sin(a);
+	double a = deg * M_PI / 180.0, c = cos(a), s = sin(a);
+	/* exact values at multiples of 90 degrees (no 6e-17 residues) */
+	if (fmod(deg, 90.0) == 0) {
+		long q = ((long)(deg / 90.0) % 4 + 4) % 4;
+		c = q == 0 ? 1 : q == 2 ? -1 : 0;
+		s = q == 1 ? 1 : q == 3 ? -1 : 0;
+	}
 	int i = (k + 1) % 3, j = (k + 2) % 3;
 	x.m[i][i] = c, x.m[i][j] = -s, x.m[j][i] = s, x.m[j][j] = c;
 	x.inv[i][i] = c, x.inv[i][j] = s, x.inv[j][i] = -s, x.inv[j][j] = c;
@@ -87,14 +93,13 @@ static struct xform rot_axis(int k, double a)
 
 struct xform xf_rotate(struct vec3 deg)
 {
-	double k = M_PI / 180.0;
 	struct xform r = xf_identity();
 	if (deg.x != 0)
-		r = xf_then(r, rot_axis(0, deg.x * k));
+		r = xf_then(r, rot_axis(0, deg.x));
 	if (deg.y != 0)
-		r = xf_then(r, rot_axis(1, deg.y * k));
+		r = xf_then(r, rot_axis(1, deg.y));
 	if (deg.z != 0)
-		r = xf_then(r, rot_axis(2, deg.z * k));
+		r = xf_then(r, rot_axis(2, deg.z));
 	return r;
 }
 
@@ -151,24 +156,24 @@ bool xf_is_identity(const struct xform *a)
 	return true;
 }
 
-static struct vec3 apply_p(const double m[3][4], struct vec3 p)
+static struct vec3 apply_p(double m[3][4], struct vec3 p)
 {
 	return v3(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
 	          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
 	          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
 }
 
-static struct vec3 apply_v(const double m[3][4], struct vec3 p)
+static struct vec3 apply_v(double m[3][4], struct vec3 p)
 {
 	return v3(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z,
 	          m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z,
 	          m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z);
 }
 
-struct vec3 xf_point(const struct xform *a, struct vec3 p) { return apply_p(a->m, p); }
-struct vec3 xf_vector(const struct xform *a, struct vec3 v) { return apply_v(a->m, v); }
-struct vec3 xf_inv_point(const struct xform *a, struct vec3 p) { return apply_p(a->inv, p); }
-struct vec3 xf_inv_vector(const struct xform *a, struct vec3 v) { return apply_v(a->inv, v); }
+struct vec3 xf_point(const struct xform *a, struct vec3 p) { return apply_p((double (*)[4])a->m, p); }
+struct vec3 xf_vector(const struct xform *a, struct vec3 v) { return apply_v((double (*)[4])a->m, v); }
+struct vec3 xf_inv_point(const struct xform *a, struct vec3 p) { return apply_p((double (*)[4])a->inv, p); }
+struct vec3 xf_inv_vector(const struct xform *a, struct vec3 v) { return apply_v((double (*)[4])a->inv, v); }
 
 struct vec3 xf_normal(const struct xform *a, struct vec3 n)
 {

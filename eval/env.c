@@ -1,0 +1,144 @@
+/* SPDX-License-Identifier: MIT */
+/* env.c: identifier scopes (POV-Ray's dynamic scoping: a stack of tables)
+ * and the macro table. #declare writes to the innermost scope that already
+ * holds the name, else to the global scope; #local writes to the innermost. */
+#include <string.h>
+
+#include "internal.h"
+
+struct entry {
+	const char *name;         /* key (arena) */
+	struct value val;         /* identifier value */
+	const struct node *macro; /* N_MACRO when this is a macro */
+	struct entry *next;       /* chain */
+};
+
+struct scope {
+	struct entry **buckets; /* hash chains */
+	int nbuckets;           /* power of two */
+	int count;              /* entries */
+};
+
+static uint32_t hash(const char *s)
+{
+	uint32_t h = 2166136261u;
+	for (; *s; s++)
+		h = (h ^ (unsigned char)*s) * 16777619u;
+	return h;
+}
+
+struct scope *scope_new(struct eval *E)
+{
+	struct scope *sc = ARENA_NEW(&E->arena, struct scope);
+	sc->nbuckets = 16;
+	sc->buckets = ARENA_ARRAY(&E->arena, struct entry *, sc->nbuckets);
+	return sc;
+}
+
+void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
+{
+	if (E->nscopes >= MAX_SCOPES)
+		eval_fail(E, loc, "too many nested scopes (more than %d)", MAX_SCOPES);
+	E->scopes[E->nscopes++] = sc;
+}
+
+void scope_pop(struct eval *E) { E->nscopes--; }
+
+static struct entry *find(struct scope *sc, const char *name)
+{
+	for (struct entry *e = sc->buckets[hash(name) & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
+		if (strcmp(e->name, name) == 0)
+			return e;
+	return NULL;
+}
+
+/* Doubles a scope's table when it gets crowded. */
+static void grow(struct eval *E, struct scope *sc)
+{
+	int nb = sc->nbuckets * 2;
+	struct entry **b = ARENA_ARRAY(&E->arena, struct entry *, nb);
+	for (int i = 0; i < sc->nbuckets; i++) {
+		for (struct entry *e = sc->buckets[i], *next; e; e = next) {
+			next = e->next;
+			uint32_t h = hash(e->name) & (uint32_t)(nb - 1);
+			e->next = b[h];
+			b[h] = e;
+		}
+	}
+	sc->buckets = b;
+	sc->nbuckets = nb;
+}
+
+static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
+{
+	struct entry *e = find(sc, name);
+	if (e) {
+		e->macro = NULL;
+		return e;
+	}
+	if (sc->count >= sc->nbuckets)
+		grow(E, sc);
+	e = ARENA_NEW(&E->arena, struct entry);
+	e->name = eval_strdup(E, name, (int)strlen(name));
+	uint32_t h = hash(name) & (uint32_t)(sc->nbuckets - 1);
+	e->next = sc->buckets[h];
+	sc->buckets[h] = e;
+	sc->count++;
+	return e;
+}
+
+struct value *env_lookup(struct eval *E, const char *name)
+{
+	for (int i = E->nscopes - 1; i >= 0; i--) {
+		struct entry *e = find(E->scopes[i], name);
+		if (e && !e->macro)
+			return &e->val;
+	}
+	return NULL;
+}
+
+const struct node *env_macro(struct eval *E, const char *name)
+{
+	for (int i = E->nscopes - 1; i >= 0; i--) {
+		struct entry *e = find(E->scopes[i], name);
+		if (e)
+			return e->macro;
+	}
+	return NULL;
+}
+
+struct value *env_declare(struct eval *E, const char *name, bool local)
+{
+	struct scope *sc = E->scopes[local ? E->nscopes - 1 : 0];
+	if (!local) {
+		for (int i = E->nscopes - 1; i > 0; i--) {
+			struct entry *e = find(E->scopes[i], name);
+			if (e && !e->macro)
+				return &e->val;
+		}
+	}
+	return &insert(E, sc, name)->val;
+}
+
+void env_define_macro(struct eval *E, const char *name, const struct node *def)
+{
+	struct entry *e = insert(E, E->scopes[0], name);
+	e->macro = def;
+	e->val = val_none();
+}
+
+bool env_undef(struct eval *E, const char *name)
+{
+	for (int i = E->nscopes - 1; i >= 0; i--) {
+		struct scope *sc = E->scopes[i];
+		struct entry **pp = &sc->buckets[hash(name) & (uint32_t)(sc->nbuckets - 1)];
+		for (; *pp; pp = &(*pp)->next) {
+			if (strcmp((*pp)->name, name) == 0) {
+				*pp = (*pp)->next;
+				sc->count--;
+				return true;
+			}
+		}
+	}
+	return false;
+}

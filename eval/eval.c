@@ -1,0 +1,794 @@
+/* SPDX-License-Identifier: MIT */
+/* eval.c: walks the AST: expressions, directives, macros, includes.
+ *
+ * Items are evaluated into a sink (internal.h) that stands for the block they
+ * appear in; objects.c knows what each block accepts. Errors are fatal: they
+ * are reported once and longjmp back to eval_scene (Lua's luaD_throw). */
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../parser/parser.h"
+#include "internal.h"
+
+_Noreturn void eval_fail(struct eval *E, struct srcloc loc, const char *fmt, ...)
+{
+	char msg[512];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	diag_error(E->diag, loc, "%s", msg);
+	longjmp(*E->fail, 1);
+}
+
+char *eval_strdup(struct eval *E, const char *s, int len) { return arena_strndup(&E->arena, s, (size_t)len); }
+
+/* ==== conversions ========================================================= */
+
+double val_want_float(struct eval *E, const struct value *v, struct srcloc loc)
+{
+	if (v->kind != V_FLOAT)
+		eval_fail(E, loc, "expected a float, found %s", val_type_name(v));
+	return v->v[0];
+}
+
+struct vec3 val_want_vec3(struct eval *E, const struct value *v, struct srcloc loc)
+{
+	if (v->kind == V_FLOAT)
+		return v3(v->v[0], v->v[0], v->v[0]);
+	if (v->kind != V_VECTOR)
+		eval_fail(E, loc, "expected a vector, found %s", val_type_name(v));
+	return v3(v->v[0], v->v[1], v->n >= 3 ? v->v[2] : 0);
+}
+
+struct colour val_want_colour(struct eval *E, const struct value *v, struct srcloc loc)
+{
+	struct colour c = {0, 0, 0, 0, 0};
+	switch (v->kind) {
+	case V_COLOUR: return val_to_colour(v);
+	case V_FLOAT: return (struct colour){v->v[0], v->v[0], v->v[0], v->v[0], v->v[0]};
+	case V_VECTOR:
+		c.r = v->v[0], c.g = v->v[1];
+		c.b = v->n > 2 ? v->v[2] : 0;
+		c.f = v->n > 3 ? v->v[3] : 0;
+		c.t = v->n > 4 ? v->v[4] : 0;
+		return c;
+	default: eval_fail(E, loc, "expected a colour, found %s", val_type_name(v));
+	}
+}
+
+double eval_float(struct eval *E, const struct node *n)
+{
+	struct value v = eval_expr(E, n);
+	return val_want_float(E, &v, n->loc);
+}
+
+struct vec3 eval_vec3(struct eval *E, const struct node *n)
+{
+	struct value v = eval_expr(E, n);
+	return val_want_vec3(E, &v, n->loc);
+}
+
+struct colour eval_colour(struct eval *E, const struct node *n)
+{
+	struct value v = eval_expr(E, n);
+	return val_want_colour(E, &v, n->loc);
+}
+
+const char *eval_string(struct eval *E, const struct node *n, int *len)
+{
+	struct value v = eval_expr(E, n);
+	if (v.kind != V_STRING)
+		eval_fail(E, n->loc, "expected a string, found %s", val_type_name(&v));
+	if (len)
+		*len = v.n;
+	return v.p.s;
+}
+
+/* ==== operators =========================================================== */
+
+/* Widens a float/vector/colour to n components as POV-Ray promotes them. */
+static void widen(const struct value *v, int n, double out[5])
+{
+	for (int i = 0; i < 5; i++)
+		out[i] = v->kind == V_FLOAT ? v->v[0] : (i < v->n ? v->v[i] : 0);
+	(void)n;
+}
+
+static int is_numeric(const struct value *v)
+{
+	return v->kind == V_FLOAT || v->kind == V_VECTOR || v->kind == V_COLOUR;
+}
+
+/* + - * / on floats, vectors and colours (component-wise, with promotion). */
+static struct value arith(struct eval *E, enum tok op, const struct value *a, const struct value *b, struct srcloc loc)
+{
+	const struct value *bad = !is_numeric(a) ? a : !is_numeric(b) ? b : NULL;
+	if (bad)
+		eval_fail(E, loc, "operator %s needs numbers, vectors or colours, found %s", tok_name(op), val_type_name(bad));
+	if (a->kind == V_FLOAT && b->kind == V_FLOAT) {
+		double x = a->v[0], y = b->v[0];
+		if (op == TK_SLASH && y == 0)
+			eval_fail(E, loc, "division by zero");
+		return val_float(op == TK_PLUS ? x + y : op == TK_MINUS ? x - y : op == TK_STAR ? x * y : x / y);
+	}
+	struct value r;
+	if (a->kind == V_COLOUR || b->kind == V_COLOUR) {
+		r.kind = V_COLOUR;
+		r.n = 5;
+	} else {
+		r.kind = V_VECTOR;
+		r.n = a->kind == V_VECTOR ? a->n : b->n;
+		if (a->kind == V_VECTOR && b->kind == V_VECTOR && b->n > r.n)
+			r.n = b->n;
+	}
+	double x[5], y[5];
+	widen(a, r.n, x);
+	widen(b, r.n, y);
+	for (int i = 0; i < 5; i++) {
+		if (op == TK_SLASH && y[i] == 0 && i < r.n)
+			eval_fail(E, loc, "division by zero");
+		r.v[i] = i >= r.n ? 0 : op == TK_PLUS ? x[i] + y[i] : op == TK_MINUS ? x[i] - y[i] : op == TK_STAR ? x[i] * y[i] : x[i] / y[i];
+	}
+	return r;
+}
+
+static struct value binary(struct eval *E, const struct node *n)
+{
+	struct value a = eval_expr(E, n->a);
+	if (n->op == TK_AMP || n->op == TK_PIPE) {
+		double x = val_want_float(E, &a, n->a->loc);
+		/* both sides are evaluated, as in POV-Ray */
+		double y = eval_float(E, n->b);
+		return val_float(n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0));
+	}
+	struct value b = eval_expr(E, n->b);
+	switch (n->op) {
+	case TK_PLUS: case TK_MINUS: case TK_STAR: case TK_SLASH:
+		return arith(E, n->op, &a, &b, n->loc);
+	default: {
+		double x = val_want_float(E, &a, n->a->loc), y = val_want_float(E, &b, n->b->loc);
+		switch (n->op) {
+		case TK_EQ: return val_float(x == y);
+		case TK_NE: return val_float(x != y);
+		case TK_LT: return val_float(x < y);
+		case TK_LE: return val_float(x <= y);
+		case TK_GT: return val_float(x > y);
+		default: return val_float(x >= y);
+		}
+	}
+	}
+}
+
+static struct value unary(struct eval *E, const struct node *n)
+{
+	struct value a = eval_expr(E, n->a);
+	if (n->op == TK_BANG)
+		return val_float(val_want_float(E, &a, n->a->loc) == 0);
+	if (!is_numeric(&a))
+		eval_fail(E, n->loc, "unary %s needs a number, vector or colour, found %s", tok_name(n->op), val_type_name(&a));
+	if (n->op == TK_MINUS)
+		for (int i = 0; i < 5; i++)
+			a.v[i] = -a.v[i];
+	return a;
+}
+
+/* ==== colours, vectors, members =========================================== */
+
+static double srgb_to_linear(double c)
+{
+	return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_prefix(struct eval *E, const struct node *n)
+{
+	struct value a = eval_expr(E, n->a);
+	if (n->op == TK_COLOR || n->op == TK_COLOUR)
+		return val_colour(val_want_colour(E, &a, n->a->loc));
+	int srgb = n->op == TK_SRGB || n->op == TK_SRGBF || n->op == TK_SRGBT || n->op == TK_SRGBFT;
+	int hasf = n->op == TK_RGBF || n->op == TK_RGBFT || n->op == TK_SRGBF || n->op == TK_SRGBFT;
+	int hast = n->op == TK_RGBT || n->op == TK_RGBFT || n->op == TK_SRGBT || n->op == TK_SRGBFT;
+	int want = 3 + hasf + hast;
+	double c[5] = {0, 0, 0, 0, 0};
+	if (a.kind == V_FLOAT) {
+		for (int i = 0; i < want; i++)
+			c[i] = a.v[0];
+	} else if (a.kind == V_VECTOR || a.kind == V_COLOUR) {
+		int have = a.kind == V_COLOUR ? 5 : a.n;
+		if (a.kind == V_VECTOR && have != want)
+			eval_fail(E, n->a->loc, "%s needs a %d-component vector, found %d components", tok_name(n->op), want, have);
+		for (int i = 0; i < want && i < have; i++)
+			c[i] = a.v[i];
+	} else {
+		eval_fail(E, n->a->loc, "expected a float or vector after %s, found %s", tok_name(n->op), val_type_name(&a));
+	}
+	struct colour r = {c[0], c[1], c[2], 0, 0};
+	if (hasf)
+		r.f = c[3];
+	if (hast)
+		r.t = c[hasf ? 4 : 3];
+	if (srgb)
+		r.r = srgb_to_linear(r.r), r.g = srgb_to_linear(r.g), r.b = srgb_to_linear(r.b);
+	return val_colour(r);
+}
+
+static struct value vector_literal(struct eval *E, const struct node *n)
+{
+	if (n->nkids < 2 || n->nkids > 5) {
+		if (n->nkids == 12 || n->nkids == 16) { /* matrix <…>: kept as an array of floats */
+			struct array *arr = ARENA_NEW(&E->arena, struct array);
+			arr->ndims = 1;
+			arr->dims[0] = n->nkids;
+			arr->n = n->nkids;
+			arr->items = ARENA_ARRAY(&E->arena, struct value, n->nkids);
+			for (int i = 0; i < n->nkids; i++)
+				arr->items[i] = val_float(eval_float(E, n->kids[i]));
+			struct value r = {.kind = V_ARRAY};
+			r.p.arr = arr;
+			return r;
+		}
+		eval_fail(E, n->loc, "a vector has 2 to 5 components, found %d", n->nkids);
+	}
+	double c[5];
+	for (int i = 0; i < n->nkids; i++)
+		c[i] = eval_float(E, n->kids[i]);
+	return val_vector(n->nkids, c);
+}
+
+static struct value member(struct eval *E, const struct node *n)
+{
+	static const struct { const char *name; int index; } members[] = {
+		{"x", 0}, {"u", 0}, {"red", 0}, {"y", 1}, {"v", 1}, {"green", 1},
+		{"z", 2}, {"blue", 2}, {"t", 3}, {"filter", 3}, {"transmit", 4},
+	};
+	struct value a = eval_expr(E, n->a);
+	if (a.kind != V_VECTOR && a.kind != V_COLOUR)
+		eval_fail(E, n->loc, "'.%s' needs a vector or colour, found %s", n->str, val_type_name(&a));
+	if (strcmp(n->str, "gray") == 0 || strcmp(n->str, "grey") == 0)
+		return val_float(0.297 * a.v[0] + 0.589 * a.v[1] + 0.114 * a.v[2]);
+	for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
+		if (strcmp(members[i].name, n->str) == 0) {
+			int k = members[i].index;
+			if (a.kind == V_VECTOR && k >= a.n)
+				eval_fail(E, n->loc, "'.%s' needs a vector of at least %d components, found %d", n->str, k + 1, a.n);
+			return val_float(a.v[k]);
+		}
+	}
+	eval_fail(E, n->loc, "unknown member '.%s'", n->str);
+}
+
+/* ==== arrays ============================================================== */
+
+/* Resolves A[i][j]… to the element slot; fails on a bad index. */
+static struct value *index_slot(struct eval *E, const struct node *n)
+{
+	const struct node *chain[5];
+	int k = 0;
+	const struct node *root = n;
+	while (root->kind == N_INDEX) {
+		if (k == 5)
+			eval_fail(E, root->loc, "too many indices (an array has at most 5 dimensions)");
+		chain[k++] = root;
+		root = root->a;
+	}
+	struct value base = eval_expr(E, root);
+	if (base.kind != V_ARRAY)
+		eval_fail(E, n->loc, "'[' needs an array, found %s", val_type_name(&base));
+	struct array *arr = base.p.arr;
+	if (k != arr->ndims)
+		eval_fail(E, n->loc, "the array has %d dimension%s, %d ind%s given", arr->ndims,
+		          arr->ndims == 1 ? "" : "s", k, k == 1 ? "ex" : "ices");
+	long off = 0;
+	for (int d = 0; d < k; d++) {
+		const struct node *ix = chain[k - 1 - d];
+		double f = eval_float(E, ix->b);
+		long i = (long)f;
+		if (f < 0 || i >= arr->dims[d])
+			eval_fail(E, ix->b->loc, "array index %g out of range (0 to %d)", f, arr->dims[d] - 1);
+		off = off * arr->dims[d] + i;
+	}
+	return &arr->items[off];
+}
+
+/* Fills arr's items from an initialiser nested as deep as the dimensions. */
+static void fill_init(struct eval *E, struct array *arr, const struct node *init, int dim, long *pos)
+{
+	if (init->nkids != arr->dims[dim])
+		eval_fail(E, init->loc, "the initialiser has %d element%s, the array dimension has %d", init->nkids,
+		          init->nkids == 1 ? "" : "s", arr->dims[dim]);
+	for (int i = 0; i < init->nkids; i++) {
+		const struct node *k = init->kids[i];
+		if (dim + 1 < arr->ndims) {
+			if (k->kind != N_INIT)
+				eval_fail(E, k->loc, "expected '{' for dimension %d of the initialiser", dim + 2);
+			fill_init(E, arr, k, dim + 1, pos);
+		} else {
+			if (k->kind == N_INIT)
+				eval_fail(E, k->loc, "the initialiser is nested deeper than the array's %d dimension%s",
+				          arr->ndims, arr->ndims == 1 ? "" : "s");
+			arr->items[(*pos)++] = eval_expr(E, k);
+		}
+	}
+}
+
+static struct value array_new(struct eval *E, const struct node *n)
+{
+	struct array *arr = ARENA_NEW(&E->arena, struct array);
+	arr->ndims = n->nkids;
+	if (arr->ndims > 5)
+		eval_fail(E, n->loc, "an array has at most 5 dimensions");
+	arr->n = 1;
+	for (int i = 0; i < n->nkids; i++) {
+		double f = eval_float(E, n->kids[i]);
+		if (!(f >= 1) || f > MAX_ARRAY)
+			eval_fail(E, n->kids[i]->loc, "array size must be 1 to %ld, found %g", MAX_ARRAY, f);
+		arr->dims[i] = (int)f;
+		arr->n *= arr->dims[i];
+		if (arr->n > MAX_ARRAY)
+			eval_fail(E, n->loc, "array too large (%ld elements; the limit is %ld)", arr->n, MAX_ARRAY);
+	}
+	arr->items = ARENA_ARRAY(&E->arena, struct value, arr->n);
+	if (n->a) {
+		long pos = 0;
+		fill_init(E, arr, n->a, 0, &pos);
+	}
+	struct value r = {.kind = V_ARRAY};
+	r.p.arr = arr;
+	return r;
+}
+
+static struct value array_copy(struct eval *E, struct value v)
+{
+	struct array *a = ARENA_NEW(&E->arena, struct array);
+	*a = *v.p.arr;
+	a->items = ARENA_ARRAY(&E->arena, struct value, a->n);
+	memcpy(a->items, v.p.arr->items, sizeof *a->items * (size_t)a->n);
+	v.p.arr = a;
+	return v;
+}
+
+/* ==== macros ============================================================== */
+
+/* Calls macro `def` for call node `call`; its body goes into sink s. */
+static void call_macro(struct eval *E, const struct node *def, const struct node *call, struct sink *s)
+{
+	if (call->nkids != def->nkids)
+		eval_fail(E, call->loc, "macro '%s' takes %d argument%s, %d given", def->str, def->nkids,
+		          def->nkids == 1 ? "" : "s", call->nkids);
+	if (E->macro_depth >= MAX_MACRO_DEPTH)
+		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
+	struct value args[64];
+	if (call->nkids > 64)
+		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
+	for (int i = 0; i < call->nkids; i++) {
+		if (!call->kids[i])
+			eval_fail(E, call->loc, "argument %d of macro '%s' is empty", i + 1, def->str);
+		args[i] = eval_expr(E, call->kids[i]);
+		if (args[i].kind == V_ARRAY)
+			args[i] = array_copy(E, args[i]);
+	}
+	struct scope *sc = scope_new(E);
+	scope_push(E, sc, call->loc);
+	for (int i = 0; i < def->nkids; i++)
+		*env_declare(E, def->kids[i]->str, true) = args[i];
+	E->macro_depth++;
+	eval_items(E, def->b, s);
+	E->macro_depth--;
+	E->breaking = 0;
+	/* arguments that were plain identifiers are passed by reference */
+	for (int i = 0; i < def->nkids; i++) {
+		const struct node *a = call->kids[i];
+		if (a->kind != N_IDENT)
+			continue;
+		struct value nv = *env_lookup(E, def->kids[i]->str);
+		scope_pop(E);
+		struct value *slot = env_lookup(E, a->str);
+		if (slot)
+			*slot = nv;
+		scope_push(E, sc, call->loc);
+	}
+	scope_pop(E);
+}
+
+/* A macro call in an expression: its body must yield exactly one value. */
+static struct value macro_value(struct eval *E, const struct node *def, const struct node *call)
+{
+	struct sink s;
+	sink_init(&s, SK_VALUE, TK_EOF, call->loc, NULL);
+	call_macro(E, def, call, &s);
+	if (s.nresults == 0)
+		eval_fail(E, call->loc, "macro '%s' yields no value here", def->str);
+	return s.result;
+}
+
+/* ==== expressions ========================================================= */
+
+static struct value identifier(struct eval *E, const struct node *n)
+{
+	struct value *v = env_lookup(E, n->str);
+	if (v) {
+		if (v->kind == V_NONE)
+			eval_fail(E, n->loc, "'%s' has no value", n->str);
+		return *v;
+	}
+	struct value c;
+	if (builtin_constant(E, n->str, &c))
+		return c;
+	if (env_macro(E, n->str))
+		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
+	eval_fail(E, n->loc, "undeclared identifier '%s'", n->str);
+}
+
+struct value eval_expr(struct eval *E, const struct node *n)
+{
+	switch (n->kind) {
+	case N_NUM: return val_float(n->num);
+	case N_STR: return val_string(n->str, n->len);
+	case N_IDENT: return identifier(E, n);
+	case N_VEC: return vector_literal(E, n);
+	case N_UNARY: return unary(E, n);
+	case N_BINARY: return binary(E, n);
+	case N_COND: {
+		double c = eval_float(E, n->a);
+		return eval_expr(E, c != 0 ? n->b : n->c);
+	}
+	case N_CALL: {
+		const struct node *def = env_macro(E, n->str);
+		if (def)
+			return macro_value(E, def, n);
+		struct value r;
+		if (builtin_call(E, n, &r))
+			return r;
+		eval_fail(E, n->loc, "undeclared macro or function '%s'", n->str);
+	}
+	case N_MEMBER: return member(E, n);
+	case N_INDEX: {
+		struct value *slot = index_slot(E, n);
+		if (slot->kind == V_NONE)
+			eval_fail(E, n->loc, "array element used before it was given a value");
+		return *slot;
+	}
+	case N_COLOUR: return colour_prefix(E, n);
+	case N_ARRAY: return array_new(E, n);
+	case N_BLOCK: return eval_block(E, n);
+	case N_MOD:
+		if (n->op == TK_TRANSFORM)
+			return eval_block(E, n);
+		/* fall through */
+	default:
+		eval_fail(E, n->loc, "expected an expression, found %s", n->op ? tok_name(n->op) : ast_kind_name(n->kind));
+	}
+}
+
+/* ==== directives ========================================================== */
+
+static void count_iteration(struct eval *E, struct srcloc loc)
+{
+	if (++E->iterations > E->opt->max_iterations)
+		eval_fail(E, loc, "loop iteration limit (%ld) exceeded; raise it with --max-iterations", E->opt->max_iterations);
+}
+
+static void exec_declare(struct eval *E, const struct node *n)
+{
+	bool local = n->op == TK_DIR_LOCAL;
+	if (builtin_is_name(n->str))
+		eval_fail(E, n->loc, "'%s' is a built-in name and cannot be declared", n->str);
+	if (n->nkids > 0) { /* #declare A[i] = v */
+		const struct node *chain = NULL;
+		/* rebuild A[i][j] as index nodes on the stack */
+		struct node id = {.kind = N_IDENT, .loc = n->loc, .str = n->str, .len = n->len};
+		struct node ix[5];
+		if (n->nkids > 5)
+			eval_fail(E, n->loc, "too many indices (an array has at most 5 dimensions)");
+		chain = &id;
+		for (int i = 0; i < n->nkids; i++) {
+			ix[i] = (struct node){.kind = N_INDEX, .loc = n->kids[i]->loc, .a = (struct node *)chain, .b = n->kids[i]};
+			chain = &ix[i];
+		}
+		struct value v = eval_expr(E, n->a);
+		*index_slot(E, chain) = v;
+		return;
+	}
+	struct value v = eval_expr(E, n->a);
+	if (v.kind == V_ARRAY)
+		v = array_copy(E, v);
+	if (v.kind == V_NONE)
+		eval_fail(E, n->a->loc, "nothing to declare");
+	*env_declare(E, n->str, local) = v;
+}
+
+static void exec_for(struct eval *E, const struct node *n, struct sink *s)
+{
+	double start = eval_float(E, n->kids[0]);
+	double end = eval_float(E, n->kids[1]);
+	double step = n->nkids > 2 ? eval_float(E, n->kids[2]) : 1;
+	if (step == 0)
+		eval_fail(E, n->kids[2]->loc, "#for step must not be zero");
+	*env_declare(E, n->str, true) = val_float(start);
+	for (;;) {
+		struct value *var = env_lookup(E, n->str);
+		double v = var ? val_want_float(E, var, n->loc) : start;
+		if (step > 0 ? v > end : v < end)
+			break;
+		count_iteration(E, n->loc);
+		eval_items(E, n->b, s);
+		if (E->breaking) {
+			E->breaking = 0;
+			break;
+		}
+		var = env_lookup(E, n->str);
+		if (!var)
+			eval_fail(E, n->loc, "loop variable '%s' was undefined inside the loop", n->str);
+		*var = val_float(val_want_float(E, var, n->loc) + step);
+	}
+}
+
+static void exec_switch(struct eval *E, const struct node *n, struct sink *s)
+{
+	double v = eval_float(E, n->a);
+	int matched = 0;
+	for (int i = 0; i < n->nkids && !E->breaking; i++) {
+		const struct node *c = n->kids[i];
+		if (!matched) {
+			if (c->op == TK_DIR_CASE)
+				matched = eval_float(E, c->kids[0]) == v;
+			else if (c->op == TK_DIR_RANGE)
+				matched = v >= eval_float(E, c->kids[0]) && v <= eval_float(E, c->kids[1]);
+			else
+				matched = 1;
+		}
+		if (matched)
+			eval_items(E, c->b, s);
+	}
+	E->breaking = 0;
+}
+
+static int ifdef_test(struct eval *E, const struct node *a)
+{
+	if (a->kind == N_IDENT)
+		return env_lookup(E, a->str) != NULL || env_macro(E, a->str) != NULL;
+	if (a->kind == N_INDEX)
+		return index_slot(E, a)->kind != V_NONE;
+	eval_fail(E, a->loc, "#ifdef needs an identifier");
+}
+
+static void exec_message(struct eval *E, const struct node *n)
+{
+	int len;
+	const char *s = eval_string(E, n->a, &len);
+	if (n->op == TK_DIR_DEBUG) {
+		fwrite(s, 1, (size_t)len, E->opt->debug_out);
+	} else if (n->op == TK_DIR_WARNING) {
+		diag_warning(E->diag, n->loc, "%.*s", len, s);
+	} else {
+		eval_fail(E, n->loc, "%.*s", len, s);
+	}
+}
+
+/* ==== include ============================================================= */
+
+static int is_dir_prefix(const char *dir, const char *path)
+{
+	size_t n = strlen(dir);
+	return strncmp(dir, path, n) == 0 && (path[n] == '/' || n == 1);
+}
+
+/* Finds an include file in the allowed directories; returns a malloc'd real path. */
+static char *find_include(struct eval *E, const char *name, struct srcloc loc)
+{
+	const char *dirs[66];
+	int nd = 0;
+	dirs[nd++] = E->dir_stack[E->include_depth];
+	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
+		dirs[nd++] = E->opt->include_dirs[i];
+	if (E->opt->stdlib_dir)
+		dirs[nd++] = E->opt->stdlib_dir;
+	if (name[0] == '/')
+		eval_fail(E, loc, "#include needs a relative path, found '%s'", name);
+	for (int i = 0; i < nd; i++) {
+		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
+		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
+		if (!realpath(cand, real) || !realpath(dirs[i], realdir))
+			continue;
+		if (!is_dir_prefix(realdir, real))
+			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
+		return mem_strdup(real);
+	}
+	eval_fail(E, loc, "cannot find include file '%s'", name);
+}
+
+static char *dir_of(struct eval *E, const char *path)
+{
+	const char *slash = strrchr(path, '/');
+	if (!slash)
+		return eval_strdup(E, ".", 1);
+	if (slash == path)
+		return eval_strdup(E, "/", 1);
+	return eval_strdup(E, path, (int)(slash - path));
+}
+
+static void exec_include(struct eval *E, const struct node *n, struct sink *s)
+{
+	int len;
+	const char *name = eval_string(E, n->a, &len);
+	if (E->include_depth >= MAX_INCLUDE_DEPTH)
+		eval_fail(E, n->loc, "#include nested too deeply (more than %d levels)", MAX_INCLUDE_DEPTH);
+	char *real = find_include(E, name, n->loc);
+	size_t size;
+	char *text = srcfile_read(real, &size);
+	if (!text) {
+		int err = errno;
+		free(real);
+		eval_fail(E, n->loc, "cannot read include file '%s': %s", name, strerror(err));
+	}
+	if (E->opt->on_file)
+		E->opt->on_file(real, E->opt->on_file_ctx);
+	/* messages name the file as found relative to its directory */
+	const char *dir = E->dir_stack[E->include_depth];
+	char *shown = mem_alloc(strlen(dir) + strlen(name) + 2);
+	sprintf(shown, "%s/%s", dir, name);
+	if (strncmp(shown, "./", 2) == 0)
+		memmove(shown, shown + 2, strlen(shown + 2) + 1);
+	int file = srcfile_add(shown, text, size);
+	int errors = E->diag->errors;
+	struct node *ast = parse_file(file, E->diag, &E->arena);
+	if (E->diag->errors > errors) {
+		free(real);
+		longjmp(*E->fail, 1);
+	}
+	E->dir_stack[E->include_depth + 1] = dir_of(E, srcfile_get(file)->name);
+	free(real);
+	E->include_depth++;
+	scope_push(E, scope_new(E), n->loc);
+	eval_items(E, ast, s);
+	scope_pop(E);
+	E->include_depth--;
+}
+
+/* ==== items =============================================================== */
+
+void eval_items(struct eval *E, const struct node *list, struct sink *s)
+{
+	for (int i = 0; i < list->nkids && !E->breaking; i++)
+		eval_item(E, list->kids[i], s);
+}
+
+void eval_item(struct eval *E, const struct node *n, struct sink *s)
+{
+	switch (n->kind) {
+	case N_DECLARE: exec_declare(E, n); return;
+	case N_UNDEF: env_undef(E, n->str); return;
+	case N_INCLUDE: exec_include(E, n, s); return;
+	case N_IF:
+		if (eval_float(E, n->a) != 0)
+			eval_items(E, n->b, s);
+		else if (n->c)
+			n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
+		return;
+	case N_IFDEF: {
+		int def = ifdef_test(E, n->a);
+		if (def == (n->op == TK_DIR_IFDEF))
+			eval_items(E, n->b, s);
+		else if (n->c)
+			eval_items(E, n->c, s);
+		return;
+	}
+	case N_WHILE:
+		while (eval_float(E, n->a) != 0) {
+			count_iteration(E, n->loc);
+			eval_items(E, n->b, s);
+			if (E->breaking) {
+				E->breaking = 0;
+				break;
+			}
+		}
+		return;
+	case N_FOR: exec_for(E, n, s); return;
+	case N_SWITCH: exec_switch(E, n, s); return;
+	case N_BREAK: E->breaking = 1; return;
+	case N_MACRO:
+		if (builtin_is_name(n->str))
+			eval_fail(E, n->loc, "'%s' is a built-in name and cannot be a macro", n->str);
+		env_define_macro(E, n->str, n);
+		return;
+	case N_VERSION: {
+		double v = eval_float(E, n->a);
+		E->scene->version = v;
+		if (E->include_depth == 0 && v < 4.0)
+			E->scene->legacy_lights = true;
+		return;
+	}
+	case N_MESSAGE: exec_message(E, n); return;
+	case N_DEFAULT: case N_BLOCK: case N_MOD: case N_WORD: case N_SKIPPED: case N_ENTRY:
+		sink_keyword(E, s, n);
+		return;
+	case N_CALL: {
+		const struct node *def = env_macro(E, n->str);
+		if (def) {
+			call_macro(E, def, n, s);
+			return;
+		}
+		break;
+	}
+	default: break;
+	}
+	struct value v = eval_expr(E, n);
+	sink_value(E, s, &v, n->loc);
+}
+
+/* ==== driver ============================================================== */
+
+void eval_default_options(struct eval_options *o)
+{
+	memset(o, 0, sizeof *o);
+	o->width = 320;
+	o->height = 240;
+	o->max_iterations = 10000000;
+	o->debug_out = stdout;
+}
+
+/* -D NAME=VALUE: a float, or a string when VALUE is quoted. */
+static void declare_define(struct eval *E, const char *def)
+{
+	const char *eq = strchr(def, '=');
+	const char *val = eq ? eq + 1 : "1";
+	int nlen = eq ? (int)(eq - def) : (int)strlen(def);
+	char *name = eval_strdup(E, def, nlen);
+	size_t vl = strlen(val);
+	struct value v;
+	if (vl >= 2 && val[0] == '"' && val[vl - 1] == '"') {
+		v = val_string(eval_strdup(E, val + 1, (int)vl - 2), (int)vl - 2);
+	} else {
+		char *end;
+		v = val_float(strtod(val, &end));
+	}
+	*env_declare(E, name, false) = v;
+}
+
+int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out)
+{
+	scene_init(out);
+	size_t size;
+	char *text = srcfile_read(path, &size);
+	if (!text) {
+		diag_error(diag, srcloc_none(), "cannot open '%s': %s", path, strerror(errno));
+		return 66;
+	}
+	if (opt->on_file)
+		opt->on_file(path, opt->on_file_ctx);
+	int file = srcfile_add(mem_strdup(path), text, size);
+	out->name = arena_strndup(&out->arena, path, strlen(path));
+
+	struct eval *E = mem_calloc(1, sizeof *E);
+	jmp_buf jb;
+	E->diag = diag;
+	E->opt = opt;
+	E->scene = out;
+	E->fail = &jb;
+	arena_init(&E->arena);
+	E->default_tex = scene_default_texture();
+	int rc = 0;
+	if (setjmp(jb) == 0) {
+		struct node *ast = parse_file(file, diag, &E->arena);
+		if (diag->errors == 0) {
+			scope_push(E, scope_new(E), srcloc_none());
+			E->dir_stack[0] = dir_of(E, path);
+			for (int i = 0; i < opt->ndefines; i++)
+				declare_define(E, opt->defines[i]);
+			struct sink s;
+			sink_init(&s, SK_SCENE, TK_EOF, ast->loc, out);
+			eval_items(E, ast, &s);
+			objects_finish(E);
+		}
+	}
+	if (diag->errors > 0)
+		rc = 65;
+	free(E->rng);
+	arena_free(&E->arena);
+	free(E);
+	return rc;
+}

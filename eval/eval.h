@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* eval.h: runs a parsed scene file and builds the scene model. */
+#ifndef ARVO_EVAL_H
+#define ARVO_EVAL_H
+
+#include <stdbool.h>
+
+#include "../common/diag.h"
+#include "../tracer/scene.h"
+
+/* What the command line gives the evaluator. */
+struct eval_options {
+	const char *const *include_dirs; /* -I directories, in order */
+	int ninclude;
+	const char *stdlib_dir;          /* stdlib-scenes/include (NULL: none) */
+	const char *const *defines;      /* -D NAME=VALUE strings */
+	int ndefines;
+	double clock;                    /* clock */
+	int frame;                       /* frame_number */
+	int width, height;               /* image_width, image_height */
+	long max_iterations;             /* #while/#for iterations in total */
+	FILE *debug_out;                 /* where #debug writes (stdout) */
+	/* Called for each file read (the scene and every include), for -M. */
+	void (*on_file)(const char *path, void *ctx);
+	void *on_file_ctx;
+};
+
+void eval_default_options(struct eval_options *o);
+/* Reads, parses and evaluates the scene file at path into *out (which
+ * eval_scene initialises). Returns 0 on success, 65 when the scene has errors
+ * (reported to diag), 66 when the file itself cannot be read. */
+int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out);
+
+#endif

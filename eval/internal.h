@@ -1,0 +1,112 @@
+/* SPDX-License-Identifier: MIT */
+/* internal.h: the evaluator's state, shared by eval.c, env.c, builtins.c and objects.c. */
+#ifndef ARVO_EVAL_INTERNAL_H
+#define ARVO_EVAL_INTERNAL_H
+
+#include <setjmp.h>
+#include <stdint.h>
+
+#include "../parser/ast.h"
+#include "eval.h"
+#include "value.h"
+
+#define MAX_INCLUDE_DEPTH 64  /* nested #include */
+#define MAX_MACRO_DEPTH 200   /* nested macro calls */
+#define MAX_STRING 1048576    /* bytes in a string value */
+#define MAX_ARRAY 16777216L   /* elements in an array */
+#define MAX_SCOPES 512        /* scope stack */
+
+struct scope;
+
+/* What a block's items are being evaluated into. */
+enum sink_kind {
+	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
+	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
+	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
+	SK_BACKGROUND, SK_DEFAULT, SK_VALUE
+};
+
+#define SINK_MAX_PARAMS 8
+
+struct sink {
+	enum sink_kind kind;
+	enum tok kw;               /* the block's keyword (TK_SPHERE, TK_PIGMENT…) */
+	struct srcloc loc;         /* where the block starts */
+	void *target;              /* what is being built (struct object *, …) */
+	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
+	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
+	int nparams;
+	int modified;              /* a modifier was applied (params must come first) */
+	struct value result;       /* SK_VALUE: the value produced */
+	int nresults;              /* SK_VALUE: how many values were produced */
+};
+
+struct eval {
+	struct diag *diag;
+	const struct eval_options *opt;
+	struct arena arena;        /* ASTs, strings, arrays: lives until eval ends */
+	struct scene *scene;       /* what is being built (its arena holds the model) */
+	struct scope *scopes[MAX_SCOPES]; /* dynamic scope stack; [0] is global */
+	int nscopes;
+	int include_depth;
+	int macro_depth;
+	long iterations;           /* loop iterations so far */
+	int breaking;              /* a #break is unwinding to its #switch */
+	jmp_buf *fail;             /* where a fatal error jumps */
+	uint64_t *rng;             /* seed() streams */
+	int nrng;
+	const char *dir_stack[MAX_INCLUDE_DEPTH + 2]; /* directory of each open file */
+	struct texture default_tex; /* #default */
+	int warned_normal;         /* 'normal' ignored warning given */
+};
+
+/* Reports an error at loc and unwinds to eval_scene. */
+_Noreturn void eval_fail(struct eval *E, struct srcloc loc, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* ---- eval.c ---- */
+struct value eval_expr(struct eval *E, const struct node *n);
+double eval_float(struct eval *E, const struct node *n);
+struct vec3 eval_vec3(struct eval *E, const struct node *n);
+struct colour eval_colour(struct eval *E, const struct node *n);
+const char *eval_string(struct eval *E, const struct node *n, int *len);
+/* Converts a value, or fails naming what was expected at loc. */
+double val_want_float(struct eval *E, const struct value *v, struct srcloc loc);
+struct vec3 val_want_vec3(struct eval *E, const struct value *v, struct srcloc loc);
+struct colour val_want_colour(struct eval *E, const struct value *v, struct srcloc loc);
+/* Evaluates a list of items into a sink. */
+void eval_items(struct eval *E, const struct node *list, struct sink *s);
+void eval_item(struct eval *E, const struct node *item, struct sink *s);
+char *eval_strdup(struct eval *E, const char *s, int len);
+
+/* ---- env.c ---- */
+struct scope *scope_new(struct eval *E);
+void scope_push(struct eval *E, struct scope *sc, struct srcloc loc);
+void scope_pop(struct eval *E);
+/* Finds a name, innermost scope first; NULL when undeclared. */
+struct value *env_lookup(struct eval *E, const char *name);
+const struct node *env_macro(struct eval *E, const char *name);
+/* #declare (global unless the name is local somewhere on the stack) and #local. */
+struct value *env_declare(struct eval *E, const char *name, bool local);
+void env_define_macro(struct eval *E, const char *name, const struct node *def);
+bool env_undef(struct eval *E, const char *name);
+
+/* ---- builtins.c ---- */
+/* A built-in constant (pi, x, clock…); false when name is not one. */
+bool builtin_constant(struct eval *E, const char *name, struct value *out);
+/* Calls built-in function `name`; false when there is no such function. */
+bool builtin_call(struct eval *E, const struct node *call, struct value *out);
+bool builtin_is_name(const char *name);
+
+/* ---- objects.c ---- */
+void sink_init(struct sink *s, enum sink_kind kind, enum tok kw, struct srcloc loc, void *target);
+/* A keyword item (N_BLOCK, N_MOD, N_WORD, N_SKIPPED, N_ENTRY) in a sink. */
+void sink_keyword(struct eval *E, struct sink *s, const struct node *item);
+/* An expression's value in a sink. */
+void sink_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* Evaluates a value-producing block (sphere {…}, texture {…}, …). */
+struct value eval_block(struct eval *E, const struct node *blk);
+/* Finishes the scene after the last item (camera defaults, propagation). */
+void objects_finish(struct eval *E);
+
+#endif

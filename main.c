@@ -1,0 +1,402 @@
+/* SPDX-License-Identifier: MIT */
+/* main.c: the command line. Reads like the pipeline:
+ *   lex → parse (AST) → eval (scene) → render (light pass, eye pass) → output
+ * and maps each stage's result to an exit code (DESIGN.md §8). */
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "common/arena.h"
+#include "common/diag.h"
+#include "eval/eval.h"
+#include "lexer/lexer.h"
+#include "parser/parser.h"
+#include "tracer/scene.h"
+
+#ifndef ARVO_VERSION
+#define ARVO_VERSION "0.1.0"
+#endif
+
+enum { EX_OK = 0, EX_USAGE = 64, EX_DATAERR = 65, EX_NOINPUT = 66, EX_SOFTWARE = 70,
+       EX_CANTCREAT = 73, EX_IOERR = 74 };
+
+enum action { ACT_RENDER, ACT_CHECK, ACT_TOKENS, ACT_AST, ACT_SCENE };
+
+struct options {
+	enum action action;
+	const char *scene;           /* input file */
+	const char *output;          /* -o */
+	const char *depfile;         /* -M / --depfile */
+	const char *includes[64];    /* -I */
+	int ninclude;
+	const char *defines[256];    /* -D */
+	int ndefines;
+	int width, height, spp, threads;
+	double clock;
+	int frame;
+	long max_iterations;
+	int quiet, stats;
+	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
+	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
+};
+
+static void usage(FILE *out)
+{
+	fputs("usage: arvo [options] scene.scn\n"
+	      "  -o FILE            output image (.exr or .png; default: scene name .exr)\n"
+	      "  --width W, --height H   image size (default 320x240); also +WW +HH\n"
+	      "  --spp N            samples per pixel;  --threads N  render threads\n"
+	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
+	      "  -I DIR             add an include directory (also +LDIR)\n"
+	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
+	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
+	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
+	      "  --check            parse and evaluate only (errors and #debug output)\n"
+	      "  --dump-tokens | --dump-ast | --dump-scene   print a stage's text and stop\n"
+	      "  --quiet, --stats, --help, --version\n"
+	      "exit status: 0 ok, 64 usage, 65 bad scene, 66 missing input, 70 internal error,\n"
+	      "             73 cannot create output, 74 output I/O error\n",
+	      out);
+}
+
+__attribute__((format(printf, 1, 2)))
+static int usage_error(const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	fprintf(stderr, "arvo: error: ");
+	vfprintf(stderr, fmt, ap);
+	fprintf(stderr, "\n(see 'arvo --help')\n");
+	va_end(ap);
+	return EX_USAGE;
+}
+
+/* Parses a whole-string integer in [lo, hi]; false when it is not one. */
+static int parse_int(const char *s, long lo, long hi, long *out)
+{
+	char *end;
+	errno = 0;
+	long v = strtol(s, &end, 10);
+	if (errno || end == s || *end || v < lo || v > hi)
+		return 0;
+	*out = v;
+	return 1;
+}
+
+static int parse_double(const char *s, double *out)
+{
+	char *end;
+	errno = 0;
+	double v = strtod(s, &end);
+	if (errno || end == s || *end)
+		return 0;
+	*out = v;
+	return 1;
+}
+
+/* -D NAME=VALUE: NAME an identifier, VALUE a number or a quoted string. */
+static int valid_define(const char *d)
+{
+	const char *eq = strchr(d, '=');
+	if (!eq || eq == d)
+		return 0;
+	for (const char *p = d; p < eq; p++)
+		if (!(p[0] == '_' || (p[0] >= 'a' && p[0] <= 'z') || (p[0] >= 'A' && p[0] <= 'Z') ||
+		      (p > d && p[0] >= '0' && p[0] <= '9')))
+			return 0;
+	double f;
+	size_t vl = strlen(eq + 1);
+	return parse_double(eq + 1, &f) || (vl >= 2 && eq[1] == '"' && eq[vl] == '"');
+}
+
+/* Finds the data directory (stdlib-scenes or share/arvo) next to the binary. */
+static void find_data_dir(struct options *o)
+{
+	const char *env = getenv("ARVO_DATA_DIR");
+	char exe[PATH_MAX], cand[PATH_MAX + 64];
+	if (env && *env) {
+		snprintf(o->data_dir, sizeof o->data_dir, "%s", env);
+		goto done;
+	}
+#ifdef ARVO_DATA_DIR
+	snprintf(cand, sizeof cand, "%s/include", ARVO_DATA_DIR);
+	if (access(cand, R_OK) == 0) {
+		snprintf(o->data_dir, sizeof o->data_dir, "%s", ARVO_DATA_DIR);
+		goto done;
+	}
+#endif
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+	if (n > 0) {
+		exe[n] = '\0';
+		for (int up = 0; up < 4; up++) {
+			char *slash = strrchr(exe, '/');
+			if (!slash)
+				break;
+			*slash = '\0';
+			const char *subs[] = {"stdlib-scenes", "share/arvo"};
+			for (int i = 0; i < 2; i++) {
+				snprintf(cand, sizeof cand, "%s/%s/include", exe, subs[i]);
+				if (access(cand, R_OK) == 0) {
+					snprintf(o->data_dir, sizeof o->data_dir, "%s/%s", exe, subs[i]);
+					goto done;
+				}
+			}
+		}
+	}
+	o->data_dir[0] = '\0';
+done:
+	if (o->data_dir[0])
+		snprintf(o->stdlib_dir, sizeof o->stdlib_dir, "%s/include", o->data_dir);
+}
+
+/* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K. */
+static int pov_switch(struct options *o, const char *a)
+{
+	long v;
+	double f;
+	char sign = a[0];
+	const char *s = a + 1;
+	if (s[0] == 'W' && s[1] == 'T' && parse_int(s + 2, 1, 1024, &v))
+		return o->threads = (int)v, 1;
+	if ((s[0] == 'W' || s[0] == 'w') && parse_int(s + 1, 1, 65536, &v))
+		return o->width = (int)v, 1;
+	if ((s[0] == 'H' || s[0] == 'h') && parse_int(s + 1, 1, 65536, &v))
+		return o->height = (int)v, 1;
+	if ((s[0] == 'O' || s[0] == 'o') && s[1] && sign == '+')
+		return o->output = s + 1, 1;
+	if ((s[0] == 'I' || s[0] == 'i') && s[1] && sign == '+')
+		return o->scene = s + 1, 1;
+	if ((s[0] == 'L' || s[0] == 'l') && s[1] && sign == '+' && o->ninclude < 64)
+		return o->includes[o->ninclude++] = s + 1, 1;
+	if ((s[0] == 'K' || s[0] == 'k') && parse_double(s + 1, &f))
+		return o->clock = f, 1;
+	if ((s[0] == 'A' || s[0] == 'a') && (s[1] == '\0' || parse_double(s + 1, &f)))
+		return o->spp = sign == '+' ? (o->spp > 1 ? o->spp : 4) : 1, 1;
+	if ((s[0] == 'D' || s[0] == 'd') && s[1] == '\0')
+		return 1; /* display on/off: arvo has no preview window */
+	return 0;
+}
+
+/* Reads argv into o; returns -1 to go on, else an exit code. */
+static int parse_args(int argc, char **argv, struct options *o)
+{
+	for (int i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		const char *next = i + 1 < argc ? argv[i + 1] : NULL;
+		long v;
+#define NEED_ARG()                                                   \
+	do {                                                             \
+		if (!next)                                                   \
+			return usage_error("option '%s' needs a value", a);      \
+		i++;                                                         \
+	} while (0)
+		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+			usage(stdout);
+			return EX_OK;
+		} else if (!strcmp(a, "--version")) {
+			printf("arvo %s\n", ARVO_VERSION);
+			return EX_OK;
+		} else if (!strcmp(a, "--check")) {
+			o->action = ACT_CHECK;
+		} else if (!strcmp(a, "--dump-tokens")) {
+			o->action = ACT_TOKENS;
+		} else if (!strcmp(a, "--dump-ast")) {
+			o->action = ACT_AST;
+		} else if (!strcmp(a, "--dump-scene")) {
+			o->action = ACT_SCENE;
+		} else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+			o->quiet = 1;
+		} else if (!strcmp(a, "--stats")) {
+			o->stats = 1;
+		} else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+			NEED_ARG();
+			o->output = next;
+		} else if (!strcmp(a, "-M") || !strcmp(a, "--depfile")) {
+			NEED_ARG();
+			o->depfile = next;
+		} else if (!strcmp(a, "-I")) {
+			NEED_ARG();
+			if (o->ninclude >= 64)
+				return usage_error("too many -I directories (at most %s)", "64");
+			o->includes[o->ninclude++] = next;
+		} else if (!strncmp(a, "-I", 2)) {
+			if (o->ninclude >= 64)
+				return usage_error("too many -I directories (at most %s)", "64");
+			o->includes[o->ninclude++] = a + 2;
+		} else if ((!strcmp(a, "-D") && next && strchr(next, '=')) || !strncmp(a, "Declare=", 8) ||
+		           (!strncmp(a, "-D", 2) && a[2])) {
+			const char *d = !strcmp(a, "-D") ? argv[++i] : a[0] == 'D' ? a + 8 : a + 2;
+			if (!valid_define(d))
+				return usage_error("bad declaration '%s' (expected NAME=number or NAME=\"string\")", d);
+			if (o->ndefines >= 256)
+				return usage_error("too many -D declarations (at most %s)", "256");
+			o->defines[o->ndefines++] = d;
+		} else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
+		           !strcmp(a, "--threads") || !strcmp(a, "--frame")) {
+			NEED_ARG();
+			if (!parse_int(next, a[2] == 'f' ? -1000000000L : 1, a[2] == 't' ? 1024 : 1000000000L, &v))
+				return usage_error("bad value for an option: '%s'", next);
+			int *dst = a[2] == 'w' ? &o->width : a[2] == 'h' ? &o->height : a[3] == 'p' ? &o->spp
+			         : a[2] == 't' ? &o->threads : &o->frame;
+			if ((a[2] == 'w' || a[2] == 'h') && v > 65536)
+				return usage_error("image size too large: '%s' (at most 65536)", next);
+			*dst = (int)v;
+		} else if (!strcmp(a, "--clock")) {
+			NEED_ARG();
+			if (!parse_double(next, &o->clock))
+				return usage_error("bad value for --clock: '%s'", next);
+		} else if (!strcmp(a, "--max-iterations")) {
+			NEED_ARG();
+			if (!parse_int(next, 1, 1L << 40, &v))
+				return usage_error("bad value for --max-iterations: '%s'", next);
+			o->max_iterations = v;
+		} else if ((a[0] == '+' || a[0] == '-') && a[1] && a[1] != '-' && pov_switch(o, a)) {
+			continue;
+		} else if (a[0] == '-' && a[1]) {
+			return usage_error("unknown option '%s'", a);
+		} else if (a[0] == '+' && a[1]) {
+			return usage_error("unknown or malformed POV-Ray switch '%s'", a);
+		} else {
+			if (o->scene)
+				return usage_error("more than one scene file given ('%s')", a);
+			o->scene = a;
+		}
+#undef NEED_ARG
+	}
+	if (!o->scene)
+		return usage_error("no scene file given");
+	return -1;
+}
+
+/* -M: collects the files a scene reads. */
+struct deps {
+	char **files;
+	int n;
+};
+
+static void dep_add(const char *path, void *ctx)
+{
+	struct deps *d = ctx;
+	d->files = mem_realloc(d->files, sizeof *d->files * (size_t)(d->n + 1));
+	d->files[d->n++] = mem_strdup(path);
+}
+
+static int write_depfile(const struct options *o, const struct deps *d, const char *target)
+{
+	char tmp[PATH_MAX + 16];
+	snprintf(tmp, sizeof tmp, "%s.tmp%ld", o->depfile, (long)getpid());
+	FILE *f = fopen(tmp, "w");
+	if (!f) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(errno));
+		return EX_CANTCREAT;
+	}
+	fprintf(f, "%s:", target);
+	for (int i = 0; i < d->n; i++)
+		fprintf(f, " %s", d->files[i]);
+	fputc('\n', f);
+	for (int i = 1; i < d->n; i++)
+		fprintf(f, "%s:\n", d->files[i]);
+	if (fclose(f) != 0 || rename(tmp, o->depfile) != 0) {
+		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(errno));
+		remove(tmp);
+		return EX_IOERR;
+	}
+	return EX_OK;
+}
+
+/* --dump-tokens and --dump-ast work on the scene file alone. */
+static int dump_front(const struct options *o, struct diag *dg)
+{
+	size_t len;
+	char *text = srcfile_read(o->scene, &len);
+	if (!text) {
+		fprintf(stderr, "arvo: error: cannot open '%s': %s\n", o->scene, strerror(errno));
+		return EX_NOINPUT;
+	}
+	int file = srcfile_add(mem_strdup(o->scene), text, len);
+	struct arena a;
+	arena_init(&a);
+	if (o->action == ACT_TOKENS) {
+		struct lexer lx;
+		lex_init(&lx, file, dg, &a);
+		lex_dump(stdout, &lx);
+	} else {
+		struct node *root = parse_file(file, dg, &a);
+		if (dg->errors == 0)
+			ast_dump(stdout, root);
+	}
+	arena_free(&a);
+	return dg->errors ? EX_DATAERR : EX_OK;
+}
+
+/* The default output name: the scene's base name with .exr. */
+static const char *default_output(const char *scene, char *buf, size_t size)
+{
+	const char *base = strrchr(scene, '/');
+	base = base ? base + 1 : scene;
+	const char *dot = strrchr(base, '.');
+	int n = dot ? (int)(dot - base) : (int)strlen(base);
+	snprintf(buf, size, "%.*s.exr", n, base);
+	return buf;
+}
+
+int main(int argc, char **argv)
+{
+	struct options o;
+	memset(&o, 0, sizeof o);
+	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000;
+	int rc = parse_args(argc, argv, &o);
+	if (rc >= 0)
+		return rc;
+	struct diag dg;
+	diag_init(&dg, stderr);
+	if (o.action == ACT_TOKENS || o.action == ACT_AST) {
+		rc = dump_front(&o, &dg);
+		srcfile_free_all();
+		return rc;
+	}
+	find_data_dir(&o);
+
+	struct eval_options eo;
+	eval_default_options(&eo);
+	eo.include_dirs = o.includes;
+	eo.ninclude = o.ninclude;
+	eo.stdlib_dir = o.stdlib_dir[0] ? o.stdlib_dir : NULL;
+	eo.defines = o.defines;
+	eo.ndefines = o.ndefines;
+	eo.clock = o.clock;
+	eo.frame = o.frame;
+	eo.width = o.width;
+	eo.height = o.height;
+	eo.max_iterations = o.max_iterations;
+	struct deps deps = {NULL, 0};
+	if (o.depfile) {
+		eo.on_file = dep_add;
+		eo.on_file_ctx = &deps;
+	}
+	struct scene scene;
+	rc = eval_scene(o.scene, &eo, &dg, &scene);
+	char outbuf[PATH_MAX];
+	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
+	if (rc == EX_OK && o.depfile)
+		rc = write_depfile(&o, &deps, output);
+	if (rc == EX_OK) {
+		if (o.action == ACT_SCENE) {
+			scene_dump(stdout, &scene);
+		} else if (o.action == ACT_RENDER) {
+			fprintf(stderr, "arvo: error: rendering is not available in this build yet (use --check or --dump-scene)\n");
+			rc = EX_SOFTWARE;
+		}
+	}
+	if (fflush(stdout) != 0 && rc == EX_OK)
+		rc = EX_IOERR;
+	for (int i = 0; i < deps.n; i++)
+		free(deps.files[i]);
+	free(deps.files);
+	scene_free(&scene);
+	srcfile_free_all();
+	return rc;
+}

@@ -1,0 +1,782 @@
+/* SPDX-License-Identifier: MIT */
+/* parser.c: recursive descent, one function per rule (EBNF above each).
+ *
+ * Items are parsed without knowing what block they are in: a keyword's shape
+ * (tokens.def) says what follows it. Binary operators use a precedence table.
+ * After an error the parser enters panic mode and skips to a synchronising
+ * token (a directive, a block keyword, '}'), so one run reports several
+ * errors without cascades. */
+#include "parser.h"
+
+#include <stdarg.h>
+#include <string.h>
+
+#include "../lexer/lexer.h"
+
+#define MAX_DEPTH 200 /* nesting guard for blocks and expressions */
+
+struct parser {
+	struct lexer lx;     /* the file's lexer */
+	struct token tok;    /* current token */
+	struct token prev;   /* last consumed token */
+	struct arena *arena; /* where nodes go */
+	struct diag *diag;
+	int panic;           /* suppress errors until resynchronised */
+	int depth;           /* recursion depth (blocks + expressions) */
+	int no_gt;           /* inside <…>: '>' closes the vector */
+};
+
+static struct node *parse_expr(struct parser *p);
+static struct node *parse_item(struct parser *p);
+static void parse_items(struct parser *p, struct node *list);
+
+/* ==== token helpers ======================================================= */
+
+static void advance(struct parser *p)
+{
+	p->prev = p->tok;
+	do
+		lex_next(&p->lx, &p->tok);
+	while (p->tok.kind == TK_ERROR);
+}
+
+static int check(const struct parser *p, enum tok k) { return p->tok.kind == k; }
+
+static int accept(struct parser *p, enum tok k)
+{
+	if (!check(p, k))
+		return 0;
+	advance(p);
+	return 1;
+}
+
+/* Describes the current token for messages: "'}'", "identifier 'Foo'", "number". */
+static const char *found(struct parser *p)
+{
+	static char buf[96];
+	const struct token *t = &p->tok;
+	if (t->kind == TK_IDENT)
+		snprintf(buf, sizeof buf, "identifier '%.*s'", t->len > 40 ? 40 : t->len, t->text);
+	else if (t->kind == TK_NUMBER)
+		snprintf(buf, sizeof buf, "number %.*s", t->len > 40 ? 40 : t->len, t->text);
+	else
+		snprintf(buf, sizeof buf, "%s", tok_name(t->kind));
+	return buf;
+}
+
+/* Reports at loc unless in panic mode; enters panic mode. */
+__attribute__((format(printf, 3, 4)))
+static void error_at(struct parser *p, struct srcloc loc, const char *fmt, ...)
+{
+	if (p->panic)
+		return;
+	p->panic = 1;
+	char msg[256];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	diag_error(p->diag, loc, "%s", msg);
+}
+
+static void expected(struct parser *p, const char *what)
+{
+	error_at(p, p->tok.loc, "expected %s, found %s", what, found(p));
+}
+
+/* Consumes a closing token or reports "'}' expected (to close '{' at L:C)". */
+static void expect_close(struct parser *p, enum tok close, enum tok open, struct srcloc at)
+{
+	if (accept(p, close))
+		return;
+	if (p->panic)
+		return;
+	char msg[200];
+	snprintf(msg, sizeof msg, "%s expected (to close %s at %d:%d), found %s", tok_name(close),
+	         tok_name(open), at.line, at.col, found(p));
+	p->panic = 1;
+	diag_error(p->diag, p->tok.loc, "%s", msg);
+}
+
+static int expect(struct parser *p, enum tok k)
+{
+	if (accept(p, k))
+		return 1;
+	error_at(p, p->tok.loc, "expected %s, found %s", tok_name(k), found(p));
+	return 0;
+}
+
+/* Skips to a token an item can start with, then leaves panic mode. */
+static void synchronize(struct parser *p)
+{
+	if (!p->panic)
+		return;
+	while (!check(p, TK_EOF)) {
+		enum tok k = p->tok.kind;
+		if (k == TK_RBRACE || tok_is_directive(k) || (tok_is_keyword(k) && tok_shape(k) == SH_BLOCK))
+			break;
+		if (p->prev.kind == TK_RBRACE || p->prev.kind == TK_SEMI)
+			break;
+		advance(p);
+	}
+	p->panic = 0;
+}
+
+static struct node *node(struct parser *p, enum node_kind k, struct srcloc loc)
+{
+	return ast_new(p->arena, k, loc);
+}
+
+static int enter(struct parser *p)
+{
+	if (++p->depth > MAX_DEPTH) {
+		error_at(p, p->tok.loc, "nesting too deep (more than %d levels)", MAX_DEPTH);
+		return 0;
+	}
+	return 1;
+}
+
+static void leave(struct parser *p) { p->depth--; }
+
+/* Can the current token start an expression? */
+static int starts_expr(const struct parser *p)
+{
+	enum tok k = p->tok.kind;
+	return k == TK_NUMBER || k == TK_STRING || k == TK_IDENT || k == TK_LPAREN || k == TK_LT ||
+	       k == TK_MINUS || k == TK_PLUS || k == TK_BANG || tok_shape(k) == SH_PREFIX ||
+	       k == TK_ARRAY || k == TK_FUNCTION;
+}
+
+/* ==== expressions ========================================================= */
+
+/* Binary operator precedence; 0 when tok is not a binary operator here. */
+static int binprec(const struct parser *p, enum tok k)
+{
+	switch (k) {
+	case TK_PIPE: return 1;
+	case TK_AMP: return 2;
+	case TK_EQ: case TK_NE: case TK_LT: case TK_LE: case TK_GE: return 3;
+	case TK_GT: return p->no_gt ? 0 : 3;
+	case TK_PLUS: case TK_MINUS: return 4;
+	case TK_STAR: case TK_SLASH: return 5;
+	default: return 0;
+	}
+}
+
+/* args := '(' [expr {',' expr}] ')'   (an empty slot is a NULL kid) */
+static void parse_args(struct parser *p, struct node *call)
+{
+	struct srcloc open = p->tok.loc;
+	advance(p); /* ( */
+	int saved = p->no_gt;
+	p->no_gt = 0;
+	if (!check(p, TK_RPAREN)) {
+		do {
+			if (check(p, TK_COMMA) || check(p, TK_RPAREN))
+				ast_push(p->arena, call, NULL);
+			else
+				ast_push(p->arena, call, parse_expr(p));
+		} while (accept(p, TK_COMMA));
+	}
+	p->no_gt = saved;
+	expect_close(p, TK_RPAREN, TK_LPAREN, open);
+}
+
+/* vector := '<' expr {',' expr} '>' */
+static struct node *parse_vector(struct parser *p)
+{
+	struct node *v = node(p, N_VEC, p->tok.loc);
+	advance(p);
+	int saved = p->no_gt;
+	p->no_gt = 1;
+	do
+		ast_push(p->arena, v, parse_expr(p));
+	while (accept(p, TK_COMMA));
+	p->no_gt = saved;
+	expect_close(p, TK_GT, TK_LT, v->loc);
+	return v;
+}
+
+/* init := '{' (expr | init) {',' (expr | init)} [','] '}' */
+static struct node *parse_init(struct parser *p)
+{
+	struct node *n = node(p, N_INIT, p->tok.loc);
+	advance(p);
+	if (!enter(p))
+		return n;
+	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
+		ast_push(p->arena, n, check(p, TK_LBRACE) ? parse_init(p) : parse_expr(p));
+		if (!accept(p, TK_COMMA) || p->panic)
+			break;
+	}
+	leave(p);
+	expect_close(p, TK_RBRACE, TK_LBRACE, n->loc);
+	return n;
+}
+
+/* array := 'array' '[' expr ']' {'[' expr ']'} [init] */
+static struct node *parse_array(struct parser *p)
+{
+	struct node *n = node(p, N_ARRAY, p->tok.loc);
+	advance(p);
+	if (!check(p, TK_LBRACKET))
+		expected(p, "'[' after 'array'");
+	while (check(p, TK_LBRACKET)) {
+		struct srcloc open = p->tok.loc;
+		advance(p);
+		ast_push(p->arena, n, parse_expr(p));
+		expect_close(p, TK_RBRACKET, TK_LBRACKET, open);
+	}
+	if (check(p, TK_LBRACE))
+		n->a = parse_init(p);
+	return n;
+}
+
+/* Reads an identifier-like word (identifiers and keywords) after '.'. */
+static int word_token(const struct parser *p)
+{
+	return p->tok.kind == TK_IDENT || tok_is_keyword(p->tok.kind);
+}
+
+/* postfix := primary {'.' word | '[' expr ']'} */
+static struct node *parse_postfix(struct parser *p, struct node *e)
+{
+	for (;;) {
+		if (check(p, TK_DOT)) {
+			struct node *m = node(p, N_MEMBER, p->tok.loc);
+			advance(p);
+			if (!word_token(p)) {
+				expected(p, "a member name after '.'");
+				return e;
+			}
+			m->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+			m->len = p->tok.len;
+			m->a = e;
+			advance(p);
+			e = m;
+		} else if (check(p, TK_LBRACKET)) {
+			struct node *ix = node(p, N_INDEX, p->tok.loc);
+			advance(p);
+			int saved = p->no_gt;
+			p->no_gt = 0;
+			ix->a = e;
+			ix->b = parse_expr(p);
+			p->no_gt = saved;
+			expect_close(p, TK_RBRACKET, TK_LBRACKET, ix->loc);
+			e = ix;
+		} else {
+			return e;
+		}
+	}
+}
+
+/* primary := number | string | ident [args] | '(' expr ')' | vector
+ *          | colour-keyword expr | array */
+static struct node *parse_primary(struct parser *p)
+{
+	struct token t = p->tok;
+	struct node *n;
+	if (t.kind == TK_NUMBER) {
+		n = node(p, N_NUM, t.loc);
+		n->num = t.num;
+		advance(p);
+	} else if (t.kind == TK_STRING) {
+		n = node(p, N_STR, t.loc);
+		n->str = t.str;
+		n->len = t.slen;
+		advance(p);
+	} else if (t.kind == TK_IDENT) {
+		advance(p);
+		n = node(p, check(p, TK_LPAREN) ? N_CALL : N_IDENT, t.loc);
+		n->str = arena_strndup(p->arena, t.text, (size_t)t.len);
+		n->len = t.len;
+		if (n->kind == N_CALL)
+			parse_args(p, n);
+	} else if (t.kind == TK_LPAREN) {
+		advance(p);
+		int saved = p->no_gt;
+		p->no_gt = 0;
+		n = parse_expr(p);
+		p->no_gt = saved;
+		expect_close(p, TK_RPAREN, TK_LPAREN, t.loc);
+	} else if (t.kind == TK_LT) {
+		n = parse_vector(p);
+	} else if (tok_shape(t.kind) == SH_PREFIX) {
+		n = node(p, N_COLOUR, t.loc);
+		n->op = t.kind;
+		advance(p);
+		if ((t.kind == TK_COLOR || t.kind == TK_COLOUR) && tok_shape(p->tok.kind) == SH_PREFIX)
+			return parse_primary(p); /* "color rgb …" */
+		n->a = parse_expr(p);
+		return n;
+	} else if (t.kind == TK_ARRAY) {
+		return parse_array(p);
+	} else if (t.kind == TK_FUNCTION) {
+		error_at(p, t.loc, "user-defined functions are not supported");
+		advance(p);
+		return node(p, N_NUM, t.loc);
+	} else {
+		expected(p, "an expression");
+		return node(p, N_NUM, t.loc);
+	}
+	return parse_postfix(p, n);
+}
+
+/* unary := ('-' | '+' | '!') unary | postfix */
+static struct node *parse_unary(struct parser *p)
+{
+	if (check(p, TK_MINUS) || check(p, TK_PLUS) || check(p, TK_BANG)) {
+		struct node *n = node(p, N_UNARY, p->tok.loc);
+		n->op = p->tok.kind;
+		advance(p);
+		if (!enter(p))
+			return n;
+		n->a = parse_unary(p);
+		leave(p);
+		return n;
+	}
+	return parse_primary(p);
+}
+
+/* binary := unary {op binary}   (precedence climbing, left associative) */
+static struct node *parse_binary(struct parser *p, int min_prec)
+{
+	struct node *left = parse_unary(p);
+	for (;;) {
+		int prec = binprec(p, p->tok.kind);
+		if (prec == 0 || prec < min_prec || p->panic)
+			return left;
+		struct node *n = node(p, N_BINARY, p->tok.loc);
+		n->op = p->tok.kind;
+		advance(p);
+		n->a = left;
+		n->b = parse_binary(p, prec + 1);
+		left = n;
+	}
+}
+
+/* expr := binary ['?' expr ':' expr] */
+static struct node *parse_expr(struct parser *p)
+{
+	if (!enter(p))
+		return node(p, N_NUM, p->tok.loc);
+	struct node *e = parse_binary(p, 1);
+	if (check(p, TK_QUESTION)) {
+		struct node *c = node(p, N_COND, p->tok.loc);
+		advance(p);
+		c->a = e;
+		c->b = parse_expr(p);
+		expect(p, TK_COLON);
+		c->c = parse_expr(p);
+		e = c;
+	}
+	leave(p);
+	return e;
+}
+
+/* ==== block items ========================================================= */
+
+/* block := '{' items '}' */
+static struct node *parse_block_body(struct parser *p, struct node *blk)
+{
+	struct srcloc open = p->tok.loc;
+	if (!check(p, TK_LBRACE)) {
+		error_at(p, p->tok.loc, "expected '{' after %s, found %s", tok_name(blk->op), found(p));
+		return blk;
+	}
+	advance(p);
+	if (!enter(p))
+		return blk;
+	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
+		struct node *it = parse_item(p);
+		if (it)
+			ast_push(p->arena, blk, it);
+		synchronize(p);
+		if (tok_is_directive(p->tok.kind) && (check(p, TK_DIR_END) || check(p, TK_DIR_ELSE) ||
+		    check(p, TK_DIR_ELSEIF) || check(p, TK_DIR_CASE) || check(p, TK_DIR_RANGE)))
+			break;
+	}
+	leave(p);
+	expect_close(p, TK_RBRACE, TK_LBRACE, open);
+	return blk;
+}
+
+/* skipped := '{' anything balanced '}' */
+static void skip_braces(struct parser *p)
+{
+	struct srcloc open = p->tok.loc;
+	if (!expect(p, TK_LBRACE))
+		return;
+	int depth = 1;
+	while (depth > 0 && !check(p, TK_EOF)) {
+		if (check(p, TK_LBRACE))
+			depth++;
+		else if (check(p, TK_RBRACE))
+			depth--;
+		advance(p);
+	}
+	if (depth > 0)
+		expect_close(p, TK_RBRACE, TK_LBRACE, open);
+}
+
+/* keyword-item := kw block | kw expr | kw {expr ','} | kw [expr] | kw word | kw */
+static struct node *parse_keyword_item(struct parser *p)
+{
+	struct token t = p->tok;
+	enum kw_shape sh = tok_shape(t.kind);
+	if (sh == SH_PREFIX || sh == SH_VALUE)
+		return parse_expr(p);
+	advance(p);
+	struct node *n = node(p, N_MOD, t.loc);
+	n->op = t.kind;
+	switch (sh) {
+	case SH_BLOCK:
+		n->kind = N_BLOCK;
+		return parse_block_body(p, n);
+	case SH_BLOCK_OR_EXPR:
+		if (check(p, TK_LBRACE)) {
+			n->kind = N_BLOCK;
+			return parse_block_body(p, n);
+		}
+		ast_push(p->arena, n, parse_expr(p));
+		return n;
+	case SH_EXPR: /* one value expected; a list is parsed and counted later */
+	case SH_LIST:
+		do
+			ast_push(p->arena, n, parse_expr(p));
+		while (accept(p, TK_COMMA) && !p->panic);
+		return n;
+	case SH_OPTEXPR:
+		if (starts_expr(p))
+			ast_push(p->arena, n, parse_expr(p));
+		return n;
+	case SH_WORD:
+		n->kind = N_WORD;
+		if (!word_token(p)) {
+			error_at(p, p->tok.loc, "expected a word after %s, found %s", tok_name(t.kind), found(p));
+			return n;
+		}
+		n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+		n->len = p->tok.len;
+		advance(p);
+		return n;
+	case SH_SKIP:
+		n->kind = N_SKIPPED;
+		skip_braces(p);
+		return n;
+	default:
+		return n; /* SH_FLAG */
+	}
+}
+
+/* The body of a directive: items up to #end/#else/#elseif/#case/#range. */
+static struct node *parse_body(struct parser *p)
+{
+	struct node *list = node(p, N_LIST, p->tok.loc);
+	parse_items(p, list);
+	return list;
+}
+
+/* Consumes '#end' for a directive opened at `at`. */
+static void expect_end(struct parser *p, enum tok opener, struct srcloc at)
+{
+	expect_close(p, TK_DIR_END, opener, at);
+}
+
+/* paren := '(' expr ')' */
+static struct node *parse_paren(struct parser *p)
+{
+	struct srcloc open = p->tok.loc;
+	if (!expect(p, TK_LPAREN))
+		return node(p, N_NUM, open);
+	struct node *e = parse_expr(p);
+	expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	return e;
+}
+
+/* declare := ('#declare' | '#local') ident {'[' expr ']'} '=' value [';']
+ * value := block-keyword-item | expr */
+static struct node *parse_declare(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_DECLARE, d.loc);
+	n->op = d.kind;
+	if (!check(p, TK_IDENT)) {
+		if (tok_is_keyword(p->tok.kind))
+			error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
+		else
+			expected(p, "an identifier");
+		return n;
+	}
+	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+	n->len = p->tok.len;
+	advance(p);
+	while (check(p, TK_LBRACKET)) {
+		struct srcloc open = p->tok.loc;
+		advance(p);
+		ast_push(p->arena, n, parse_expr(p));
+		expect_close(p, TK_RBRACKET, TK_LBRACKET, open);
+	}
+	if (!expect(p, TK_EQ))
+		return n;
+	enum kw_shape sh = tok_shape(p->tok.kind);
+	if (tok_is_keyword(p->tok.kind) && (sh == SH_BLOCK || sh == SH_BLOCK_OR_EXPR))
+		n->a = parse_keyword_item(p);
+	else
+		n->a = parse_expr(p);
+	accept(p, TK_SEMI);
+	return n;
+}
+
+/* if := '#if' paren items {'#elseif' paren items} ['#else' items] '#end' */
+static struct node *parse_if(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_IF, d.loc), *cur = n;
+	n->a = parse_paren(p);
+	n->b = parse_body(p);
+	while (check(p, TK_DIR_ELSEIF)) {
+		struct node *e = node(p, N_IF, p->tok.loc);
+		advance(p);
+		e->a = parse_paren(p);
+		e->b = parse_body(p);
+		cur->c = e;
+		cur = e;
+	}
+	if (accept(p, TK_DIR_ELSE))
+		cur->c = parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	return n;
+}
+
+/* ifdef := ('#ifdef' | '#ifndef') '(' ident ')' items ['#else' items] '#end' */
+static struct node *parse_ifdef(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_IFDEF, d.loc);
+	n->op = d.kind;
+	n->a = parse_paren(p);
+	n->b = parse_body(p);
+	if (accept(p, TK_DIR_ELSE))
+		n->c = parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	return n;
+}
+
+/* for := '#for' '(' ident ',' expr ',' expr [',' expr] ')' items '#end' */
+static struct node *parse_for(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_FOR, d.loc);
+	struct srcloc open = p->tok.loc;
+	if (!expect(p, TK_LPAREN))
+		return n;
+	if (!check(p, TK_IDENT)) {
+		expected(p, "a loop variable");
+		return n;
+	}
+	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+	n->len = p->tok.len;
+	advance(p);
+	for (int i = 0; i < 3; i++) {
+		if (i == 2 && !check(p, TK_COMMA))
+			break;
+		if (!expect(p, TK_COMMA))
+			return n;
+		ast_push(p->arena, n, parse_expr(p));
+	}
+	expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	n->b = parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	return n;
+}
+
+/* switch := '#switch' paren {clause} '#end'
+ * clause := ('#case' paren | '#range' '(' expr ',' expr ')' | '#else') items */
+static struct node *parse_switch(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_SWITCH, d.loc);
+	n->a = parse_paren(p);
+	while (check(p, TK_DIR_CASE) || check(p, TK_DIR_RANGE) || check(p, TK_DIR_ELSE)) {
+		struct node *c = node(p, N_CASE, p->tok.loc);
+		c->op = p->tok.kind;
+		advance(p);
+		if (c->op == TK_DIR_CASE) {
+			ast_push(p->arena, c, parse_paren(p));
+		} else if (c->op == TK_DIR_RANGE) {
+			struct srcloc open = p->tok.loc;
+			if (expect(p, TK_LPAREN)) {
+				ast_push(p->arena, c, parse_expr(p));
+				expect(p, TK_COMMA);
+				ast_push(p->arena, c, parse_expr(p));
+				expect_close(p, TK_RPAREN, TK_LPAREN, open);
+			}
+		}
+		c->b = parse_body(p);
+		ast_push(p->arena, n, c);
+		if (p->panic)
+			break;
+	}
+	if (!check(p, TK_DIR_END) && !p->panic)
+		while (!check(p, TK_DIR_END) && !check(p, TK_EOF) && !check(p, TK_RBRACE)) {
+			expected(p, "'#case', '#range', '#else' or '#end' in '#switch'");
+			break;
+		}
+	expect_end(p, d.kind, d.loc);
+	return n;
+}
+
+/* macro := '#macro' ident '(' [ident {',' ident}] ')' items '#end' */
+static struct node *parse_macro(struct parser *p, struct token d)
+{
+	struct node *n = node(p, N_MACRO, d.loc);
+	if (!check(p, TK_IDENT)) {
+		expected(p, "a macro name");
+		return n;
+	}
+	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+	n->len = p->tok.len;
+	advance(p);
+	struct srcloc open = p->tok.loc;
+	if (!expect(p, TK_LPAREN))
+		return n;
+	if (!check(p, TK_RPAREN)) {
+		do {
+			if (!check(p, TK_IDENT)) {
+				expected(p, "a parameter name");
+				return n;
+			}
+			struct node *id = node(p, N_IDENT, p->tok.loc);
+			id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+			id->len = p->tok.len;
+			ast_push(p->arena, n, id);
+			advance(p);
+		} while (accept(p, TK_COMMA));
+	}
+	expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	n->b = parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	return n;
+}
+
+/* directive := declare | if | ifdef | while | for | switch | macro
+ *            | '#undef' ident | '#include' expr | '#version' expr [';']
+ *            | ('#debug' | '#warning' | '#error') expr | '#default' block | '#break' */
+static struct node *parse_directive(struct parser *p)
+{
+	struct token d = p->tok;
+	advance(p);
+	struct node *n;
+	switch (d.kind) {
+	case TK_DIR_DECLARE: case TK_DIR_LOCAL: return parse_declare(p, d);
+	case TK_DIR_IF: return parse_if(p, d);
+	case TK_DIR_IFDEF: case TK_DIR_IFNDEF: return parse_ifdef(p, d);
+	case TK_DIR_FOR: return parse_for(p, d);
+	case TK_DIR_SWITCH: return parse_switch(p, d);
+	case TK_DIR_MACRO: return parse_macro(p, d);
+	case TK_DIR_WHILE:
+		n = node(p, N_WHILE, d.loc);
+		n->a = parse_paren(p);
+		n->b = parse_body(p);
+		expect_end(p, d.kind, d.loc);
+		return n;
+	case TK_DIR_UNDEF:
+		n = node(p, N_UNDEF, d.loc);
+		if (!check(p, TK_IDENT)) {
+			expected(p, "an identifier after '#undef'");
+			return n;
+		}
+		n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+		n->len = p->tok.len;
+		advance(p);
+		return n;
+	case TK_DIR_INCLUDE:
+		n = node(p, N_INCLUDE, d.loc);
+		n->a = parse_expr(p);
+		return n;
+	case TK_DIR_VERSION:
+		n = node(p, N_VERSION, d.loc);
+		n->a = parse_expr(p);
+		accept(p, TK_SEMI);
+		return n;
+	case TK_DIR_DEBUG: case TK_DIR_WARNING: case TK_DIR_ERROR:
+		n = node(p, N_MESSAGE, d.loc);
+		n->op = d.kind;
+		n->a = parse_expr(p);
+		return n;
+	case TK_DIR_DEFAULT:
+		n = node(p, N_DEFAULT, d.loc);
+		n->op = d.kind;
+		return parse_block_body(p, n);
+	case TK_DIR_BREAK:
+		return node(p, N_BREAK, d.loc);
+	default:
+		error_at(p, d.loc, "%s without a matching opening directive", tok_name(d.kind));
+		return NULL;
+	}
+}
+
+/* item := directive | keyword-item | '[' items ']' | expr [','] */
+static struct node *parse_item(struct parser *p)
+{
+	enum tok k = p->tok.kind;
+	if (tok_is_directive(k))
+		return parse_directive(p);
+	if (tok_is_keyword(k))
+		return parse_keyword_item(p);
+	if (k == TK_LBRACKET) {
+		struct node *n = node(p, N_ENTRY, p->tok.loc);
+		advance(p);
+		while (!check(p, TK_RBRACKET) && !check(p, TK_EOF) && !p->panic) {
+			struct node *it = parse_item(p);
+			if (it)
+				ast_push(p->arena, n, it);
+		}
+		expect_close(p, TK_RBRACKET, TK_LBRACKET, n->loc);
+		return n;
+	}
+	if (starts_expr(p)) {
+		struct node *e = parse_expr(p);
+		accept(p, TK_COMMA);
+		return e;
+	}
+	if (k == TK_SEMI)
+		error_at(p, p->tok.loc, "unexpected ';'");
+	else
+		error_at(p, p->tok.loc, "unexpected %s", found(p));
+	advance(p);
+	return NULL;
+}
+
+/* items := {item}, stopping at '}', EOF or a clause directive. */
+static void parse_items(struct parser *p, struct node *list)
+{
+	for (;;) {
+		enum tok k = p->tok.kind;
+		if (k == TK_EOF || k == TK_RBRACE || k == TK_DIR_END || k == TK_DIR_ELSE ||
+		    k == TK_DIR_ELSEIF || k == TK_DIR_CASE || k == TK_DIR_RANGE)
+			return;
+		struct node *it = parse_item(p);
+		if (it)
+			ast_push(p->arena, list, it);
+		synchronize(p);
+	}
+}
+
+/* file := items EOF */
+struct node *parse_file(int file, struct diag *diag, struct arena *arena)
+{
+	struct parser p;
+	memset(&p, 0, sizeof p);
+	p.arena = arena;
+	p.diag = diag;
+	lex_init(&p.lx, file, diag, arena);
+	advance(&p);
+	struct node *root = node(&p, N_LIST, p.tok.loc);
+	for (;;) {
+		parse_items(&p, root);
+		if (check(&p, TK_EOF))
+			break;
+		/* a stray closer at file level */
+		error_at(&p, p.tok.loc, "unexpected %s", found(&p));
+		advance(&p);
+		synchronize(&p);
+	}
+	return root;
+}

@@ -1,0 +1,303 @@
+/* SPDX-License-Identifier: MIT */
+/* scene.c: scene defaults (POV-Ray 3.7's), list growth, and --dump-scene. */
+#include "scene.h"
+
+#include <string.h>
+
+void scene_init(struct scene *s)
+{
+	memset(s, 0, sizeof *s);
+	arena_init(&s->arena);
+	s->version = 3.7;
+	s->camera = scene_default_camera();
+	s->background = (struct colour){0, 0, 0, 0, 0};
+	s->gs.assumed_gamma = 1.0;
+	s->gs.max_trace_level = 5;
+	s->gs.adc_bailout = 1.0 / 255;
+	s->gs.ambient_light = c_rgb(1, 1, 1);
+	s->gs.illum.method = ILLUM_POINT;
+	s->gs.illum.passes = PASSES_RGB;
+}
+
+struct texture scene_default_texture(void)
+{
+	struct texture t;
+	memset(&t, 0, sizeof t);
+	t.pigment.kind = PIG_SOLID;
+	t.pigment.xf = xf_identity();
+	t.pigment.axis = v3(0, 1, 0);
+	t.finish.ambient = c_rgb(0.1, 0.1, 0.1);
+	t.finish.diffuse = 0.6;
+	t.finish.brilliance = 1;
+	t.finish.roughness = 0.05;
+	t.finish.phong_size = 40;
+	t.finish.refl_falloff = 1;
+	t.loc = (struct srcloc){-1, 0, 0};
+	return t;
+}
+
+struct interior scene_default_interior(void)
+{
+	return (struct interior){.ior = 1, .dispersion = 1, .dispersion_samples = 7, .fade_power = 0,
+	                         .fade_color = {0, 0, 0, 0, 0}};
+}
+
+struct camera scene_default_camera(void)
+{
+	struct camera c;
+	memset(&c, 0, sizeof c);
+	c.kind = CAM_PERSPECTIVE;
+	c.direction = v3(0, 0, 1);
+	c.up = v3(0, 1, 0);
+	c.right = v3(1.33, 0, 0);
+	c.sky = v3(0, 1, 0);
+	c.look_at = v3(0, 0, 1);
+	c.blur_samples = 0;
+	c.loc = (struct srcloc){-1, 0, 0};
+	return c;
+}
+
+struct light scene_default_light(void)
+{
+	struct light l;
+	memset(&l, 0, sizeof l);
+	l.kind = LIGHT_POINT;
+	l.colour = c_rgb(1, 1, 1);
+	l.point_at = v3(0, 0, 1);
+	l.radius = 30;
+	l.falloff = 45;
+	l.size1 = l.size2 = 1;
+	l.photons_refraction = l.photons_reflection = true;
+	return l;
+}
+
+/* Appends to an arena-backed array whose capacity is the next power of two. */
+static void *grow(struct arena *a, void *arr, int n, size_t elem)
+{
+	if (n && (n & (n - 1)))
+		return arr;
+	void *b = arena_alloc(a, elem * (size_t)(n ? n * 2 : 4));
+	if (n)
+		memcpy(b, arr, elem * (size_t)n);
+	return b;
+}
+
+void scene_add_object(struct scene *s, struct object *o)
+{
+	s->objects = grow(&s->arena, s->objects, s->nobjects, sizeof *s->objects);
+	s->objects[s->nobjects++] = o;
+}
+
+void scene_add_light(struct scene *s, const struct light *l)
+{
+	s->lights = grow(&s->arena, s->lights, s->nlights, sizeof *s->lights);
+	s->lights[s->nlights++] = *l;
+}
+
+void scene_free(struct scene *s) { arena_free(&s->arena); }
+
+/* ==== --dump-scene ======================================================== */
+
+static const char *const kind_names[OBJ_KIND_COUNT] = {
+	"sphere", "plane", "box", "disc", "cylinder", "cone", "torus", "triangle",
+	"union", "intersection", "difference", "merge",
+};
+
+const char *scene_object_kind_name(enum object_kind k) { return kind_names[k]; }
+
+static void pv(FILE *o, struct vec3 v) { fprintf(o, "<%.6g, %.6g, %.6g>", v.x + 0.0, v.y + 0.0, v.z + 0.0); }
+
+static void pc(FILE *o, struct colour c)
+{
+	fprintf(o, "rgbft <%.6g, %.6g, %.6g, %.6g, %.6g>", c.r + 0.0, c.g + 0.0, c.b + 0.0, c.f + 0.0, c.t + 0.0);
+}
+
+static void indent(FILE *o, int d) { fprintf(o, "%*s", d * 2, ""); }
+
+static void dump_xform(FILE *o, const struct xform *x, int d)
+{
+	if (xf_is_identity(x))
+		return;
+	indent(o, d);
+	fputs("matrix", o);
+	for (int i = 0; i < 3; i++)
+		fprintf(o, " [%.6g %.6g %.6g %.6g]", x->m[i][0] + 0.0, x->m[i][1] + 0.0, x->m[i][2] + 0.0, x->m[i][3] + 0.0);
+	fputc('\n', o);
+}
+
+static void dump_pigment(FILE *o, const struct pigment *p, int d)
+{
+	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map"};
+	indent(o, d);
+	fprintf(o, "pigment %s ", kinds[p->kind]);
+	switch (p->kind) {
+	case PIG_SOLID: pc(o, p->c[0]); break;
+	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
+	case PIG_GRADIENT: pv(o, p->axis); break;
+	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", p->image, p->interpolate, p->once); break;
+	}
+	fputc('\n', o);
+	for (int i = 0; i < p->nmap; i++) {
+		indent(o, d + 1);
+		fprintf(o, "[%.6g ", p->map[i].pos);
+		pc(o, p->map[i].c);
+		fputs("]\n", o);
+	}
+	dump_xform(o, &p->xf, d + 1);
+}
+
+static void dump_finish(FILE *o, const struct finish *f, int d)
+{
+	indent(o, d);
+	fputs("finish ambient ", o);
+	pc(o, f->ambient);
+	fprintf(o, " diffuse %.6g brilliance %.6g specular %.6g roughness %.6g phong %.6g phong_size %.6g\n",
+	        f->diffuse, f->brilliance, f->specular, f->roughness, f->phong, f->phong_size);
+	indent(o, d + 1);
+	fputs("reflection ", o);
+	pc(o, f->refl_min);
+	fputc(' ', o);
+	pc(o, f->refl_max);
+	fprintf(o, " falloff %.6g fresnel %d metallic %d conserve_energy %d emission ", f->refl_falloff,
+	        f->refl_fresnel, f->refl_metallic, f->conserve_energy);
+	pc(o, f->emission);
+	fputc('\n', o);
+}
+
+static void dump_object(FILE *o, const struct object *ob, int d);
+
+static void dump_geometry(FILE *o, const struct object *ob, int d)
+{
+	indent(o, d);
+	switch (ob->kind) {
+	case OBJ_SPHERE: fputs("center ", o), pv(o, ob->g.sphere.c), fprintf(o, " radius %.6g", ob->g.sphere.r); break;
+	case OBJ_PLANE: fputs("normal ", o), pv(o, ob->g.plane.n), fprintf(o, " distance %.6g", ob->g.plane.d); break;
+	case OBJ_BOX: fputs("corner1 ", o), pv(o, ob->g.box.lo), fputs(" corner2 ", o), pv(o, ob->g.box.hi); break;
+	case OBJ_DISC:
+		fputs("center ", o), pv(o, ob->g.disc.c), fputs(" normal ", o), pv(o, ob->g.disc.n);
+		fprintf(o, " radius %.6g hole %.6g", ob->g.disc.r, ob->g.disc.hole);
+		break;
+	case OBJ_CYLINDER:
+		fputs("base ", o), pv(o, ob->g.cylinder.a), fputs(" cap ", o), pv(o, ob->g.cylinder.b);
+		fprintf(o, " radius %.6g", ob->g.cylinder.r);
+		break;
+	case OBJ_CONE:
+		fputs("base ", o), pv(o, ob->g.cone.a), fprintf(o, " radius %.6g cap ", ob->g.cone.ra);
+		pv(o, ob->g.cone.b), fprintf(o, " radius %.6g", ob->g.cone.rb);
+		break;
+	case OBJ_TORUS: fprintf(o, "major %.6g minor %.6g", ob->g.torus.major, ob->g.torus.minor); break;
+	case OBJ_TRIANGLE:
+		for (int i = 0; i < 3; i++)
+			fputs(i ? " " : "", o), pv(o, ob->g.triangle.p[i]);
+		break;
+	default: fprintf(o, "children %d", ob->g.csg.n); break;
+	}
+	fputc('\n', o);
+}
+
+static void dump_object(FILE *o, const struct object *ob, int d)
+{
+	static const char *const flags[] = {"no_shadow", "no_image", "no_reflection", "hollow", "inverse",
+		"open", "sturm", "double_illuminate"};
+	indent(o, d);
+	fprintf(o, "object %s @%d:%d\n", kind_names[ob->kind], ob->loc.line, ob->loc.col);
+	dump_geometry(o, ob, d + 1);
+	dump_xform(o, &ob->xf, d + 1);
+	if (ob->flags) {
+		indent(o, d + 1);
+		fputs("flags", o);
+		for (int i = 0; i < 8; i++)
+			if (ob->flags & (1u << i))
+				fprintf(o, " %s", flags[i]);
+		fputc('\n', o);
+	}
+	if (ob->tex) {
+		indent(o, d + 1);
+		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
+		dump_pigment(o, &ob->tex->pigment, d + 2);
+		dump_finish(o, &ob->tex->finish, d + 2);
+	}
+	if (ob->interior) {
+		const struct interior *in = ob->interior;
+		indent(o, d + 1);
+		fprintf(o, "interior ior %.6g dispersion %.6g dispersion_samples %d fade_distance %.6g fade_power %.6g fade_color ",
+		        in->ior, in->dispersion, in->dispersion_samples, in->fade_distance, in->fade_power);
+		pc(o, in->fade_color);
+		fputc('\n', o);
+	}
+	if (ob->illum.resolution || ob->illum.cell) {
+		indent(o, d + 1);
+		fprintf(o, "illum_map resolution %d cell %.6g\n", ob->illum.resolution, ob->illum.cell);
+	}
+	if (ob->has_photons) {
+		const struct photon_spec *p = &ob->photons;
+		indent(o, d + 1);
+		fprintf(o, "photons target %d spacing %.6g refraction %d reflection %d collect %d pass_through %d\n",
+		        p->target, p->spacing, p->refraction, p->reflection, p->collect, p->pass_through);
+	}
+	if (ob->kind >= OBJ_UNION)
+		for (int i = 0; i < ob->g.csg.n; i++)
+			dump_object(o, ob->g.csg.kids[i], d + 1);
+}
+
+static void dump_light(FILE *o, const struct light *l)
+{
+	static const char *const kinds[] = {"point", "spotlight", "parallel"};
+	fprintf(o, "light %s @%d:%d\n  position ", kinds[l->kind], l->loc.line, l->loc.col);
+	pv(o, l->pos);
+	fputs(" colour ", o);
+	pc(o, l->colour);
+	fputc('\n', o);
+	if (l->kind != LIGHT_POINT) {
+		fputs("  point_at ", o);
+		pv(o, l->point_at);
+		fprintf(o, " radius %.6g falloff %.6g tightness %.6g\n", l->radius, l->falloff, l->tightness);
+	}
+	if (l->area) {
+		fputs("  area_light ", o);
+		pv(o, l->axis1);
+		fputc(' ', o);
+		pv(o, l->axis2);
+		fprintf(o, " %d %d adaptive %d jitter %d circular %d orient %d\n", l->size1, l->size2, l->adaptive,
+		        l->jitter, l->circular, l->orient);
+	}
+	if (l->fade_distance > 0 || l->fade_power > 0)
+		fprintf(o, "  fade_distance %.6g fade_power %.6g\n", l->fade_distance, l->fade_power);
+	if (l->shadowless)
+		fputs("  shadowless\n", o);
+	if (!l->photons_refraction || !l->photons_reflection)
+		fprintf(o, "  photons refraction %d reflection %d\n", l->photons_refraction, l->photons_reflection);
+}
+
+void scene_dump(FILE *o, const struct scene *s)
+{
+	const struct camera *c = &s->camera;
+	const struct global_settings *g = &s->gs;
+	fprintf(o, "scene \"%s\" version %.6g legacy_lights %d\n", s->name ? s->name : "", s->version, s->legacy_lights);
+	fprintf(o, "global_settings assumed_gamma %.6g max_trace_level %d adc_bailout %.6g ambient_light ",
+	        g->assumed_gamma, g->max_trace_level, g->adc_bailout);
+	pc(o, g->ambient_light);
+	fprintf(o, "\n  illumination rays %ld method %s passes %s max_depth %d photon_spacing %.6g photon_count %ld\n",
+	        g->illum.rays, g->illum.method == ILLUM_SHAFT ? "shaft" : "point",
+	        g->illum.passes == PASSES_SPECTRAL ? "spectral" : "rgb", g->illum.max_depth, g->illum.spacing, g->illum.count);
+	fputs("background ", o);
+	pc(o, s->background);
+	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
+	        c->loc.line, c->loc.col);
+	pv(o, c->location);
+	fputs(" direction ", o);
+	pv(o, c->direction);
+	fputs("\n  up ", o);
+	pv(o, c->up);
+	fputs(" right ", o);
+	pv(o, c->right);
+	fputs(" sky ", o);
+	pv(o, c->sky);
+	fprintf(o, "\n  angle %.6g aperture %.6g blur_samples %d focal_point ", c->angle, c->aperture, c->blur_samples);
+	pv(o, c->focal_point);
+	fputc('\n', o);
+	for (int i = 0; i < s->nlights; i++)
+		dump_light(o, &s->lights[i]);
+	for (int i = 0; i < s->nobjects; i++)
+		dump_object(o, s->objects[i], 0);
+}
