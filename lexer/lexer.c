@@ -321,6 +321,15 @@ static void scan(struct lexer *lx, struct token *t)
 	t->loc = here(lx, lx->p);
 	if (lx->p >= lx->end) {
 		t->kind = TK_EOF;
+		/* point at the end of the last line, not at an empty line after it */
+		if (lx->p > lx->src && lx->p == lx->line_start && lx->line > 1) {
+			const char *q = lx->p - 1, *start = q;
+			while (start > lx->src && start[-1] != '\n')
+				start--;
+			if (q > start && q[-1] == '\r')
+				q--;
+			t->loc = (struct srcloc){lx->file, lx->line - 1, (int)(q - start) + 1};
+		}
 		return;
 	}
 	unsigned char c = (unsigned char)*lx->p;

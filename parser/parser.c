@@ -35,9 +35,11 @@ static void parse_items(struct parser *p, struct node *list);
 static void advance(struct parser *p)
 {
 	p->prev = p->tok;
-	do
+	lex_next(&p->lx, &p->tok);
+	while (p->tok.kind == TK_ERROR) {
+		p->panic = 1; /* already reported: no cascade of parse errors */
 		lex_next(&p->lx, &p->tok);
-	while (p->tok.kind == TK_ERROR);
+	}
 }
 
 static int check(const struct parser *p, enum tok k) { return p->tok.kind == k; }
