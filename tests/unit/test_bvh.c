@@ -1,0 +1,221 @@
+/* SPDX-License-Identifier: MIT */
+/* test_bvh.c: the BVH (tracer/bvh.c) returns exactly the hit a brute-force
+ * loop over every object returns (same t, same primitive), for thousands of
+ * random rays through a random scene of 1000 spheres, boxes and triangles
+ * with planes, a flattened union and a CSG leaf; shadow queries and skip
+ * masks agree too; degenerate and empty scenes work. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "../../tracer/bvh.h"
+#include "geo_rand.h"
+#include "test.h"
+
+#define NOBJ 1000
+
+/* The random scene: objects in the scene-model sense, top level in top[]. */
+struct scene_fixture {
+	struct object prims[NOBJ + 16]; /* primitives (some are union/CSG children) */
+	struct object nodes[4];         /* CSG nodes */
+	struct object *kids[16];        /* children of the CSG nodes */
+	struct object *top[NOBJ + 8];   /* the top-level list */
+	int ntop;                       /* entries of top */
+};
+
+/* One random bounded primitive somewhere in [−50,50]³. */
+static struct object scatter(int i)
+{
+	struct object o;
+	if (i % 3 == 0) {
+		o = mk_obj(OBJ_SPHERE);
+		o.g.sphere.c = rnd_vec(-50, 50);
+		o.g.sphere.r = rndr(0.2, 3);
+	} else if (i % 3 == 1) {
+		o = rnd_prim(OBJ_BOX, false);
+		o.xf = xf_then(rnd_xform(false, true), xf_translate(rnd_vec(-50, 50)));
+	} else {
+		o = mk_obj(OBJ_TRIANGLE);
+		struct vec3 c = rnd_vec(-50, 50);
+		for (int k = 0; k < 3; k++)
+			o.g.triangle.p[k] = v_add(c, rnd_vec(-4, 4));
+	}
+	return o;
+}
+
+static void build_scene(struct scene_fixture *s)
+{
+	memset(s, 0, sizeof *s);
+	for (int i = 0; i < NOBJ; i++) {
+		s->prims[i] = scatter(i);
+		s->top[s->ntop++] = &s->prims[i];
+	}
+	/* two planes (unbounded), far below and to the side */
+	for (int i = 0; i < 2; i++) {
+		struct object *p = &s->prims[NOBJ + i];
+		*p = mk_obj(OBJ_PLANE);
+		p->g.plane.n = i ? v3(1, 0.1, 0) : v3(0, 1, 0);
+		p->g.plane.d = -80;
+		s->top[s->ntop++] = p;
+	}
+	/* a union of five spheres (flattened by the build) */
+	for (int i = 0; i < 5; i++) {
+		s->prims[NOBJ + 2 + i] = mk_obj(OBJ_SPHERE);
+		s->prims[NOBJ + 2 + i].g.sphere.c = v3(10 * i - 20, 0, 0);
+		s->prims[NOBJ + 2 + i].g.sphere.r = 4;
+		s->kids[i] = &s->prims[NOBJ + 2 + i];
+	}
+	s->nodes[0] = mk_obj(OBJ_UNION);
+	s->nodes[0].g.csg.kids = s->kids, s->nodes[0].g.csg.n = 5;
+	s->top[s->ntop++] = &s->nodes[0];
+	/* a difference (kept whole as a leaf): box minus sphere */
+	struct object *b = &s->prims[NOBJ + 7], *c = &s->prims[NOBJ + 8];
+	*b = mk_obj(OBJ_BOX);
+	b->g.box.lo = v3(20, 20, 20), b->g.box.hi = v3(30, 30, 30);
+	*c = mk_obj(OBJ_SPHERE);
+	c->g.sphere.c = v3(30, 30, 30), c->g.sphere.r = 6;
+	s->kids[5] = b, s->kids[6] = c;
+	s->nodes[1] = mk_obj(OBJ_DIFFERENCE);
+	s->nodes[1].g.csg.kids = s->kids + 5, s->nodes[1].g.csg.n = 2;
+	s->top[s->ntop++] = &s->nodes[1];
+}
+
+/* Nearest hit by testing every top-level object. */
+static bool brute(struct object **top, int n, const struct ray *r, double tmin, double tmax,
+                  unsigned skip, struct hit *h)
+{
+	bool found = false;
+	for (int i = 0; i < n; i++)
+		if (!(top[i]->flags & skip) && shape_intersect(top[i], r, tmin, tmax, h))
+			tmax = h->t, found = true;
+	return found;
+}
+
+/* A random ray: from anywhere in a large box, or from a surface. */
+static struct ray rnd_ray(void)
+{
+	struct ray r = {rnd_vec(-70, 70), rnd_dir()};
+	if (rnd() < 0.3) /* aim at the cloud's middle */
+		r.d = v_norm(v_sub(rnd_vec(-20, 20), r.o));
+	return r;
+}
+
+static void t_same_as_brute_force(void)
+{
+	static struct scene_fixture s;
+	rng_seed(21);
+	build_scene(&s);
+	struct bvh *b = bvh_build(s.top, s.ntop);
+	int unb, n = bvh_count(b, &unb);
+	CHECK(n == NOBJ + 5 + 1);
+	CHECK(unb == 2);
+	int mism = 0, hits = 0;
+	for (int i = 0; i < 20000; i++) {
+		struct ray r = rnd_ray();
+		double tmin = i % 2 ? 1e-6 : 5, tmax = i % 5 ? INFINITY : 60;
+		struct hit hb, hf;
+		bool gb = brute(s.top, s.ntop, &r, tmin, tmax, 0, &hb);
+		bool gf = bvh_intersect(b, &r, tmin, tmax, &hf);
+		hits += gb;
+		if (gb != gf || (gb && (hb.t != hf.t || hb.obj != hf.obj))) {
+			if (mism++ < 5)
+				printf("#   ray %d: brute %d t=%.17g, bvh %d t=%.17g\n", i, gb, gb ? hb.t : 0, gf,
+				       gf ? hf.t : 0);
+		}
+	}
+	printf("# %d hits of 20000 rays, %d mismatches\n", hits, mism);
+	CHECK(mism == 0);
+	CHECK(hits > 8000);
+	bvh_free(b);
+}
+
+/* Shadow queries, with and without a skip mask. */
+static void t_occluded_and_skip(void)
+{
+	static struct scene_fixture s;
+	rng_seed(22);
+	build_scene(&s);
+	for (int i = 0; i < NOBJ; i += 7)
+		s.prims[i].flags |= OF_NO_SHADOW;
+	struct bvh *b = bvh_build(s.top, s.ntop);
+	int mism = 0, blocked = 0;
+	for (int i = 0; i < 20000; i++) {
+		struct ray r = rnd_ray();
+		double len = rndr(1, 150);
+		unsigned skip = i % 2 ? OF_NO_SHADOW : 0;
+		struct hit h;
+		bool gb = brute(s.top, s.ntop, &r, 1e-6, len, skip, &h);
+		bool gf = skip ? bvh_occluded_skip(b, &r, 1e-6, len, skip) : bvh_occluded(b, &r, 1e-6, len);
+		blocked += gb;
+		mism += gb != gf;
+		if (skip) { /* and the nearest hit with the mask */
+			struct hit h2;
+			bool g2 = bvh_intersect_skip(b, &r, 1e-6, len, skip, &h2);
+			mism += g2 != gb || (gb && (h.t != h2.t || h.obj != h2.obj));
+		}
+	}
+	printf("# %d of 20000 segments blocked, %d mismatches\n", blocked, mism);
+	CHECK(mism == 0);
+	CHECK(blocked > 5000);
+	bvh_free(b);
+}
+
+/* Every centroid in one place: the build must stop splitting and still work. */
+static void t_degenerate_and_empty(void)
+{
+	static struct object o[300];
+	struct object *top[300];
+	for (int i = 0; i < 300; i++) {
+		o[i] = mk_obj(OBJ_SPHERE);
+		o[i].g.sphere.r = 1 + i * 0.001;
+		top[i] = &o[i];
+	}
+	struct bvh *b = bvh_build(top, 300);
+	struct ray r = {v3(-10, 0, 0), v3(1, 0, 0)};
+	struct hit h;
+	CHECK(bvh_intersect(b, &r, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 10 - 1.299, 1e-12);
+	CHECK(h.obj == &o[299]);
+	CHECK(bvh_intersect(b, &r, 9, INFINITY, &h)); /* from inside them all */
+	CHECK_NEAR(h.t, 11, 1e-12);
+	CHECK(h.obj == &o[0]);
+	bvh_free(b);
+
+	b = bvh_build(NULL, 0);
+	CHECK(!bvh_intersect(b, &r, 0, INFINITY, &h));
+	CHECK(!bvh_occluded(b, &r, 0, INFINITY));
+	CHECK(bvh_count(b, NULL) == 0);
+	struct bbox e = bvh_bounds(b);
+	CHECK(e.lo.x > e.hi.x);
+	bvh_free(b);
+}
+
+/* Axis-parallel rays (zero direction components) and rays along box faces. */
+static void t_axis_rays(void)
+{
+	static struct scene_fixture s;
+	rng_seed(23);
+	build_scene(&s);
+	struct bvh *b = bvh_build(s.top, s.ntop);
+	int mism = 0;
+	for (int i = 0; i < 6000; i++) {
+		struct ray r = {rnd_vec(-60, 60), v3(0, 0, 0)};
+		int ax = i % 3;
+		r.d = v3(ax == 0 ? (i & 8 ? 1 : -1) : 0, ax == 1 ? (i & 8 ? 1 : -1) : 0,
+		         ax == 2 ? (i & 8 ? 1 : -1) : 0);
+		struct hit hb, hf;
+		bool gb = brute(s.top, s.ntop, &r, 0, INFINITY, 0, &hb);
+		bool gf = bvh_intersect(b, &r, 0, INFINITY, &hf);
+		mism += gb != gf || (gb && (hb.t != hf.t || hb.obj != hf.obj));
+	}
+	CHECK(mism == 0);
+	bvh_free(b);
+}
+
+int main(void)
+{
+	RUN(t_same_as_brute_force);
+	RUN(t_occluded_and_skip);
+	RUN(t_degenerate_and_empty);
+	RUN(t_axis_rays);
+	return test_done();
+}
