@@ -175,8 +175,8 @@ static int pov_switch(struct options *o, const char *a)
 		return o->clock = f, 1;
 	if ((s[0] == 'A' || s[0] == 'a') && (s[1] == '\0' || parse_double(s + 1, &f)))
 		return o->spp = sign == '+' ? (o->spp > 1 ? o->spp : 4) : 1, 1;
-	if ((s[0] == 'D' || s[0] == 'd') && s[1] == '\0')
-		return 1; /* display on/off: arvo has no preview window */
+	if ((s[0] == 'D' || s[0] == 'd') && s[1] == '\0' && sign == '+')
+		return 1; /* +D display on: arvo has no preview window */
 	return 0;
 }
 
@@ -226,9 +226,10 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (o->ninclude >= 64)
 				return usage_error("too many -I directories (at most %s)", "64");
 			o->includes[o->ninclude++] = a + 2;
-		} else if ((!strcmp(a, "-D") && next && strchr(next, '=')) || !strncmp(a, "Declare=", 8) ||
-		           (!strncmp(a, "-D", 2) && a[2])) {
-			const char *d = !strcmp(a, "-D") ? argv[++i] : a[0] == 'D' ? a + 8 : a + 2;
+		} else if (!strcmp(a, "-D") || !strncmp(a, "Declare=", 8) || !strncmp(a, "-D", 2)) {
+			if (!strcmp(a, "-D"))
+				NEED_ARG();
+			const char *d = !strcmp(a, "-D") ? next : a[0] == 'D' ? a + 8 : a + 2;
 			if (!valid_define(d))
 				return usage_error("bad declaration '%s' (expected NAME=number or NAME=\"string\")", d);
 			if (o->ndefines >= 256)
@@ -238,7 +239,7 @@ static int parse_args(int argc, char **argv, struct options *o)
 		           !strcmp(a, "--threads") || !strcmp(a, "--frame")) {
 			NEED_ARG();
 			if (!parse_int(next, a[2] == 'f' ? -1000000000L : 1, a[2] == 't' ? 1024 : 1000000000L, &v))
-				return usage_error("bad value for an option: '%s'", next);
+				return usage_error("bad value for %s: '%s' (expected a positive whole number)", a, next);
 			int *dst = a[2] == 'w' ? &o->width : a[2] == 'h' ? &o->height : a[3] == 'p' ? &o->spp
 			         : a[2] == 't' ? &o->threads : &o->frame;
 			if ((a[2] == 'w' || a[2] == 'h') && v > 65536)
@@ -280,6 +281,9 @@ struct deps {
 static void dep_add(const char *path, void *ctx)
 {
 	struct deps *d = ctx;
+	for (int i = 0; i < d->n; i++)
+		if (strcmp(d->files[i], path) == 0)
+			return;
 	d->files = mem_realloc(d->files, sizeof *d->files * (size_t)(d->n + 1));
 	d->files[d->n++] = mem_strdup(path);
 }

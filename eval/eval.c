@@ -476,7 +476,7 @@ static void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
 	if (builtin_is_name(n->str))
-		eval_fail(E, n->loc, "'%s' is a built-in name and cannot be declared", n->str);
+		eval_fail(E, n->b ? n->b->loc : n->loc, "'%s' is a built-in name and cannot be declared", n->str);
 	if (n->nkids > 0) { /* #declare A[i] = v */
 		const struct node *chain = NULL;
 		/* rebuild A[i][j] as index nodes on the stack */
@@ -577,8 +577,9 @@ static int is_dir_prefix(const char *dir, const char *path)
 	return strncmp(dir, path, n) == 0 && (path[n] == '/' || n == 1);
 }
 
-/* Finds an include file in the allowed directories; returns a malloc'd real path. */
-static char *find_include(struct eval *E, const char *name, struct srcloc loc)
+/* Finds an include file in the allowed directories; returns a malloc'd real
+ * path, and in *found_dir the directory (as given) it was found in. */
+static char *find_include(struct eval *E, const char *name, struct srcloc loc, const char **found_dir)
 {
 	const char *dirs[66];
 	int nd = 0;
@@ -596,6 +597,7 @@ static char *find_include(struct eval *E, const char *name, struct srcloc loc)
 			continue;
 		if (!is_dir_prefix(realdir, real))
 			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
+		*found_dir = dirs[i];
 		return mem_strdup(real);
 	}
 	eval_fail(E, loc, "cannot find include file '%s'", name);
@@ -617,7 +619,8 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	const char *name = eval_string(E, n->a, &len);
 	if (E->include_depth >= MAX_INCLUDE_DEPTH)
 		eval_fail(E, n->loc, "#include nested too deeply (more than %d levels)", MAX_INCLUDE_DEPTH);
-	char *real = find_include(E, name, n->loc);
+	const char *dir;
+	char *real = find_include(E, name, n->loc, &dir);
 	size_t size;
 	char *text = srcfile_read(real, &size);
 	if (!text) {
@@ -627,8 +630,7 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	}
 	if (E->opt->on_file)
 		E->opt->on_file(real, E->opt->on_file_ctx);
-	/* messages name the file as found relative to its directory */
-	const char *dir = E->dir_stack[E->include_depth];
+	/* messages name the file as found in its directory */
 	char *shown = mem_alloc(strlen(dir) + strlen(name) + 2);
 	sprintf(shown, "%s/%s", dir, name);
 	if (strncmp(shown, "./", 2) == 0)

@@ -516,6 +516,10 @@ static void photons_keyword(struct eval *E, struct sink *s, const struct node *n
 static void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct xform X;
+	if (s->kw == TK_OBJECT && !s->target && is_object_kw(n->op) && n->kind == N_BLOCK) {
+		s->target = eval_block(E, n).p.obj; /* object { Macro() } with a macro yielding an object */
+		return;
+	}
 	if (transform_of(E, n, &X)) {
 		object_transform(E, object_target(E, s, n->loc), &X);
 		s->modified = 1;
@@ -761,6 +765,11 @@ static void light_keyword(struct eval *E, struct sink *s, const struct node *n)
 static void light_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct light *l = s->target;
+	if (v->kind == V_LIGHT && s->nparams == 0 && !s->modified) {
+		*l = *v->p.light;
+		s->nparams = 2; /* a declared light has both */
+		return;
+	}
 	if (s->modified)
 		eval_fail(E, loc, "light_source position and colour must come before its modifiers");
 	if (s->nparams == 0) {

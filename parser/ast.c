@@ -89,7 +89,7 @@ static void dump(FILE *out, const struct node *n, int depth, const char *label)
 		dump(out, n->kids[i], depth + 1, NULL);
 	if (n->a)
 		dump(out, n->a, depth + 1, n->kind == N_IF || n->kind == N_WHILE ? "cond" : NULL);
-	if (n->b)
+	if (n->b && n->kind != N_DECLARE)
 		dump(out, n->b, depth + 1, n->kind == N_IF || n->kind == N_IFDEF ? "then" : NULL);
 	if (n->c)
 		dump(out, n->c, depth + 1, "else");

@@ -37,7 +37,7 @@ enum node_kind {
 	N_ENTRY,   /* [ kids ] */
 	N_SKIPPED, /* op: keyword whose block was skipped */
 	/* directives */
-	N_DECLARE, /* str: name, op: TK_DIR_DECLARE or TK_DIR_LOCAL, kids: indices, a: value */
+	N_DECLARE, /* str: name, op: TK_DIR_DECLARE or TK_DIR_LOCAL, kids: indices, a: value, b: the name (N_IDENT, for its location) */
 	N_UNDEF,   /* str */
 	N_INCLUDE, /* a: file name expression */
 	N_IF,      /* a: cond, b: then (N_LIST), c: else (N_LIST, N_IF for #elseif, or NULL) */

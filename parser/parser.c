@@ -151,6 +151,18 @@ static int starts_expr(const struct parser *p)
 
 /* ==== expressions ========================================================= */
 
+static struct node *parse_keyword_item(struct parser *p);
+
+/* A value where a block may stand too: array initialisers, macro arguments,
+ * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
+static struct node *parse_value(struct parser *p)
+{
+	enum kw_shape sh = tok_shape(p->tok.kind);
+	if (tok_is_keyword(p->tok.kind) && (sh == SH_BLOCK || sh == SH_BLOCK_OR_EXPR || sh == SH_SKIP))
+		return parse_keyword_item(p);
+	return parse_expr(p);
+}
+
 /* Binary operator precedence; 0 when tok is not a binary operator here. */
 static int binprec(const struct parser *p, enum tok k)
 {
@@ -177,7 +189,7 @@ static void parse_args(struct parser *p, struct node *call)
 			if (check(p, TK_COMMA) || check(p, TK_RPAREN))
 				ast_push(p->arena, call, NULL);
 			else
-				ast_push(p->arena, call, parse_expr(p));
+				ast_push(p->arena, call, parse_value(p));
 		} while (accept(p, TK_COMMA));
 	}
 	p->no_gt = saved;
@@ -207,7 +219,7 @@ static struct node *parse_init(struct parser *p)
 	if (!enter(p))
 		return n;
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
-		ast_push(p->arena, n, check(p, TK_LBRACE) ? parse_init(p) : parse_expr(p));
+		ast_push(p->arena, n, check(p, TK_LBRACE) ? parse_init(p) : parse_value(p));
 		if (!accept(p, TK_COMMA) || p->panic)
 			break;
 	}
@@ -503,14 +515,19 @@ static struct node *parse_declare(struct parser *p, struct token d)
 	struct node *n = node(p, N_DECLARE, d.loc);
 	n->op = d.kind;
 	if (!check(p, TK_IDENT)) {
-		if (tok_is_keyword(p->tok.kind))
+		if (tok_is_keyword(p->tok.kind)) {
 			error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
-		else
+			advance(p); /* so resynchronising does not restart at it */
+		} else {
 			expected(p, "an identifier");
+		}
 		return n;
 	}
 	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
 	n->len = p->tok.len;
+	n->b = node(p, N_IDENT, p->tok.loc); /* where the name is */
+	n->b->str = n->str;
+	n->b->len = n->len;
 	advance(p);
 	while (check(p, TK_LBRACKET)) {
 		struct srcloc open = p->tok.loc;
@@ -520,11 +537,7 @@ static struct node *parse_declare(struct parser *p, struct token d)
 	}
 	if (!expect(p, TK_EQ))
 		return n;
-	enum kw_shape sh = tok_shape(p->tok.kind);
-	if (tok_is_keyword(p->tok.kind) && (sh == SH_BLOCK || sh == SH_BLOCK_OR_EXPR))
-		n->a = parse_keyword_item(p);
-	else
-		n->a = parse_expr(p);
+	n->a = parse_value(p);
 	accept(p, TK_SEMI);
 	return n;
 }
@@ -562,6 +575,15 @@ static struct node *parse_ifdef(struct parser *p, struct token d)
 	return n;
 }
 
+/* After an error in a directive's '( … )' header: skip to its ')' so the
+ * body and '#end' still pair up. */
+static void recover_header(struct parser *p)
+{
+	while (!check(p, TK_EOF) && !check(p, TK_RPAREN) && !tok_is_directive(p->tok.kind))
+		advance(p);
+	accept(p, TK_RPAREN);
+}
+
 /* for := '#for' '(' ident ',' expr ',' expr [',' expr] ')' items '#end' */
 static struct node *parse_for(struct parser *p, struct token d)
 {
@@ -571,19 +593,22 @@ static struct node *parse_for(struct parser *p, struct token d)
 		return n;
 	if (!check(p, TK_IDENT)) {
 		expected(p, "a loop variable");
-		return n;
+		recover_header(p);
+	} else {
+		n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+		n->len = p->tok.len;
+		advance(p);
+		for (int i = 0; i < 3 && !p->panic; i++) {
+			if (i == 2 && !check(p, TK_COMMA))
+				break;
+			if (expect(p, TK_COMMA))
+				ast_push(p->arena, n, parse_expr(p));
+		}
+		if (p->panic)
+			recover_header(p);
+		else
+			expect_close(p, TK_RPAREN, TK_LPAREN, open);
 	}
-	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-	n->len = p->tok.len;
-	advance(p);
-	for (int i = 0; i < 3; i++) {
-		if (i == 2 && !check(p, TK_COMMA))
-			break;
-		if (!expect(p, TK_COMMA))
-			return n;
-		ast_push(p->arena, n, parse_expr(p));
-	}
-	expect_close(p, TK_RPAREN, TK_LPAREN, open);
 	n->b = parse_body(p);
 	expect_end(p, d.kind, d.loc);
 	return n;
@@ -615,11 +640,17 @@ static struct node *parse_switch(struct parser *p, struct token d)
 		if (p->panic)
 			break;
 	}
-	if (!check(p, TK_DIR_END) && !p->panic)
-		while (!check(p, TK_DIR_END) && !check(p, TK_EOF) && !check(p, TK_RBRACE)) {
-			expected(p, "'#case', '#range', '#else' or '#end' in '#switch'");
-			break;
+	if (!check(p, TK_DIR_END) && !check(p, TK_EOF) && !p->panic) {
+		expected(p, "'#case', '#range', '#else' or '#end' in '#switch'");
+		parse_body(p); /* skip what is there, so '#end' still closes the switch */
+		p->panic = 0;
+		p->panic = 1;
+		if (check(p, TK_DIR_END)) {
+			advance(p);
+			p->panic = 0;
+			return n;
 		}
+	}
 	expect_end(p, d.kind, d.loc);
 	return n;
 }
@@ -642,7 +673,7 @@ static struct node *parse_macro(struct parser *p, struct token d)
 		do {
 			if (!check(p, TK_IDENT)) {
 				expected(p, "a parameter name");
-				return n;
+				break;
 			}
 			struct node *id = node(p, N_IDENT, p->tok.loc);
 			id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
@@ -651,7 +682,10 @@ static struct node *parse_macro(struct parser *p, struct token d)
 			advance(p);
 		} while (accept(p, TK_COMMA));
 	}
-	expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	if (p->panic)
+		recover_header(p);
+	else
+		expect_close(p, TK_RPAREN, TK_LPAREN, open);
 	n->b = parse_body(p);
 	expect_end(p, d.kind, d.loc);
 	return n;
