@@ -109,6 +109,7 @@ static void bx_fill(const struct object *o, const struct ray *r, double t, int k
 	lh->n = axis(k, side ? 1 : -1);
 }
 
+/* Slabs: the entry face when the entry is in range, else the exit face. */
 static bool bx_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {

@@ -173,6 +173,7 @@ static void kn_fill(const struct kframe *f, const struct ray *r, double t, int p
 		lh->n = part == 1 ? v_neg(f->w) : f->w;
 }
 
+/* The nearest candidate in range. */
 static bool kn_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
@@ -229,6 +230,7 @@ static double side_area(const struct kframe *f, double du, double g0, double g1)
 	return 2 * M_PI * du * f->slant * (g1 - g0) * mean;
 }
 
+/* Split at the seams: caps exact, side closed form or numeric. */
 static double kn_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	struct kframe f;

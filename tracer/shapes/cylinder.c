@@ -151,6 +151,7 @@ static void cy_fill(const struct cframe *f, const struct ray *r, double t, int p
 		lh->n = part == 1 ? v_neg(f->w) : f->w;
 }
 
+/* The nearest candidate in range. */
 static bool cy_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
@@ -201,6 +202,7 @@ static double sector(double du, double rho0, double rho1)
 	return M_PI * du * (rho1 - rho0) * (rho1 + rho0);
 }
 
+/* Split at the seams: caps exact, side closed form or numeric. */
 static double cy_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	struct cframe f;

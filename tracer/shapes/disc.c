@@ -59,6 +59,7 @@ static bool dc_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
+/* The plane's root, kept when its radius lies in [hole, r]. */
 static bool dc_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
@@ -107,6 +108,7 @@ static struct uv_range dc_uv_range(const struct object *o)
 	return (struct uv_range){0, 1, 0, 1, true, true, false};
 }
 
+/* An annular sector, scaled by the transform's area factor for the plane. */
 static double dc_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	struct dframe f;

@@ -48,6 +48,7 @@ static bool pl_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
+/* One root; the hit is rebuilt from its (u,v) so it lies in the plane. */
 static bool pl_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {

@@ -62,6 +62,7 @@ static bool sph_roots(const struct object *o, const struct ray *r, double *t0, d
 	return prim_quadratic(a, b, c, disc, t0, t1);
 }
 
+/* The nearer root in range; the point is projected back onto the sphere. */
 static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                           struct local_hit *lh)
 {
@@ -111,6 +112,7 @@ static double cos_diff(double a, double b)
 	return 2 * sin(M_PI * 0.5 * (a + b)) * sin(M_PI * 0.5 * (b - a));
 }
 
+/* Closed form under similarities (v clipped to [0,1], u left periodic). */
 static double sph_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	double s2;

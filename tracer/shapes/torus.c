@@ -137,6 +137,8 @@ static struct vec3 to_normal(double R, struct vec3 p)
 	return v_norm(v3(p.x - R * p.x / rho, p.y, p.z - R * p.z / rho));
 }
 
+/* Works in units of R + r from the ray's point nearest the centre, within
+ * the bounding sphere; the first root with t in range is the hit. */
 static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
