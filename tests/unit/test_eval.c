@@ -1,0 +1,124 @@
+/* SPDX-License-Identifier: MIT */
+/* test_eval.c: values and the evaluator through its public entry, on small
+ * scenes written to a temporary file: promotion rules, colours, transforms,
+ * camera vectors, texture inheritance. */
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../../common/diag.h"
+#include "../../eval/eval.h"
+#include "../../eval/value.h"
+#include "test.h"
+
+static char *out;    /* #debug output of the last run */
+static size_t outlen;
+static struct scene sc;
+
+/* Evaluates text as a scene; returns the exit code. */
+static int run(const char *text)
+{
+	char path[] = "/tmp/arvo-test-eval-XXXXXX";
+	int fd = mkstemp(path);
+	if (fd < 0 || write(fd, text, strlen(text)) != (ssize_t)strlen(text))
+		return -1;
+	close(fd);
+	FILE *dbg = open_memstream(&out, &outlen);
+	FILE *err = fopen("/dev/null", "w");
+	struct diag dg;
+	diag_init(&dg, err);
+	struct eval_options o;
+	eval_default_options(&o);
+	o.debug_out = dbg;
+	int rc = eval_scene(path, &o, &dg, &sc);
+	fclose(dbg);
+	fclose(err);
+	unlink(path);
+	return rc;
+}
+
+static void done(void)
+{
+	scene_free(&sc);
+	free(out);
+	out = NULL;
+}
+
+static void t_value_constructors(void)
+{
+	double v[4] = {1, 2, 3, 4};
+	struct value a = val_vector(4, v);
+	CHECK(a.kind == V_VECTOR && a.n == 4 && a.v[3] == 4);
+	struct value c = val_colour((struct colour){0.5, 0.25, 1, 0.1, 0.2});
+	struct colour back = val_to_colour(&c);
+	CHECK(back.r == 0.5 && back.f == 0.1 && back.t == 0.2);
+	CHECK_STR(val_type_name(&c), "a colour");
+	CHECK_STR(val_kind_name(V_ARRAY), "an array");
+	struct value s = val_string("abc", 3);
+	CHECK(s.kind == V_STRING && s.n == 3);
+}
+
+static void t_promotion(void)
+{
+	CHECK(run("#declare V = <1,2,3> * 2 + 1;\n#debug vstr(3, V, \",\", 0, 1)\n"
+	          "#declare W = <1,2> + <1,2,3>;\n#debug concat(\" \", str(W.z, 0, 1))\n") == 0);
+	CHECK_STR(out, "3.0,5.0,7.0 3.0");
+	done();
+}
+
+static void t_colours(void)
+{
+	CHECK(run("#declare A = color 0.5;\n#declare B = rgb 0.5;\n#declare C = rgbft <1,0,0,0.2,0.3>;\n"
+	          "#declare D = srgb 0.5;\n"
+	          "#debug concat(str(A.filter,0,2), \" \", str(B.filter,0,2), \" \", str(C.transmit,0,2), \" \","
+	          " str(D.red,0,4), \" \", str((C*2).red,0,1))\n") == 0);
+	CHECK_STR(out, "0.50 0.00 0.30 0.2140 2.0");
+	done();
+}
+
+static void t_transforms_and_camera(void)
+{
+	CHECK(run("sphere { 0, 1 translate x rotate y*90 scale 2 }\n"
+	          "camera { location <0,0,-5> look_at 0 angle 90 }\n") == 0);
+	CHECK(sc.nobjects == 1);
+	struct vec3 p = xf_point(&sc.objects[0]->xf, v3(0, 0, 0));
+	/* translate x, rotate 90° about y takes x to -z, scale 2 */
+	CHECK_NEAR(p.x, 0, 1e-12);
+	CHECK_NEAR(p.z, -2, 1e-12);
+	CHECK_NEAR(v_len(sc.camera.direction), 1.33 / 2, 1e-9);
+	CHECK_NEAR(sc.camera.direction.z, 1.33 / 2, 1e-9);
+	done();
+}
+
+static void t_texture_inheritance(void)
+{
+	CHECK(run("union { sphere { 0, 1 } sphere { x, 1 pigment { rgb <1,0,0> } } pigment { rgb <0,0,1> } no_shadow }\n") == 0);
+	struct object *u = sc.objects[0];
+	CHECK(u->kind == OBJ_UNION && u->g.csg.n == 2);
+	CHECK(u->g.csg.kids[0]->tex->pigment.c[0].b == 1);
+	CHECK(u->g.csg.kids[1]->tex->pigment.c[0].r == 1);
+	CHECK(u->g.csg.kids[1]->flags & OF_NO_SHADOW);
+	done();
+}
+
+static void t_errors_are_65(void)
+{
+	CHECK(run("#declare X = 1/0;\n") == 65);
+	done();
+	CHECK(run("sphere { 0 }\n") == 65);
+	done();
+	CHECK(run("#error \"stop\"\n") == 65);
+	done();
+}
+
+int main(void)
+{
+	RUN(t_value_constructors);
+	RUN(t_promotion);
+	RUN(t_colours);
+	RUN(t_transforms_and_camera);
+	RUN(t_texture_inheritance);
+	RUN(t_errors_are_65);
+	srcfile_free_all();
+	return test_done();
+}
