@@ -31,7 +31,8 @@ PKGS     = OpenEXR OpenColorIO libpng
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
-CPPFLAGS += -D_DEFAULT_SOURCE -MMD -MP
+VERSION  = 0.1.0
+CPPFLAGS += -D_DEFAULT_SOURCE -DARVO_VERSION='"$(VERSION)"' -MMD -MP
 CFLAGS   += -std=c11 $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
 CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS) -lstdc++ -lm -pthread
