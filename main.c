@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include "common/arena.h"
@@ -14,6 +15,9 @@
 #include "eval/eval.h"
 #include "lexer/lexer.h"
 #include "parser/parser.h"
+#include "tracer/output/exrout.h"
+#include "tracer/output/pngout.h"
+#include "tracer/render.h"
 #include "tracer/scene.h"
 
 #ifndef ARVO_VERSION
@@ -39,6 +43,11 @@ struct options {
 	int frame;
 	long max_iterations;
 	int quiet, stats;
+	const char *display;         /* --display (PNG) */
+	const char *view;            /* --view (PNG) */
+	const char *ocio_config;     /* --ocio-config */
+	int half;                    /* --half: 16-bit EXR */
+	enum out_exr_compression compression; /* --compression */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -48,7 +57,11 @@ static void usage(FILE *out)
 	fputs("usage: arvo [options] scene.scn\n"
 	      "  -o FILE            output image (.exr or .png; default: scene name .exr)\n"
 	      "  --width W, --height H   image size (default 320x240); also +WW +HH\n"
-	      "  --spp N            samples per pixel;  --threads N  render threads\n"
+	      "  --spp N            samples per pixel (+A: 4);  --threads N  render threads (+WTN)\n"
+	      "  --half             16-bit half EXR (default float)\n"
+	      "  --compression C    EXR compression: zip (default), none, zips, piz, rle\n"
+	      "  --display NAME, --view NAME   OCIO display and view for PNG output\n"
+	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
@@ -211,6 +224,15 @@ static int parse_args(int argc, char **argv, struct options *o)
 			o->quiet = 1;
 		} else if (!strcmp(a, "--stats")) {
 			o->stats = 1;
+		} else if (!strcmp(a, "--half")) {
+			o->half = 1;
+		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
+			NEED_ARG();
+			*(a[2] == 'd' ? &o->display : a[2] == 'v' ? &o->view : &o->ocio_config) = next;
+		} else if (!strcmp(a, "--compression")) {
+			NEED_ARG();
+			if (out_exr_compression_parse(next, &o->compression) != 0)
+				return usage_error("unknown compression '%s' (expected none, zip, zips, piz or rle)", next);
 		} else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
 			NEED_ARG();
 			o->output = next;
@@ -347,6 +369,67 @@ static const char *default_output(const char *scene, char *buf, size_t size)
 	return buf;
 }
 
+/* The output format from the file name: 'e' (.exr), 'p' (.png), 0 (other). */
+static int output_kind(const char *path)
+{
+	const char *dot = strrchr(path, '.');
+	if (dot && strchr(dot, '/') == NULL) {
+		if (!strcasecmp(dot, ".exr"))
+			return 'e';
+		if (!strcasecmp(dot, ".png"))
+			return 'p';
+	}
+	return 0;
+}
+
+/* Can a file be created in path's directory? */
+static int can_create(const char *path)
+{
+	char dir[PATH_MAX];
+	const char *slash = strrchr(path, '/');
+	if (!slash)
+		return access(".", W_OK | X_OK) == 0;
+	snprintf(dir, sizeof dir, "%.*s", (int)(slash - path) + (slash == path), path);
+	return access(dir, W_OK | X_OK) == 0;
+}
+
+/* Render: the eye pass (and, later, the light pass) into a framebuffer,
+ * then the EXR or the PNG through OCIO. */
+static int render_and_write(const struct options *o, const struct scene *scene, const char *output)
+{
+	int kind = output_kind(output);
+	if (!kind)
+		return usage_error("unknown output format '%s' (expected a .exr or .png name)", output);
+	if (!can_create(output)) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", output, strerror(errno));
+		return EX_CANTCREAT;
+	}
+	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
+	                         o->ocio_config};
+	struct render_stats st;
+	struct framebuffer *fb;
+	const char *err = render(scene, &ro, &fb, &st);
+	if (err) {
+		fprintf(stderr, "arvo: error: %s\n", err);
+		return EX_SOFTWARE;
+	}
+	if (kind == 'e') {
+		struct out_exr_opts eo = {o->half, o->compression, scene->name};
+		err = out_exr_write(fb, output, &eo);
+	} else {
+		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL};
+		err = out_png_write(fb, output, &po);
+	}
+	fb_free(fb);
+	if (err) {
+		fprintf(stderr, "arvo: error: %s\n", err);
+		return EX_IOERR;
+	}
+	if (o->stats)
+		render_print_stats(stderr, &st);
+	return EX_OK;
+}
+
 int main(int argc, char **argv)
 {
 	struct options o;
@@ -391,8 +474,7 @@ int main(int argc, char **argv)
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);
 		} else if (o.action == ACT_RENDER) {
-			fprintf(stderr, "arvo: error: rendering is not available in this build yet (use --check or --dump-scene)\n");
-			rc = EX_SOFTWARE;
+			rc = render_and_write(&o, &scene, output);
 		}
 	}
 	if (fflush(stdout) != 0 && rc == EX_OK)

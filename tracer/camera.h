@@ -1,0 +1,41 @@
+/* SPDX-License-Identifier: MIT */
+/* camera.h: primary rays from POV-Ray's camera vectors.
+ *
+ * The image spans right × up at distance |direction| from location: a pixel
+ * at film coordinates (sx, sy) ∈ [0,1)² (sx left→right, sy top→bottom) looks
+ * through location + direction + (sx-½)·right + (½-sy)·up (perspective). An
+ * orthographic camera shoots parallel rays along direction from location +
+ * (sx-½)·right + (½-sy)·up, so the view is as wide and high as right and up
+ * are long. Depth of field (aperture > 0) moves the ray origin over a disc of
+ * diameter aperture in the right/up plane and aims it at the point the
+ * pinhole ray meets the focal plane (through focal_point, normal to
+ * direction). */
+#ifndef ARVO_CAMERA_H
+#define ARVO_CAMERA_H
+
+#include <stdbool.h>
+
+#include "../common/vec.h"
+#include "scene.h"
+
+struct cam {
+	enum camera_kind kind; /* perspective or orthographic */
+	struct vec3 loc;       /* location */
+	struct vec3 dir;       /* direction (its length is the film distance) */
+	struct vec3 right, up; /* film edges */
+	struct vec3 fwd;       /* unit direction */
+	struct vec3 lu, lv;    /* unit lens axes (along right and up) */
+	double aperture;       /* lens diameter (0: pinhole) */
+	double focal;          /* distance of the focal plane along fwd */
+	int blur_samples;      /* POV blur_samples (minimum samples per pixel) */
+};
+
+/* Prepares c from the scene's resolved camera. */
+void cam_setup(struct cam *c, const struct camera *sc);
+/* Does the camera have depth of field? */
+bool cam_has_dof(const struct cam *c);
+/* The primary ray through film point (sx, sy); (l1, l2) ∈ [0,1)² pick the
+ * lens point (ignored for a pinhole). The direction is not normalised. */
+struct ray cam_ray(const struct cam *c, double sx, double sy, double l1, double l2);
+
+#endif

@@ -1,0 +1,358 @@
+/* SPDX-License-Identifier: MIT */
+/* eyepass.c: Whitted ray tracing from the camera (see eyepass.h). */
+#include "eyepass.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "sampler.h"
+
+/* The state of one camera sample's tree of rays. */
+struct path {
+	const struct eye_ctx *ctx; /* shared context */
+	struct smp_stream rng;     /* this sample's random numbers */
+	long long rays;            /* rays traced so far */
+};
+
+/* The AOVs of the first visible point (filled at depth 1 only). */
+struct aov {
+	struct vec3 direct; /* irradiance from shadow rays */
+	struct vec3 albedo; /* pigment × diffuse */
+	struct vec3 n;      /* facing normal */
+	double z;           /* hit distance */
+};
+
+/* What the shading of one hit needs to know about the surface. */
+struct surf {
+	const struct hit *h;        /* the hit */
+	const struct texture *tex;  /* its texture */
+	struct colour pc;           /* pigment colour there */
+	struct vec3 nf;             /* unit normal facing the incoming ray */
+	struct vec3 v;              /* unit vector towards the viewer */
+	double opacity;             /* 1 - filter - transmit, clamped */
+};
+
+static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
+static double v_maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+
+/* An offset for spawned rays, relative to the size of the coordinates. */
+static double eps_at(struct vec3 p)
+{
+	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+}
+
+/* ==== lights ============================================================= */
+
+/* POV's spotlight cone: 1 inside radius, a smooth cubic to 0 at falloff,
+ * times cos^tightness. d is the unit direction from the light to the point. */
+static double spot_factor(const struct light *l, struct vec3 d)
+{
+	struct vec3 axis = v_norm(v_sub(l->point_at, l->pos));
+	double c = v_dot(d, axis);
+	double cf = cos(l->falloff * M_PI / 180), cr = cos(l->radius * M_PI / 180);
+	if (c <= cf)
+		return 0;
+	double k = l->tightness > 0 ? pow(c, l->tightness) : 1;
+	if (c < cr && cr > cf) {
+		double t = (c - cf) / (cr - cf);
+		k *= t * t * (3 - 2 * t);
+	}
+	return k;
+}
+
+/* Where sample (i, j) of light l sits, jittered from the path's numbers when
+ * the area light asks for it. */
+static struct vec3 light_point(struct path *pa, const struct light *l, int i, int j)
+{
+	if (!l->area)
+		return l->pos;
+	double a = (i + (l->jitter ? smp_next(&pa->rng) : 0.5)) / l->size1 - 0.5;
+	double b = (j + (l->jitter ? smp_next(&pa->rng) : 0.5)) / l->size2 - 0.5;
+	if (l->circular && (a != 0 || b != 0)) { /* square → disc, keeping the rim */
+		double r = fmax(fabs(a), fabs(b)), s = sqrt(a * a + b * b);
+		a *= r / s;
+		b *= r / s;
+	}
+	return v_add(l->pos, v_add(v_scale(l->axis1, a), v_scale(l->axis2, b)));
+}
+
+/* The radiometric quantity arriving at p from a light point q along unit L
+ * (before cosθ): I/d² (physical), I·fade (legacy), I for parallel lights. */
+static struct vec3 arriving(const struct scene *s, const struct light *l, double d)
+{
+	struct vec3 I = col3(l->colour);
+	if (l->kind == LIGHT_PARALLEL)
+		return I;
+	if (!s->legacy_lights)
+		return v_scale(I, 1 / (d * d));
+	if (l->fade_distance > 0) {
+		double fp = l->fade_power > 0 ? l->fade_power : 1;
+		return v_scale(I, 2 / (1 + pow(d / l->fade_distance, fp)));
+	}
+	return I;
+}
+
+/* Is the segment from p (on the side of nf) to the light blocked? */
+static bool shadowed(struct path *pa, const struct light *l, struct vec3 p, struct vec3 nf,
+                     struct vec3 L, double dist)
+{
+	if (l->shadowless)
+		return false;
+	struct ray r = {v_madd(p, nf, eps_at(p)), L};
+	pa->rays++;
+	return bvh_occluded_skip(pa->ctx->bvh, &r, 0, dist * (1 - 1e-9), OF_NO_SHADOW);
+}
+
+/* Phong and Blinn highlights for light direction L (unit), per unit of
+ * arriving light. */
+static double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, struct vec3 L)
+{
+	double k = 0;
+	if (f->specular > 0) {
+		struct vec3 hv = v_norm(v_add(L, v));
+		double c = v_dot(nf, hv);
+		if (c > 0)
+			k += f->specular * pow(c, 1 / fmax(f->roughness, 1e-6));
+	}
+	if (f->phong > 0) {
+		struct vec3 rv = v_sub(v_scale(nf, 2 * v_dot(nf, v)), v);
+		double c = v_dot(rv, L);
+		if (c > 0)
+			k += f->phong * pow(c, f->phong_size);
+	}
+	return k;
+}
+
+/* Direct light from l at surface sf: returns the reflected radiance and adds
+ * the irradiance (W/m², before albedo) to *E. Area lights average their
+ * size1×size2 samples, each with its own shadow ray. */
+static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
+                             struct vec3 *E)
+{
+	const struct scene *s = pa->ctx->scene;
+	const struct finish *f = &sf->tex->finish;
+	int n1 = l->area && l->size1 > 0 ? l->size1 : 1, n2 = l->area && l->size2 > 0 ? l->size2 : 1;
+	struct vec3 out = v3(0, 0, 0), rho = v_scale(col3(sf->pc), f->diffuse);
+	double k = s->legacy_lights ? 1 : 1 / M_PI, w = 1.0 / (n1 * n2);
+	for (int i = 0; i < n1; i++)
+		for (int j = 0; j < n2; j++) {
+			struct vec3 q = light_point(pa, l, i, j), L;
+			double dist;
+			if (l->kind == LIGHT_PARALLEL) {
+				L = v_norm(v_sub(l->pos, l->point_at));
+				dist = INFINITY;
+			} else {
+				L = v_sub(q, sf->h->p);
+				dist = v_len(L);
+				L = v_scale(L, 1 / dist);
+			}
+			double c = v_dot(sf->nf, L);
+			if (c <= 0)
+				continue;
+			struct vec3 Li = v_scale(arriving(s, l, dist), w);
+			if (l->kind == LIGHT_SPOT)
+				Li = v_scale(Li, spot_factor(l, v_neg(L)));
+			if (v_maxc(Li) <= 0 || shadowed(pa, l, sf->h->p, sf->nf, L, dist))
+				continue;
+			*E = v_madd(*E, Li, c);
+			double cb = f->brilliance != 1 ? pow(c, f->brilliance) : c;
+			struct vec3 hl = v_scale(Li, highlight(f, sf->nf, sf->v, L) * k);
+			if (f->refl_metallic)
+				hl = v_mul(hl, col3(sf->pc));
+			out = v_add(out, v_add(v_scale(v_mul(rho, Li), cb * k), hl));
+		}
+	return out;
+}
+
+/* ==== reflection and refraction ========================================== */
+
+/* Unpolarised Fresnel reflectance for cosine ci (incident side, > 0) going
+ * from index n1 into n2; 1 under total internal reflection. */
+static double fresnel(double ci, double n1, double n2)
+{
+	double eta = n1 / n2, s2 = eta * eta * (1 - ci * ci);
+	if (s2 >= 1)
+		return 1;
+	double ct = sqrt(1 - s2);
+	double rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+	double rp = (n1 * ct - n2 * ci) / (n1 * ct + n2 * ci);
+	return 0.5 * (rs * rs + rp * rp);
+}
+
+/* The reflection colour of the finish at cosine ci (POV's variable and
+ * fresnel reflection between refl_min and refl_max). */
+static struct vec3 refl_colour(const struct surf *sf, double ci, double n1, double n2)
+{
+	const struct finish *f = &sf->tex->finish;
+	struct vec3 lo = col3(f->refl_min), hi = col3(f->refl_max);
+	double t;
+	if (f->refl_fresnel)
+		t = fresnel(ci, n1, n2);
+	else if (memcmp(&lo, &hi, sizeof lo) != 0)
+		t = pow(1 - ci, f->refl_falloff);
+	else
+		t = 1;
+	struct vec3 r = v_add(lo, v_scale(v_sub(hi, lo), t));
+	return f->refl_metallic ? v_mul(r, col3(sf->pc)) : r;
+}
+
+/* The refracted unit direction of unit d through facing normal nf with
+ * index ratio eta = n1/n2; false under total internal reflection. */
+static bool refract(struct vec3 d, struct vec3 nf, double eta, struct vec3 *out)
+{
+	double ci = -v_dot(d, nf), s2 = eta * eta * (1 - ci * ci);
+	if (s2 > 1)
+		return false;
+	*out = v_norm(v_add(v_scale(d, eta), v_scale(nf, eta * ci - sqrt(1 - s2))));
+	return true;
+}
+
+static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
+                         struct aov *aov);
+
+/* The reflected and transmitted light at a hit: mirror reflection by the
+ * finish, transmission by the pigment's filter/transmit, refracted by the
+ * interior's ior. Under total internal reflection the transmitted share is
+ * reflected; with fresnel or conserve_energy, transmission keeps 1 - R. */
+static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
+                            double weight, unsigned skip)
+{
+	const struct interior *in = mat_interior(sf->h->obj);
+	const struct finish *f = &sf->tex->finish;
+	double ior = in->ior > 0 ? in->ior : 1;
+	double n1 = sf->h->entering ? 1 : ior, n2 = sf->h->entering ? ior : 1;
+	double ci = v_dot(sf->nf, sf->v), e = eps_at(sf->h->p);
+	struct vec3 R = refl_colour(sf, ci, n1, n2), out = v3(0, 0, 0);
+	struct vec3 T = v_add(v_scale(col3(sf->pc), sf->pc.f), v3(sf->pc.t, sf->pc.t, sf->pc.t));
+	if (v_maxc(T) > 0) {
+		struct vec3 td;
+		if (!refract(d, sf->nf, n1 / n2, &td)) {
+			R = v_add(R, T); /* total internal reflection */
+		} else {
+			if (f->refl_fresnel || f->conserve_energy)
+				T = v_mul(T, v_sub(v3(1, 1, 1), R));
+			struct ray tr = {v_madd(sf->h->p, sf->nf, -e), td};
+			out = v_mul(T, trace(pa, tr, depth + 1, weight * v_maxc(T), skip, NULL));
+		}
+	}
+	if (v_maxc(R) > 0) {
+		struct vec3 rd = v_sub(d, v_scale(sf->nf, 2 * v_dot(d, sf->nf)));
+		struct ray rr = {v_madd(sf->h->p, sf->nf, e), rd};
+		out = v_add(out, v_mul(R, trace(pa, rr, depth + 1, weight * v_maxc(R), OF_NO_REFLECTION, NULL)));
+	}
+	return out;
+}
+
+/* ==== shading ============================================================ */
+
+/* POV's absorption over distance dist inside interior in. */
+static struct vec3 fade(const struct interior *in, double dist)
+{
+	if (!(in->fade_distance > 0))
+		return v3(1, 1, 1);
+	struct vec3 fc = col3(in->fade_color);
+	if (in->fade_power >= 1000) /* exponential, as POV-Ray */
+		return v3(exp(-(1 - fc.x) * dist / in->fade_distance),
+		          exp(-(1 - fc.y) * dist / in->fade_distance),
+		          exp(-(1 - fc.z) * dist / in->fade_distance));
+	double fp = in->fade_power > 0 ? in->fade_power : 2;
+	double a = 1 / (1 + pow(dist / in->fade_distance, fp));
+	return v_add(v_scale(v3(1, 1, 1), a), v_scale(fc, 1 - a));
+}
+
+/* The radiance leaving hit h back along ray direction d. */
+static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, int depth,
+                         double weight, unsigned skip, struct aov *aov)
+{
+	const struct scene *s = pa->ctx->scene;
+	struct surf sf = {h, mat_texture(h->obj), {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
+	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
+	if (v_dot(sf.nf, sf.v) < 0)
+		sf.nf = v_neg(sf.nf);
+	sf.opacity = fmin(1, fmax(0, 1 - sf.pc.f - sf.pc.t));
+	const struct finish *f = &sf.tex->finish;
+	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0);
+	struct vec3 out = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
+	                                  col3(f->emission)));
+	for (int i = 0; i < s->nlights; i++)
+		out = v_add(out, light_one(pa, &s->lights[i], &sf, &E));
+	out = v_scale(out, sf.opacity);
+	if (aov) {
+		aov->direct = E;
+		aov->albedo = v_scale(pc, f->diffuse);
+		aov->n = sf.nf;
+	}
+	return v_add(out, specular(pa, &sf, v_norm(d), depth, weight, skip));
+}
+
+/* The radiance arriving along r: the background on a miss, else the shaded
+ * hit, attenuated by the medium when the ray travelled inside an object. */
+static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
+                         struct aov *aov)
+{
+	const struct scene *s = pa->ctx->scene;
+	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5;
+	if (depth > maxd || weight < s->gs.adc_bailout)
+		return v3(0, 0, 0);
+	struct hit h;
+	pa->rays++;
+	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))
+		return col3(s->background);
+	if (aov)
+		aov->z = h.t * v_len(r.d);
+	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);
+	if (!h.entering)
+		c = v_mul(c, fade(mat_interior(h.obj), h.t * v_len(r.d)));
+	return c;
+}
+
+/* ==== pixels ============================================================= */
+
+void eye_setup(struct eye_ctx *ctx, const struct scene *s, const struct bvh *b,
+               const struct mat_cache *m, int w, int h, int spp)
+{
+	memset(ctx, 0, sizeof *ctx);
+	ctx->scene = s;
+	ctx->bvh = b;
+	ctx->mats = m;
+	ctx->w = w;
+	ctx->h = h;
+	cam_setup(&ctx->cam, &s->camera);
+	ctx->spp = spp > 0 ? spp : 1;
+	if (cam_has_dof(&ctx->cam) && ctx->cam.blur_samples > ctx->spp)
+		ctx->spp = ctx->cam.blur_samples;
+}
+
+static void put3(float *dst, struct vec3 v, double k)
+{
+	dst[0] = (float)(v.x * k);
+	dst[1] = (float)(v.y * k);
+	dst[2] = (float)(v.z * k);
+}
+
+void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
+{
+	uint64_t pixel = (uint64_t)y * (uint64_t)ctx->w + (uint64_t)x;
+	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), A = v3(0, 0, 0), N = v3(0, 0, 0);
+	double z = 0;
+	bool jitter = ctx->spp > 1;
+	for (int i = 0; i < ctx->spp; i++) {
+		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0};
+		double jx = jitter ? smp_next(&pa.rng) : 0.5, jy = jitter ? smp_next(&pa.rng) : 0.5;
+		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
+		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+		struct aov aov = {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), 0};
+		sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
+		E = v_add(E, aov.direct);
+		A = v_add(A, aov.albedo);
+		N = v_add(N, aov.n);
+		z += aov.z;
+		*rays += pa.rays;
+	}
+	double k = 1.0 / ctx->spp;
+	put3(out->rgb, sum, k);
+	put3(out->direct, E, k);
+	put3(out->albedo, A, k);
+	put3(out->n, N, k);
+	out->z = (float)(z * k);
+}

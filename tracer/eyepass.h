@@ -1,0 +1,54 @@
+/* SPDX-License-Identifier: MIT */
+/* eyepass.h: the eye pass (DESIGN.md §5): Whitted recursion from the camera.
+ *
+ * One call shades one pixel: its camera samples are traced to the visible
+ * surface, lit by shadow rays to every light (point, spot, parallel, area),
+ * and followed through mirror reflection and refraction up to
+ * max_trace_level or until a branch's weight drops below adc_bailout. Beside
+ * the beauty, the first visible point gives the pixel's AOVs: irradiance
+ * from shadow rays (before albedo), albedo, normal and distance.
+ *
+ * Light models (DESIGN.md §3): by default a point light's colour is its
+ * intensity I (W/sr) and a diffuse surface of albedo ρ = pigment × diffuse
+ * has radiance ρ·E/π with E = I·cosθ/d². A parallel light's colour is the
+ * irradiance it gives a surface facing it (W/m²). When the scene declared
+ * #version 3.x (legacy_lights), POV-Ray's model applies: no falloff unless
+ * fade_distance/fade_power, and diffuse = ρ·I·cosθ^brilliance with no 1/π.
+ * Shadow rays are blocked by every object without no_shadow, transparent or
+ * not: light through glass is the light pass's job (no transparent-shadow
+ * hack). */
+#ifndef ARVO_EYEPASS_H
+#define ARVO_EYEPASS_H
+
+#include "bvh.h"
+#include "camera.h"
+#include "material.h"
+#include "scene.h"
+
+/* What every render thread shares, read-only. */
+struct eye_ctx {
+	const struct scene *scene;     /* the scene being rendered */
+	const struct bvh *bvh;         /* its objects */
+	const struct mat_cache *mats;  /* image_map pixels */
+	struct cam cam;                /* the prepared camera */
+	int w, h;                      /* image size */
+	int spp;                       /* camera samples per pixel */
+};
+
+/* One pixel's result, averaged over its samples. */
+struct eye_px {
+	float rgb[3];    /* beauty radiance */
+	float direct[3]; /* irradiance from shadow rays at the first hit, W/m² */
+	float albedo[3]; /* pigment × diffuse at the first hit */
+	float n[3];      /* world normal at the first hit (facing the camera) */
+	float z;         /* distance from the camera to the first hit (0: none) */
+};
+
+/* Sets up ctx for scene s rendered at w×h with spp samples per pixel. */
+void eye_setup(struct eye_ctx *ctx, const struct scene *s, const struct bvh *b,
+               const struct mat_cache *m, int w, int h, int spp);
+/* Shades pixel (x, y) (row 0 at the top) into *out; adds the rays it traced
+ * to *rays. Depends only on ctx and (x, y): any thread gets the same bits. */
+void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays);
+
+#endif

@@ -1,0 +1,190 @@
+/* SPDX-License-Identifier: MIT */
+/* material.c: pigments and the image_map cache. */
+#include "material.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../common/arena.h"
+#include "output/exrout.h"
+
+/* ==== the image cache ==================================================== */
+
+static const struct img *cache_find(const struct mat_cache *c, const char *path)
+{
+	for (int i = 0; i < c->n; i++)
+		if (strcmp(c->paths[i], path) == 0)
+			return &c->imgs[i];
+	return NULL;
+}
+
+/* Loads one image into the cache unless it is there already. */
+static const char *cache_add(struct mat_cache *c, const char *path, const char *ocio)
+{
+	if (!path || cache_find(c, path))
+		return NULL;
+	if (c->n == c->cap) {
+		c->cap = c->cap ? c->cap * 2 : 4;
+		c->paths = mem_realloc(c->paths, sizeof *c->paths * (size_t)c->cap);
+		c->imgs = mem_realloc(c->imgs, sizeof *c->imgs * (size_t)c->cap);
+	}
+	struct img_opts io = {ocio, NULL, 0};
+	const char *err = img_load(path, &io, &c->imgs[c->n]);
+	if (err)
+		return err;
+	c->paths[c->n++] = path;
+	return NULL;
+}
+
+/* Walks an object tree, loading the image_map of every texture. */
+static const char *load_tree(struct mat_cache *c, const struct object *o, const char *ocio)
+{
+	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
+		const char *err = cache_add(c, o->tex->pigment.image, ocio);
+		if (err)
+			return err;
+	}
+	if (o->kind >= OBJ_UNION && o->kind <= OBJ_MERGE)
+		for (int i = 0; i < o->g.csg.n; i++) {
+			const char *err = load_tree(c, o->g.csg.kids[i], ocio);
+			if (err)
+				return err;
+		}
+	return NULL;
+}
+
+const char *mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config)
+{
+	for (int i = 0; i < s->nobjects; i++) {
+		const char *err = load_tree(c, s->objects[i], ocio_config);
+		if (err)
+			return err;
+	}
+	return NULL;
+}
+
+void mat_cache_free(struct mat_cache *c)
+{
+	for (int i = 0; i < c->n; i++)
+		img_free(&c->imgs[i]);
+	free(c->paths);
+	free(c->imgs);
+	memset(c, 0, sizeof *c);
+}
+
+/* ==== textures =========================================================== */
+
+static struct texture default_tex; /* scene_default_texture(), made once */
+static pthread_once_t default_once = PTHREAD_ONCE_INIT;
+
+static void make_default(void)
+{
+	default_tex = scene_default_texture();
+}
+
+const struct texture *mat_texture(const struct object *o)
+{
+	if (o->tex)
+		return o->tex;
+	pthread_once(&default_once, make_default);
+	return &default_tex;
+}
+
+const struct interior *mat_interior(const struct object *o)
+{
+	static const struct interior def = {1, 1, 7, 0, 0, {0, 0, 0, 0, 0}, 0};
+	return o->interior ? o->interior : &def;
+}
+
+/* ==== patterns =========================================================== */
+
+static struct colour c_lerp(struct colour a, struct colour b, double t)
+{
+	return (struct colour){a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t,
+	                       a.f + (b.f - a.f) * t, a.t + (b.t - a.t) * t};
+}
+
+/* The colour_map at v ∈ [0,1]: linear between entries, clamped at the ends;
+ * without a map, black to white. */
+static struct colour colour_map(const struct pigment *pg, double v)
+{
+	if (!pg->map || pg->nmap == 0)
+		return c_rgb(v, v, v);
+	const struct map_entry *m = pg->map;
+	if (v <= m[0].pos)
+		return m[0].c;
+	for (int i = 1; i < pg->nmap; i++)
+		if (v <= m[i].pos) {
+			double span = m[i].pos - m[i - 1].pos;
+			return span > 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
+		}
+	return m[pg->nmap - 1].c;
+}
+
+/* POV's checker: the parity of the unit cell containing q. */
+static struct colour checker(const struct pigment *pg, struct vec3 q)
+{
+	const double e = 1e-9;
+	long s = (long)floor(q.x + e) + (long)floor(q.y + e) + (long)floor(q.z + e);
+	return pg->c[s & 1 ? 1 : 0];
+}
+
+/* POV's gradient: the ramp of q·axis, repeating every unit. */
+static struct colour gradient(const struct pigment *pg, struct vec3 q)
+{
+	double v = v_dot(q, pg->axis);
+	v -= floor(v);
+	return colour_map(pg, v);
+}
+
+/* One texel (x, y) of im, clamped or wrapped at the edges. */
+static struct colour texel(const struct img *im, long x, long y)
+{
+	x = ((x % im->w) + im->w) % im->w;
+	y = ((y % im->h) + im->h) % im->h;
+	const float *p = im->px + ((size_t)y * (size_t)im->w + (size_t)x) * (size_t)im->nch;
+	struct colour c = c_rgb(p[0], p[1], p[2]);
+	if (im->nch == 4)
+		c.t = 1 - p[3];
+	return c;
+}
+
+/* image_map, planar (map_type 0): the unit square of the x-y plane, image
+ * bottom-left at the origin, repeating unless `once`. */
+static struct colour image_map(const struct mat_cache *c, const struct pigment *pg, struct vec3 q)
+{
+	const struct img *im = cache_find(c, pg->image ? pg->image : "");
+	if (!im || im->w <= 0)
+		return c_rgb(1, 0, 1);
+	if (pg->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
+		return (struct colour){0, 0, 0, 0, 1};
+	double u = q.x - floor(q.x), v = q.y - floor(q.y);
+	double fx = u * im->w, fy = (1 - v) * im->h;
+	struct colour out;
+	if (pg->interpolate == 2) {
+		double x0 = floor(fx - 0.5), y0 = floor(fy - 0.5), tx = fx - 0.5 - x0, ty = fy - 0.5 - y0;
+		struct colour a = c_lerp(texel(im, (long)x0, (long)y0), texel(im, (long)x0 + 1, (long)y0), tx);
+		struct colour b = c_lerp(texel(im, (long)x0, (long)y0 + 1), texel(im, (long)x0 + 1, (long)y0 + 1), tx);
+		out = c_lerp(a, b, ty);
+	} else {
+		out = texel(im, (long)floor(fx), (long)floor(fy));
+	}
+	out.f += pg->filter_all.f;
+	out.t += pg->filter_all.t;
+	return out;
+}
+
+struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, struct vec3 p)
+{
+	if (pg->kind == PIG_SOLID)
+		return pg->c[0];
+	struct vec3 q = xf_inv_point(&pg->xf, p);
+	switch (pg->kind) {
+	case PIG_CHECKER: return checker(pg, q);
+	case PIG_GRADIENT: return gradient(pg, q);
+	case PIG_IMAGE: return image_map(c, pg, q);
+	default: return pg->c[0];
+	}
+}

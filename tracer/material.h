@@ -1,0 +1,34 @@
+/* SPDX-License-Identifier: MIT */
+/* material.h: pigment evaluation (solid, checker, gradient with colour_map,
+ * image_map) in pattern space, and the texture/interior an object shades with.
+ *
+ * Images for image_map are loaded once, before rendering, into a cache that
+ * the render threads then only read. */
+#ifndef ARVO_MATERIAL_H
+#define ARVO_MATERIAL_H
+
+#include "../common/vec.h"
+#include "output/imageio.h"
+#include "scene.h"
+
+/* Loaded image_map files, keyed by their resolved path. */
+struct mat_cache {
+	const char **paths; /* resolved path of each image */
+	struct img *imgs;   /* the pixels, linear */
+	int n;              /* images loaded */
+	int cap;            /* allocated entries */
+};
+
+/* Loads every image_map of the scene's objects into c (zeroed by the caller).
+ * Returns NULL, or an error message (per-thread buffer, see exrout.h). */
+const char *mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config);
+void mat_cache_free(struct mat_cache *c);
+
+/* The texture and interior an object shades with (scene defaults if unset). */
+const struct texture *mat_texture(const struct object *o);
+const struct interior *mat_interior(const struct object *o);
+
+/* The pigment's colour (with filter and transmit) at world point p. */
+struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, struct vec3 p);
+
+#endif

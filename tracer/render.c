@@ -1,0 +1,196 @@
+/* SPDX-License-Identifier: MIT */
+/* render.c: the driver: setup, light pass (to come), eye pass over tiles. */
+#include "render.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../common/arena.h"
+#include "bvh.h"
+#include "eyepass.h"
+#include "material.h"
+#include "output/exrout.h"
+
+#define TILE 16 /* tile edge in pixels */
+
+/* The eye pass's shared state: tiles are handed out by an atomic counter and
+ * each pixel's result goes to its own slot, so scheduling cannot change the
+ * image. */
+struct eye_job {
+	const struct eye_ctx *ctx; /* shading context */
+	struct framebuffer *fb;    /* output planes */
+	float *pl[13];             /* R G B, direct RGB, albedo RGB, N XYZ, Z */
+	int tx, ty;                /* tiles across and down */
+	atomic_int next;           /* next tile to render */
+	atomic_int done;           /* tiles finished */
+	atomic_llong rays;         /* rays traced by every thread */
+	int progress;              /* draw a progress bar on stderr */
+	pthread_mutex_t lock;      /* serialises the progress bar */
+};
+
+static double now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static const char *const plane_names[13] = {
+	"R", "G", "B", "direct.R", "direct.G", "direct.B", "albedo.R", "albedo.G", "albedo.B",
+	"N.X", "N.Y", "N.Z", "Z"};
+
+/* Stores one pixel's result in the planes. */
+static void store(struct eye_job *j, size_t i, const struct eye_px *px)
+{
+	const float *src[13] = {&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->direct[0],
+	                        &px->direct[1], &px->direct[2], &px->albedo[0], &px->albedo[1],
+	                        &px->albedo[2], &px->n[0], &px->n[1], &px->n[2], &px->z};
+	for (int k = 0; k < 13; k++)
+		j->pl[k][i] = *src[k];
+}
+
+/* Redraws the progress bar after a tile (only when stderr is a terminal). */
+static void progress(struct eye_job *j, int done)
+{
+	int total = j->tx * j->ty, width = 40, fill = (int)((long)done * width / total);
+	pthread_mutex_lock(&j->lock);
+	fprintf(stderr, "\rarvo: eye pass [%.*s%*s] %3d%%", fill,
+	        "########################################", width - fill, "", done * 100 / total);
+	if (done == total)
+		fputc('\n', stderr);
+	pthread_mutex_unlock(&j->lock);
+}
+
+/* Renders one tile. */
+static void do_tile(struct eye_job *j, int t, long long *rays)
+{
+	int x0 = (t % j->tx) * TILE, y0 = (t / j->tx) * TILE;
+	int w = j->ctx->w, h = j->ctx->h;
+	for (int y = y0; y < y0 + TILE && y < h; y++)
+		for (int x = x0; x < x0 + TILE && x < w; x++) {
+			struct eye_px px;
+			eye_pixel(j->ctx, x, y, &px, rays);
+			store(j, (size_t)y * (size_t)w + (size_t)x, &px);
+		}
+}
+
+/* A worker: takes tiles until none are left. */
+static void *worker(void *arg)
+{
+	struct eye_job *j = arg;
+	long long rays = 0;
+	int total = j->tx * j->ty, t;
+	while ((t = atomic_fetch_add(&j->next, 1)) < total) {
+		do_tile(j, t, &rays);
+		int d = atomic_fetch_add(&j->done, 1) + 1;
+		if (j->progress)
+			progress(j, d);
+	}
+	atomic_fetch_add(&j->rays, rays);
+	return NULL;
+}
+
+/* Runs the eye pass on nthreads threads (the caller's thread included). */
+static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads,
+                            int show, long long *rays)
+{
+	struct eye_job j;
+	memset(&j, 0, sizeof j);
+	j.ctx = ctx;
+	j.fb = fb;
+	for (int k = 0; k < 13; k++)
+		j.pl[k] = fb_plane(fb, plane_names[k]);
+	j.tx = (ctx->w + TILE - 1) / TILE;
+	j.ty = (ctx->h + TILE - 1) / TILE;
+	atomic_init(&j.next, 0);
+	atomic_init(&j.done, 0);
+	atomic_init(&j.rays, 0);
+	j.progress = show;
+	pthread_mutex_init(&j.lock, NULL);
+	pthread_t *th = mem_calloc((size_t)nthreads, sizeof *th);
+	int started = 0;
+	for (int i = 1; i < nthreads; i++, started++)
+		if (pthread_create(&th[i], NULL, worker, &j) != 0)
+			break;
+	worker(&j);
+	for (int i = 1; i <= started; i++)
+		pthread_join(th[i], NULL);
+	free(th);
+	pthread_mutex_destroy(&j.lock);
+	*rays = atomic_load(&j.rays);
+	return NULL;
+}
+
+/* The number of threads to use: the option, else one per online CPU. */
+static int thread_count(int requested)
+{
+	if (requested > 0)
+		return requested;
+	long n = sysconf(_SC_NPROCESSORS_ONLN);
+	return n > 0 ? (n > 256 ? 256 : (int)n) : 1;
+}
+
+const char *render(const struct scene *s, const struct render_opts *o, struct framebuffer **out,
+                   struct render_stats *stats)
+{
+	struct render_stats st;
+	memset(&st, 0, sizeof st);
+	*out = NULL;
+	double t0 = now();
+	struct mat_cache mats;
+	memset(&mats, 0, sizeof mats);
+	const char *err = mat_cache_load(&mats, s, o->ocio_config);
+	if (err) {
+		mat_cache_free(&mats);
+		return err;
+	}
+	struct bvh *b = bvh_build(s->objects, s->nobjects);
+	struct framebuffer *fb = fb_new(o->width, o->height);
+	st.threads = thread_count(o->threads);
+	double t1 = now();
+	st.t_setup = t1 - t0;
+
+	/* The light pass (illumination maps, DESIGN.md §4) goes here, between
+	 * setup and the eye pass: light_pass(s, b, &maps) fills the maps that
+	 * the eye pass then reads as a diffuse light, and its time is t_light. */
+	double t2 = now();
+	st.t_light = t2 - t1;
+
+	struct eye_ctx ctx;
+	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
+	err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
+	st.t_eye = now() - t2;
+
+	bvh_free(b);
+	mat_cache_free(&mats);
+	struct rusage ru;
+	if (getrusage(RUSAGE_SELF, &ru) == 0)
+		st.peak_rss_kb = ru.ru_maxrss;
+	if (stats)
+		*stats = st;
+	if (err) {
+		fb_free(fb);
+		return err;
+	}
+	*out = fb;
+	return NULL;
+}
+
+void render_print_stats(FILE *f, const struct render_stats *st)
+{
+	double total = st->t_setup + st->t_light + st->t_eye;
+	fprintf(f, "arvo: threads          %d\n", st->threads);
+	fprintf(f, "arvo: rays traced      %lld\n", st->rays);
+	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
+	fprintf(f, "arvo: light pass       %.3f s\n", st->t_light);
+	fprintf(f, "arvo: eye pass         %.3f s (%.3g rays/s)\n", st->t_eye,
+	        st->t_eye > 0 ? (double)st->rays / st->t_eye : 0.0);
+	fprintf(f, "arvo: total            %.3f s\n", total);
+	fprintf(f, "arvo: peak memory      %.1f MiB\n", st->peak_rss_kb / 1024.0);
+}

@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: MIT */
+/* render.h: the render driver (STYLE.md item 16): builds the BVH, loads the
+ * images, runs the passes over a thread pool and fills the framebuffer.
+ *
+ * Layers written: R G B (beauty), direct.R/G/B (irradiance from shadow rays
+ * at the first visible point, W/m², before albedo), albedo.R/G/B,
+ * N.X/Y/Z (world normal facing the camera) and Z (distance to the first
+ * hit; 0 where the ray escaped). The result is bit-identical for any thread
+ * count: every pixel depends only on (pixel, sample) keyed random numbers. */
+#ifndef ARVO_RENDER_H
+#define ARVO_RENDER_H
+
+#include "output/framebuffer.h"
+#include "scene.h"
+
+struct render_opts {
+	int width, height;       /* image size in pixels */
+	int spp;                 /* camera samples per pixel (>= 1) */
+	int threads;             /* worker threads (0: one per online CPU) */
+	int quiet;               /* no progress bar */
+	const char *ocio_config; /* config for image_map colour conversion, or NULL */
+};
+
+struct render_stats {
+	long long rays;     /* camera, reflected, refracted and shadow rays */
+	double t_setup;     /* seconds building the BVH and loading images */
+	double t_light;     /* seconds in the light pass (0 until it exists) */
+	double t_eye;       /* seconds in the eye pass */
+	long peak_rss_kb;   /* peak resident memory (getrusage) */
+	int threads;        /* threads used */
+};
+
+/* Renders s into a new framebuffer (*out, free with fb_free). stats may be
+ * NULL. Returns NULL, or an error message (per-thread buffer, exrout.h). */
+const char *render(const struct scene *s, const struct render_opts *o, struct framebuffer **out,
+                   struct render_stats *stats);
+/* Prints the stats as --stats shows them. */
+void render_print_stats(FILE *f, const struct render_stats *st);
+
+#endif
