@@ -1,0 +1,143 @@
+/* SPDX-License-Identifier: MIT */
+/* test_render.c: analytic renders with known answers (STYLE.md item 21d).
+ * Each scene under tests/render/ is evaluated and rendered in-process,
+ * written as a float EXR, read back, and checked pixel by pixel:
+ *   - plane_point: the direct layer is I·cosθ/d² at every pixel to 0.1 %;
+ *   - sphere_inside: the radiance is ρ·I/(π·r²) everywhere;
+ *   - mirror_a/b: a mirror shows exactly the reflected scene. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "../../common/diag.h"
+#include "../../eval/eval.h"
+#include "../../tracer/output/exrout.h"
+#include "../../tracer/render.h"
+#include "test.h"
+
+/* Renders tests/render/<name>.scn at w×h with spp samples on nthreads
+ * threads, round-trips it through an EXR and returns the planes read back. */
+static struct framebuffer *render_file(const char *name, int w, int h, int spp, int nthreads)
+{
+	char path[256], out[64];
+	snprintf(path, sizeof path, "tests/render/%s.scn", name);
+	snprintf(out, sizeof out, "/tmp/arvo-test-render-%ld.exr", (long)getpid());
+	struct eval_options eo;
+	eval_default_options(&eo);
+	eo.width = w;
+	eo.height = h;
+	struct diag dg;
+	diag_init(&dg, stdout);
+	struct scene s;
+	if (eval_scene(path, &eo, &dg, &s) != 0) {
+		printf("#   cannot evaluate %s\n", path);
+		return NULL;
+	}
+	struct render_opts ro = {w, h, spp, nthreads, 1, NULL};
+	struct framebuffer *fb = NULL, *back = NULL;
+	const char *err = render(&s, &ro, &fb, NULL);
+	if (!err)
+		err = out_exr_write(fb, out, NULL);
+	if (!err)
+		err = out_exr_read(out, &back, NULL);
+	if (err)
+		printf("#   %s: %s\n", name, err);
+	remove(out);
+	if (fb)
+		fb_free(fb);
+	scene_free(&s);
+	return back;
+}
+
+/* The worst relative error of plane a against expected values. */
+static double worst(const float *a, const double *want, int n)
+{
+	double m = 0;
+	for (int i = 0; i < n; i++) {
+		double e = fabs(a[i] - want[i]) / fmax(fabs(want[i]), 1e-12);
+		m = e > m ? e : m;
+	}
+	return m;
+}
+
+/* Floor under a point light: E = I·h/d³ at the floor point of each pixel. */
+static void t_plane_direct(void)
+{
+	const int w = 64, h = 48;
+	struct framebuffer *fb = render_file("plane_point", w, h, 1, 3);
+	CHECK(fb != NULL);
+	if (!fb)
+		return;
+	const double I[3] = {10, 5, 2.5}, lx = 0.3, ly = 2, lz = 0.2;
+	const char *names[3] = {"direct.R", "direct.G", "direct.B"};
+	double *want = malloc(sizeof *want * (size_t)(w * h));
+	for (int c = 0; c < 3; c++) {
+		for (int y = 0; y < h; y++)
+			for (int x = 0; x < w; x++) {
+				double X = ((x + 0.5) / w - 0.5) * 4, Z = (0.5 - (y + 0.5) / h) * 3;
+				double d = sqrt((X - lx) * (X - lx) + ly * ly + (Z - lz) * (Z - lz));
+				want[y * w + x] = I[c] * ly / (d * d * d);
+			}
+		float *p = fb_find(fb, names[c]);
+		CHECK(p != NULL);
+		if (p)
+			CHECK(worst(p, want, w * h) < 1e-3);
+	}
+	float *r = fb_find(fb, "R");
+	CHECK(r && fabs(r[(h / 2) * w + w / 2] - fb_find(fb, "direct.R")[(h / 2) * w + w / 2] / M_PI) < 1e-4);
+	free(want);
+	fb_free(fb);
+}
+
+/* Inside a diffuse sphere around a point light: L = ρ·I/(π·r²). */
+static void t_sphere_inside(void)
+{
+	const int w = 40, h = 30;
+	struct framebuffer *fb = render_file("sphere_inside", w, h, 2, 2);
+	CHECK(fb != NULL);
+	if (!fb)
+		return;
+	double L = 0.5 * 8 / (M_PI * 4), *want = malloc(sizeof *want * (size_t)(w * h));
+	for (int i = 0; i < w * h; i++)
+		want[i] = L;
+	const char *names[3] = {"R", "G", "B"};
+	for (int c = 0; c < 3; c++) {
+		float *p = fb_find(fb, names[c]);
+		CHECK(p && worst(p, want, w * h) < 1e-4);
+	}
+	free(want);
+	fb_free(fb);
+}
+
+/* A perfect mirror reproduces the mirrored scene pixel for pixel. */
+static void t_mirror(void)
+{
+	const int w = 48, h = 36;
+	struct framebuffer *a = render_file("mirror_a", w, h, 1, 2);
+	struct framebuffer *b = render_file("mirror_b", w, h, 1, 2);
+	CHECK(a && b);
+	if (!a || !b)
+		return;
+	const char *names[3] = {"R", "G", "B"};
+	int lit = 0;
+	double m = 0;
+	for (int c = 0; c < 3; c++) {
+		float *pa = fb_find(a, names[c]), *pb = fb_find(b, names[c]);
+		for (int i = 0; i < w * h; i++) {
+			m = fmax(m, fabs(pa[i] - pb[i]));
+			lit += pb[i] > 0.05f;
+		}
+	}
+	CHECK(m < 1e-5);
+	CHECK(lit > w * h / 4); /* the sphere is really in view */
+	fb_free(a);
+	fb_free(b);
+}
+
+int main(void)
+{
+	RUN(t_plane_direct);
+	RUN(t_sphere_inside);
+	RUN(t_mirror);
+	return test_done();
+}
