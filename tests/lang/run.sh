@@ -37,7 +37,8 @@ for f in $(find "$@" -name '*.scn' | LC_ALL=C sort); do
 	why=
 
 	# Annotations.
-	sed -n 's|^.*// expect: \{0,1\}||p' "$f" > "$tmp/want.out"
+	{ tr -d '\r' < "$f"; echo; } > "$tmp/case"   # CRLF, or no final newline
+	sed -n 's|^.*// expect: \{0,1\}||p' "$tmp/case" > "$tmp/want.out"
 	awk -v dir="$dir" '
 	match($0, /\/\/ (error|warning): /) {
 		s = substr($0, RSTART + 3, RLENGTH - 3); kind = substr(s, 1, index(s, ":") - 1)
@@ -48,12 +49,12 @@ for f in $(find "$@" -name '*.scn' | LC_ALL=C sort); do
 		i = index(rest, ":"); l = substr(rest, 1, i - 1); rest = substr(rest, i + 1)
 		i = index(rest, ":"); c = substr(rest, 1, i - 1); rest = substr(rest, i + 2)
 		print kind "\t" file "\t" l "\t" c "\t" rest
-	}' "$f" > "$tmp/want.diag"
-	want_rc=$(sed -n 's|^.*// exit: *\([0-9]*\).*$|\1|p' "$f" | head -1)
+	}' "$tmp/case" > "$tmp/want.diag"
+	want_rc=$(sed -n 's|^.*// exit: *\([0-9]*\).*$|\1|p' "$tmp/case" | head -1)
 	if [ -z "$want_rc" ]; then
 		if grep -q '^error' "$tmp/want.diag"; then want_rc=65; else want_rc=0; fi
 	fi
-	args=$(sed -n 's|^.*// args: ||p' "$f" | tr '\n' ' ')
+	args=$(sed -n 's|^.*// args: ||p' "$tmp/case" | tr '\n' ' ')
 
 	# Run.
 	eval "set -- $args"
