@@ -577,9 +577,11 @@ static int is_dir_prefix(const char *dir, const char *path)
 	return strncmp(dir, path, n) == 0 && (path[n] == '/' || n == 1);
 }
 
-/* Finds an include file in the allowed directories; returns a malloc'd real
- * path, and in *found_dir the directory (as given) it was found in. */
-static char *find_include(struct eval *E, const char *name, struct srcloc loc, const char **found_dir)
+/* Finds a file the scene names (#include, image_map) in the directories a
+ * scene may read: the including file's, the -I directories, the standard
+ * library. Returns a malloc'd real path, and in *found_dir (if not NULL) the
+ * directory, as given, where it was found. `what` names the file kind in errors. */
+char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
 {
 	const char *dirs[66];
 	int nd = 0;
@@ -589,7 +591,7 @@ static char *find_include(struct eval *E, const char *name, struct srcloc loc, c
 	if (E->opt->stdlib_dir)
 		dirs[nd++] = E->opt->stdlib_dir;
 	if (name[0] == '/')
-		eval_fail(E, loc, "#include needs a relative path, found '%s'", name);
+		eval_fail(E, loc, "%s needs a relative path, found '%s'", what, name);
 	for (int i = 0; i < nd; i++) {
 		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
 		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
@@ -597,10 +599,11 @@ static char *find_include(struct eval *E, const char *name, struct srcloc loc, c
 			continue;
 		if (!is_dir_prefix(realdir, real))
 			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
-		*found_dir = dirs[i];
+		if (found_dir)
+			*found_dir = dirs[i];
 		return mem_strdup(real);
 	}
-	eval_fail(E, loc, "cannot find include file '%s'", name);
+	eval_fail(E, loc, "cannot find %s '%s'", what, name);
 }
 
 static char *dir_of(struct eval *E, const char *path)
@@ -620,7 +623,7 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	if (E->include_depth >= MAX_INCLUDE_DEPTH)
 		eval_fail(E, n->loc, "#include nested too deeply (more than %d levels)", MAX_INCLUDE_DEPTH);
 	const char *dir;
-	char *real = find_include(E, name, n->loc, &dir);
+	char *real = eval_find_file(E, name, n->loc, "include file", &dir);
 	size_t size;
 	char *text = srcfile_read(real, &size);
 	if (!text) {

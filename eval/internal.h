@@ -78,6 +78,8 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 void eval_items(struct eval *E, const struct node *list, struct sink *s);
 void eval_item(struct eval *E, const struct node *item, struct sink *s);
 char *eval_strdup(struct eval *E, const char *s, int len);
+/* Finds a file a scene names, only in the directories a scene may read. */
+char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
 
 /* ---- env.c ---- */
 struct scope *scope_new(struct eval *E);

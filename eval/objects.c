@@ -2,7 +2,6 @@
 /* objects.c: what each block accepts. A sink stands for the block being
  * evaluated; sink_keyword and sink_value dispatch on its kind and build the
  * scene model (tracer/scene.h). Misplaced or unknown keywords are errors. */
-#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -225,26 +224,10 @@ static void colour_map_entry(struct eval *E, struct colour_map *m, const struct 
 /* Resolves an image file like an include: only allowed directories. */
 static const char *image_path(struct eval *E, const struct node *at, const char *name)
 {
-	const char *dirs[66];
-	int nd = 0;
-	dirs[nd++] = E->dir_stack[E->include_depth];
-	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
-		dirs[nd++] = E->opt->include_dirs[i];
-	if (E->opt->stdlib_dir)
-		dirs[nd++] = E->opt->stdlib_dir;
-	if (name[0] == '/')
-		eval_fail(E, at->loc, "image_map needs a relative path, found '%s'", name);
-	for (int i = 0; i < nd; i++) {
-		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
-		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
-		if (!realpath(cand, real) || !realpath(dirs[i], realdir))
-			continue;
-		size_t dl = strlen(realdir);
-		if (strncmp(realdir, real, dl) != 0 || real[dl] != '/')
-			eval_fail(E, at->loc, "'%s' is outside the directories a scene may read", name);
-		return arena_strndup(&SC(E)->arena, real, strlen(real));
-	}
-	eval_fail(E, at->loc, "cannot find image file '%s'", name);
+	char *real = eval_find_file(E, name, at->loc, "image file", NULL);
+	const char *r = arena_strndup(&SC(E)->arena, real, strlen(real));
+	free(real);
+	return r;
 }
 
 static void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
