@@ -1,0 +1,104 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# tests/render/run.sh: renders through the CLI (TAP lines).
+#   - golden EXRs (tests/render/golden/, 48×36) compared with idiff
+#     -fail 0.01 -failpercent 0.1 -hardfail 0.5; UPDATE_GOLDEN=1 rewrites them;
+#   - determinism: the EXR is bit-identical for --threads 1, 2, 7 and reruns;
+#   - the OCIO path: a linear 0.18 through each view of the shipped config
+#     matches ocioconvert's answer to within one 8-bit step;
+#   - CLI: an output in a missing directory exits 73 and leaves nothing, an
+#     unknown extension exits 64.
+# The analytic renders are in tests/unit/test_render.c.
+set -u
+cd "$(dirname "$0")/../.." || exit 2
+ARVO=${ARVO:-$PWD/arvo}
+T=tests/render
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-render.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT INT TERM
+n=0
+
+# check NAME STATUS: prints one TAP line (STATUS 0 = pass).
+check() {
+	n=$((n + 1))
+	if [ "$2" -eq 0 ]; then echo "ok $n - $1"; else echo "not ok $n - $1"; [ -f "$tmp/log" ] && sed 's/^/#   /' "$tmp/log" | head -20; fi
+	rm -f "$tmp/log"
+}
+
+# avg FILE: the mean of the first channel of an image, in [0,1] (8-bit
+# stats print "(of 255)").
+avg() {
+	oiiotool "$1" --printstats 2>/dev/null |
+		awk '/Stats Avg:/ { v = $3; if ($NF == "255)") v /= 255; print v; exit }'
+}
+
+# ---- golden images ----
+for g in g_glass g_lights g_legacy g_dof; do
+	"$ARVO" -q --width 48 --height 36 -o "$tmp/$g.exr" "$T/$g.scn" > "$tmp/log" 2>&1
+	st=$?
+	if [ $st -eq 0 ] && [ "${UPDATE_GOLDEN:-0}" = 1 ]; then
+		cp "$tmp/$g.exr" "$T/golden/$g.exr"
+	fi
+	if [ $st -eq 0 ]; then
+		idiff -fail 0.01 -failpercent 0.1 -hardfail 0.5 "$T/golden/$g.exr" "$tmp/$g.exr" > "$tmp/log" 2>&1
+		st=$?
+	fi
+	check "golden $g" $st
+done
+
+# ---- determinism across thread counts and runs ----
+st=0
+for t in 1 2 7 7; do
+	"$ARVO" -q --threads $t --spp 3 --width 37 --height 29 -o "$tmp/det$t.exr" "$T/g_lights.scn" > "$tmp/log" 2>&1 || st=1
+	if [ -f "$tmp/det1.exr" ] && [ -f "$tmp/det$t.exr" ]; then
+		cmp "$tmp/det1.exr" "$tmp/det$t.exr" >> "$tmp/log" 2>&1 || st=1
+	else
+		st=1
+	fi
+done
+check "EXR bit-identical for --threads 1, 2, 7 and reruns" $st
+st=0
+for t in 1 7; do
+	"$ARVO" -q --threads $t --width 33 --height 21 -o "$tmp/dof$t.exr" "$T/g_dof.scn" > "$tmp/log" 2>&1 || st=1
+done
+cmp "$tmp/dof1.exr" "$tmp/dof7.exr" >> "$tmp/log" 2>&1 || st=1
+check "depth of field bit-identical for --threads 1 and 7" $st
+
+# ---- the OCIO path ----
+cfg=stdlib-scenes/ocio/config.ocio
+oiiotool --pattern constant:color=0.18,0.18,0.18 4x4 3 -d float -o "$tmp/in.exr" > /dev/null 2>&1
+for view in "ACES 1.0 - SDR Video" "Standard" "Raw"; do
+	"$ARVO" -q --width 8 --height 8 --view "$view" -o "$tmp/flat.png" "$T/flat.scn" > "$tmp/log" 2>&1
+	st=$?
+	if [ $st -eq 0 ]; then
+		OCIO=$cfg ocioconvert --view "$tmp/in.exr" "Linear Rec.709 (sRGB)" "$tmp/ref.exr" \
+			"sRGB - Display" "$view" > /dev/null 2>&1 || st=1
+		got=$(avg "$tmp/flat.png"); want=$(avg "$tmp/ref.exr")
+		echo "png $got, ocioconvert $want" > "$tmp/log"
+		awk -v a="$got" -v b="$want" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= 1.0 / 255) }' || st=1
+	fi
+	check "PNG of linear 0.18 through view '$view' matches ocioconvert" $st
+done
+"$ARVO" -q --width 8 --height 8 --view "No Such View" -o "$tmp/bad.png" "$T/flat.scn" > "$tmp/log" 2>&1
+st=$?
+[ $st -ne 0 ] && [ ! -e "$tmp/bad.png" ] && grep -q 'ACES' "$tmp/log"
+check "unknown view: error listing the views, no file" $?
+
+# ---- CLI ----
+"$ARVO" -q --width 8 --height 8 -o "$tmp/missing/dir/out.exr" "$T/flat.scn" > "$tmp/log" 2>&1
+st=$?
+[ $st -eq 73 ] && [ ! -e "$tmp/missing" ] && [ -z "$(ls "$tmp" | grep -v '\.exr$\|\.png$\|^log$')" ]
+check "output in a missing directory: exit 73, nothing written (got $st)" $?
+"$ARVO" -q --width 8 --height 8 -o "$tmp/out.tif" "$T/flat.scn" > "$tmp/log" 2>&1
+st=$?
+[ $st -eq 64 ] && [ ! -e "$tmp/out.tif" ]
+check "unknown output extension: exit 64 (got $st)" $?
+"$ARVO" -q --width 8 --height 8 --half --compression piz -o "$tmp/h.exr" "$T/flat.scn" > "$tmp/log" 2>&1 &&
+	oiiotool --info -v "$tmp/h.exr" 2>&1 | grep -q 'half' && oiiotool --info -v "$tmp/h.exr" | grep -q piz
+check "--half --compression piz" $?
+"$ARVO" --stats --width 8 --height 8 -o "$tmp/s.exr" "$T/flat.scn" > /dev/null 2> "$tmp/log"
+grep -q 'rays traced' "$tmp/log" && grep -q 'peak memory' "$tmp/log" && grep -q 'eye pass' "$tmp/log"
+check "--stats prints rays, pass times and peak memory" $?
+"$ARVO" --width 8 --height 8 -o "$tmp/q.exr" "$T/flat.scn" > /dev/null 2> "$tmp/log"
+[ ! -s "$tmp/log" ]
+check "no progress bar when stderr is not a terminal" $?
+echo "1..$n"
