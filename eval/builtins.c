@@ -15,8 +15,8 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out)
 		{"pi", {M_PI}, 1}, {"tau", {2 * M_PI}, 1}, {"true", {1}, 1}, {"yes", {1}, 1},
 		{"on", {1}, 1}, {"false", {0}, 1}, {"no", {0}, 1}, {"off", {0}, 1},
 		{"x", {1, 0, 0}, 3}, {"y", {0, 1, 0}, 3}, {"z", {0, 0, 1}, 3},
-		{"u", {1, 0}, 2}, {"v", {0, 1}, 2}, {"clock_delta", {1}, 1},
-		{"initial_clock", {0}, 1}, {"final_clock", {1}, 1}, {"initial_frame", {0}, 1},
+		{"u", {1, 0}, 2}, {"v", {0, 1}, 2}, {"clock_delta", {0}, 1},
+		{"initial_clock", {0}, 1}, {"final_clock", {0}, 1}, {"initial_frame", {0}, 1},
 		{"final_frame", {0}, 1},
 	};
 	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++) {

@@ -57,6 +57,7 @@ struct eval {
 	int nrng;
 	const char *dir_stack[MAX_INCLUDE_DEPTH + 2]; /* directory of each open file */
 	struct texture default_tex; /* #default */
+	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	int warned_normal;         /* 'normal' ignored warning given */
 };
 

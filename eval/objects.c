@@ -884,6 +884,8 @@ static void illum_map_keyword(struct eval *E, struct sink *s, const struct node 
 	}
 }
 
+static void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags);
+
 /* ==== value blocks ======================================================== */
 
 struct value eval_block(struct eval *E, const struct node *blk)
@@ -990,7 +992,12 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct scene *sc = SC(E);
 	struct sink sub;
 	if (is_object_kw(n->op) && n->kind == N_BLOCK) {
-		scene_add_object(sc, eval_block(E, n).p.obj);
+		struct object *o = eval_block(E, n).p.obj;
+		/* the #default in force now is the one this object gets */
+		if (!E->default_shared)
+			E->default_shared = texture_copy(E, &E->default_tex);
+		propagate(o, E->default_shared, NULL, 0);
+		scene_add_object(sc, o);
 		return;
 	}
 	switch (n->op) {
@@ -1014,6 +1021,7 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 {
 	struct sink sub;
 	struct texture *t = &E->default_tex;
+	E->default_shared = NULL;
 	if (n->op == TK_TEXTURE)
 		*t = *eval_block(E, n).p.tex;
 	else if (n->op == TK_PIGMENT)
@@ -1172,9 +1180,6 @@ static void propagate(struct object *o, struct texture *tex, struct interior *in
 void objects_finish(struct eval *E)
 {
 	struct scene *sc = SC(E);
-	struct texture *def = texture_copy(E, &E->default_tex);
-	for (int i = 0; i < sc->nobjects; i++)
-		propagate(sc->objects[i], def, NULL, 0);
 	if (!sc->has_camera)
 		sc->camera = scene_default_camera();
 }
