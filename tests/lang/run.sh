@@ -33,28 +33,31 @@ diag() { sed 's/^/#   /'; }
 n=0
 for f in $(find "$@" -name '*.scn' | LC_ALL=C sort); do
 	n=$((n + 1))
-	dir=$(dirname "$f")
+	dir=${f%/*}
 	why=
 
-	# Annotations.
-	{ tr -d '\r' < "$f"; echo; } > "$tmp/case"   # CRLF, or no final newline
-	sed -n 's|^.*// expect: \{0,1\}||p' "$tmp/case" > "$tmp/want.out"
-	awk -v dir="$dir" '
+	# Annotations, in one pass: want.out gets the expect lines, want.diag the
+	# diagnostics; stdout is "EXIT ARGS".
+	meta=$(awk -v wout="$tmp/want.out" -v wdiag="$tmp/want.diag" '
+	BEGIN { printf "" > wout; printf "" > wdiag; rc = ""; args = ""; errs = 0 }
+	{ sub(/\r$/, "") }
+	match($0, /\/\/ expect:/) { s = substr($0, RSTART + RLENGTH); sub(/^ /, "", s); print s > wout }
+	match($0, /\/\/ exit: *[0-9]+/) { if (rc == "") { s = substr($0, RSTART, RLENGTH); gsub(/[^0-9]/, "", s); rc = s } }
+	match($0, /\/\/ args: /) { args = args " " substr($0, RSTART + RLENGTH) }
 	match($0, /\/\/ (error|warning): /) {
 		s = substr($0, RSTART + 3, RLENGTH - 3); kind = substr(s, 1, index(s, ":") - 1)
+		if (kind == "error") errs++
 		rest = substr($0, RSTART + RLENGTH)
-		if (rest ~ /^-: /) { print kind "\t-\t0\t0\t" substr(rest, 4); next }
+		if (rest ~ /^-: /) { print kind "\t-\t0\t0\t" substr(rest, 4) > wdiag; next }
 		file = "="
 		if (rest !~ /^[0-9]/) { i = index(rest, ":"); file = substr(rest, 1, i - 1); rest = substr(rest, i + 1) }
 		i = index(rest, ":"); l = substr(rest, 1, i - 1); rest = substr(rest, i + 1)
 		i = index(rest, ":"); c = substr(rest, 1, i - 1); rest = substr(rest, i + 2)
-		print kind "\t" file "\t" l "\t" c "\t" rest
-	}' "$tmp/case" > "$tmp/want.diag"
-	want_rc=$(sed -n 's|^.*// exit: *\([0-9]*\).*$|\1|p' "$tmp/case" | head -1)
-	if [ -z "$want_rc" ]; then
-		if grep -q '^error' "$tmp/want.diag"; then want_rc=65; else want_rc=0; fi
-	fi
-	args=$(sed -n 's|^.*// args: ||p' "$tmp/case" | tr '\n' ' ')
+		print kind "\t" file "\t" l "\t" c "\t" rest > wdiag
+	}
+	END { if (rc == "") rc = errs ? 65 : 0; print rc " " args }' "$f")
+	want_rc=${meta%% *}
+	args=${meta#* }
 
 	# Run.
 	eval "set -- $args"
