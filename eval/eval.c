@@ -616,14 +616,27 @@ static char *dir_of(struct eval *E, const char *path)
 	return eval_strdup(E, path, (int)(slash - path));
 }
 
-static void exec_include(struct eval *E, const struct node *n, struct sink *s)
+/* A parsed include file: read and parsed once per run, however often it is
+ * included (ASTs are immutable). */
+struct inc_cache {
+	char *real;              /* real path (key) */
+	int file;                /* file table index */
+	struct node *ast;        /* parsed items */
+	const char *dir;         /* its directory, for the includes it makes */
+	struct inc_cache *next;
+};
+
+/* Reads and parses an include file, or finds it parsed already. */
+static struct inc_cache *load_include(struct eval *E, const struct node *n, const char *name)
 {
-	int len;
-	const char *name = eval_string(E, n->a, &len);
-	if (E->include_depth >= MAX_INCLUDE_DEPTH)
-		eval_fail(E, n->loc, "#include nested too deeply (more than %d levels)", MAX_INCLUDE_DEPTH);
 	const char *dir;
 	char *real = eval_find_file(E, name, n->loc, "include file", &dir);
+	for (struct inc_cache *c = E->includes; c; c = c->next) {
+		if (strcmp(c->real, real) == 0) {
+			free(real);
+			return c;
+		}
+	}
 	size_t size;
 	char *text = srcfile_read(real, &size);
 	if (!text) {
@@ -638,18 +651,31 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	sprintf(shown, "%s/%s", dir, name);
 	if (strncmp(shown, "./", 2) == 0)
 		memmove(shown, shown + 2, strlen(shown + 2) + 1);
-	int file = srcfile_add(shown, text, size);
-	int errors = E->diag->errors;
-	struct node *ast = parse_file(file, E->diag, &E->arena);
-	if (E->diag->errors > errors) {
-		free(real);
-		longjmp(*E->fail, 1);
-	}
-	E->dir_stack[E->include_depth + 1] = dir_of(E, srcfile_get(file)->name);
+	struct inc_cache *c = ARENA_NEW(&E->arena, struct inc_cache);
+	c->real = eval_strdup(E, real, (int)strlen(real));
 	free(real);
+	c->file = srcfile_add(shown, text, size);
+	int errors = E->diag->errors;
+	c->ast = parse_file(c->file, E->diag, &E->arena);
+	if (E->diag->errors > errors)
+		longjmp(*E->fail, 1);
+	c->dir = dir_of(E, srcfile_get(c->file)->name);
+	c->next = E->includes;
+	E->includes = c;
+	return c;
+}
+
+static void exec_include(struct eval *E, const struct node *n, struct sink *s)
+{
+	int len;
+	const char *name = eval_string(E, n->a, &len);
+	if (E->include_depth >= MAX_INCLUDE_DEPTH)
+		eval_fail(E, n->loc, "#include nested too deeply (more than %d levels)", MAX_INCLUDE_DEPTH);
+	struct inc_cache *c = load_include(E, n, name);
+	E->dir_stack[E->include_depth + 1] = c->dir;
 	E->include_depth++;
 	scope_push(E, scope_new(E), n->loc);
-	eval_items(E, ast, s);
+	eval_items(E, c->ast, s);
 	scope_pop(E);
 	E->include_depth--;
 }

@@ -17,6 +17,7 @@
 #define MAX_SCOPES 512        /* scope stack */
 
 struct scope;
+struct inc_cache;
 
 /* What a block's items are being evaluated into. */
 enum sink_kind {
@@ -59,6 +60,7 @@ struct eval {
 	struct texture default_tex; /* #default */
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	int warned_normal;         /* 'normal' ignored warning given */
+	struct inc_cache *includes; /* files already parsed, by real path */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */
