@@ -4,7 +4,9 @@
  * written as a float EXR, read back, and checked pixel by pixel:
  *   - plane_point: the direct layer is I·cosθ/d² at every pixel to 0.1 %;
  *   - sphere_inside: the radiance is ρ·I/(π·r²) everywhere;
- *   - mirror_a/b: a mirror shows exactly the reflected scene. */
+ *   - mirror_a/b: a mirror shows exactly the reflected scene;
+ *   - slab_a/b: a clear glass slab shifts the image by t·(tanθ - tanθt);
+ *   - flags: no_image objects still cast shadows, no_shadow ones do not. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -134,10 +136,63 @@ static void t_mirror(void)
 	fb_free(b);
 }
 
+/* The largest difference of R, G, B between two renders, and how many
+ * samples of b are lit. */
+static double max_diff(struct framebuffer *a, struct framebuffer *b, int *lit)
+{
+	const char *names[3] = {"R", "G", "B"};
+	double m = 0;
+	*lit = 0;
+	for (int c = 0; c < 3; c++) {
+		float *pa = fb_find(a, names[c]), *pb = fb_find(b, names[c]);
+		for (int i = 0; i < a->w * a->h; i++) {
+			m = fmax(m, fabs(pa[i] - pb[i]));
+			*lit += pb[i] > 0.05f;
+		}
+	}
+	return m;
+}
+
+/* A glass slab displaces the image it is looked through. */
+static void t_slab(void)
+{
+	const int w = 48, h = 36;
+	struct framebuffer *a = render_file("slab_a", w, h, 1, 2);
+	struct framebuffer *b = render_file("slab_b", w, h, 1, 2);
+	CHECK(a && b);
+	if (!a || !b)
+		return;
+	int lit;
+	CHECK(max_diff(a, b, &lit) < 1e-4);
+	CHECK(lit > w * h);
+	fb_free(a);
+	fb_free(b);
+}
+
+/* no_image: invisible to the camera but shadowing; no_shadow: the reverse. */
+static void t_flags(void)
+{
+	const int w = 64, h = 48, row = 24 * w;
+	struct framebuffer *fb = render_file("flags", w, h, 1, 2);
+	CHECK(fb != NULL);
+	if (!fb)
+		return;
+	float *z = fb_find(fb, "Z"), *d = fb_find(fb, "direct.R"), *g = fb_find(fb, "G");
+	int under_hidden = row + 16, hidden_shadow = row + 10, seen = row + 48, no_shadow = row + 53;
+	CHECK_NEAR(z[under_hidden], 5, 1e-3); /* the floor, through the no_image sphere */
+	CHECK(fb_find(fb, "R")[under_hidden] == g[under_hidden]); /* white floor, not red */
+	CHECK(d[hidden_shadow] == 0); /* its shadow */
+	CHECK(z[seen] < 4.8f && g[seen] > 0.9f); /* the no_shadow sphere is seen */
+	CHECK(d[no_shadow] > 0.1f);             /* and casts nothing */
+	fb_free(fb);
+}
+
 int main(void)
 {
 	RUN(t_plane_direct);
 	RUN(t_sphere_inside);
 	RUN(t_mirror);
+	RUN(t_slab);
+	RUN(t_flags);
 	return test_done();
 }
