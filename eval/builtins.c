@@ -84,7 +84,7 @@ static struct value str_value(struct eval *E, const char *s, size_t n, struct sr
 static struct value f_abs(struct call *c) { return val_float(fabs(F(c, 0))); }
 static struct value f_ceil(struct call *c) { return val_float(ceil(F(c, 0))); }
 static struct value f_floor(struct call *c) { return val_float(floor(F(c, 0))); }
-static struct value f_int(struct call *c) { return val_float(trunc(F(c, 0))); }
+static struct value f_int(struct call *c) { return val_float(trunc(F(c, 0)) + 0.0); /* never -0 */ }
 static struct value f_sin(struct call *c) { return val_float(sin(F(c, 0))); }
 static struct value f_cos(struct call *c) { return val_float(cos(F(c, 0))); }
 static struct value f_tan(struct call *c) { return val_float(tan(F(c, 0))); }
@@ -160,6 +160,8 @@ static struct value f_pow(struct call *c)
 	double a = F(c, 0), b = F(c, 1);
 	if (a == 0 && b < 0)
 		domain(c, 1, "zero to a negative power");
+	if (a < 0 && b != floor(b))
+		domain(c, 0, "negative base with a fractional exponent");
 	return val_float(pow(a, b));
 }
 
@@ -449,12 +451,15 @@ static const struct builtin table[] = {
 	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vstr", 5, 5, f_vstr},
 };
 
+static int by_name(const void *key, const void *elem)
+{
+	return strcmp(key, ((const struct builtin *)elem)->name);
+}
+
+/* The table is sorted by name: binary search (this runs on every #declare). */
 static const struct builtin *find(const char *name)
 {
-	for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
-		if (strcmp(table[i].name, name) == 0)
-			return &table[i];
-	return NULL;
+	return bsearch(name, table, sizeof table / sizeof table[0], sizeof table[0], by_name);
 }
 
 bool builtin_is_name(const char *name)

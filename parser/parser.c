@@ -167,12 +167,11 @@ static struct node *parse_value(struct parser *p)
 static int binprec(const struct parser *p, enum tok k)
 {
 	switch (k) {
-	case TK_PIPE: return 1;
-	case TK_AMP: return 2;
-	case TK_EQ: case TK_NE: case TK_LT: case TK_LE: case TK_GE: return 3;
-	case TK_GT: return p->no_gt ? 0 : 3;
-	case TK_PLUS: case TK_MINUS: return 4;
-	case TK_STAR: case TK_SLASH: return 5;
+	case TK_PIPE: case TK_AMP: return 1; /* one level, left to right (as POV-Ray 3.7) */
+	case TK_EQ: case TK_NE: case TK_LT: case TK_LE: case TK_GE: return 2;
+	case TK_GT: return p->no_gt ? 0 : 2;
+	case TK_PLUS: case TK_MINUS: return 3;
+	case TK_STAR: case TK_SLASH: return 4;
 	default: return 0;
 	}
 }
