@@ -21,7 +21,8 @@
 #   povray_rays       POV-Ray's "Rays:" statistic (camera, reflected and
 #                     refracted rays; its shadow rays are not counted)
 #   *_rays_per_s_core rays / trace time / threads
-# Writes bench/results/eye.csv, eye.txt and (with gnuplot) eye-scaling.png.
+# Writes bench/results/eye.csv, eye.txt and (with gnuplot) eye-scaling.png;
+# PLOT_ONLY=1 redraws the chart from an existing eye.csv.
 set -eu
 
 ARVO=${ARVO:-./arvo}
@@ -80,6 +81,7 @@ bench() {
 	tail -1 "$res/eye.csv"
 }
 
+if [ "${PLOT_ONLY:-0}" != 1 ]; then
 echo "scene,objects,arvo_s,povray_s,ratio,trace_ratio,arvo_rays,arvo_eye_s,arvo_rays_per_s_core,povray_rays,povray_trace_s,povray_rays_per_s_core" > "$res/eye.csv"
 head -1 "$res/eye.csv"
 bench prims prims 8 1
@@ -93,26 +95,29 @@ done
 	echo "bench/eye: ${W}x${H}, no antialiasing, $THREADS threads, median of $RUNS"
 	echo "arvo: $("$ARVO" --version)   povray: $([ $have_pov = 1 ] && "$POVRAY" --version 2>&1 | grep -m1 "POV-Ray" || echo none)"
 	echo "cpu: $(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo), $(nproc) online"
+	echo "load average at the end: $(cut -d" " -f1-3 /proc/loadavg) (other work on the machine inflates times)"
 	column -s, -t < "$res/eye.csv"
 	awk -F, '$1 == "spheres" { if (!f) { f = $3; fn = $2 } l = $3; ln = $2 }
 		END { if (f) printf "arvo: %d -> %d spheres: %.3f s -> %.3f s (x%.2f for x%d objects)\n", fn, ln, f, l, l / f, ln / fn }' "$res/eye.csv"
 } > "$res/eye.txt"
+fi
 cat "$res/eye.txt"
 
 if command -v gnuplot > /dev/null 2>&1; then
-	grep '^spheres' "$res/eye.csv" | tr ',' ' ' > "$tmp/sph.dat"
+	awk -F, -v OFS=' ' '$1 == "spheres" { $1 = $1; for (i = 1; i <= NF; i++) if ($i == "") $i = "?"; print }' \
+		"$res/eye.csv" > "$tmp/sph.dat"
 	gnuplot <<GP
 set terminal pngcairo size 800,500
 set output "$res/eye-scaling.png"
 set title "bench/eye: N spheres, ${W}x${H}, $THREADS threads (median of $RUNS)"
-set logscale x
+set logscale xy
 set xlabel "spheres"
 set ylabel "seconds"
 set key left top
-set datafile missing ""
+set datafile missing "?"
 plot "$tmp/sph.dat" using 2:3 with linespoints title "arvo wall", \
      "$tmp/sph.dat" using 2:8 with linespoints title "arvo eye pass", \
-     "$tmp/sph.dat" using 2:(\$4 > 0 ? \$4 : 1/0) with linespoints title "POV-Ray wall", \
-     "$tmp/sph.dat" using 2:(\$11 > 0 ? \$11 : 1/0) with linespoints title "POV-Ray trace"
+     "$tmp/sph.dat" using 2:4 with linespoints title "POV-Ray wall", \
+     "$tmp/sph.dat" using 2:11 with linespoints title "POV-Ray trace"
 GP
 fi
