@@ -409,9 +409,9 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);
-	if (err) {
+	if (err) { /* an image_map that cannot be read: bad input */
 		fprintf(stderr, "arvo: error: %s\n", err);
-		return EX_SOFTWARE;
+		return EX_NOINPUT;
 	}
 	if (kind == 'e') {
 		struct out_exr_opts eo = {o->half, o->compression, scene->name};

@@ -31,7 +31,8 @@ struct render_stats {
 };
 
 /* Renders s into a new framebuffer (*out, free with fb_free). stats may be
- * NULL. Returns NULL, or an error message (per-thread buffer, exrout.h). */
+ * NULL. Returns NULL, or an error message (per-thread buffer, exrout.h):
+ * the only failure is an image_map file that cannot be read or decoded. */
 const char *render(const struct scene *s, const struct render_opts *o, struct framebuffer **out,
                    struct render_stats *stats);
 /* Prints the stats as --stats shows them. */

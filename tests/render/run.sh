@@ -92,6 +92,12 @@ check "output in a missing directory: exit 73, nothing written (got $st)" $?
 st=$?
 [ $st -eq 64 ] && [ ! -e "$tmp/out.tif" ]
 check "unknown output extension: exit 64 (got $st)" $?
+echo "not an image" > "$tmp/bad.png"
+printf 'camera { location <0, 0, -5> look_at 0 }\nsphere { 0, 1 pigment { image_map { png "bad.png" } } }\n' > "$tmp/bad.scn"
+"$ARVO" -q --width 8 --height 8 -o "$tmp/badimg.exr" "$tmp/bad.scn" > "$tmp/log" 2>&1
+st=$?
+[ $st -eq 66 ] && [ ! -e "$tmp/badimg.exr" ] && grep -q 'bad.png' "$tmp/log"
+check "unreadable image_map: exit 66, message names the file (got $st)" $?
 "$ARVO" -q --width 8 --height 8 --half --compression piz -o "$tmp/h.exr" "$T/flat.scn" > "$tmp/log" 2>&1 &&
 	oiiotool --info -v "$tmp/h.exr" 2>&1 | grep -q 'half' && oiiotool --info -v "$tmp/h.exr" | grep -q piz
 check "--half --compression piz" $?
