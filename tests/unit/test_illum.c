@@ -1,0 +1,443 @@
+/* SPDX-License-Identifier: MIT */
+/* test_illum.c: illumination maps (tracer/illum.h): exact energy
+ * conservation on every primitive, the bilinear split, unbiased irradiance
+ * for uniform flux (poles, apex, disc centre included), sparse tiles on the
+ * unbounded plane, order-independent merges, the isolated-sample rule, the
+ * ray-density rule and the EXR dump. Random numbers: geo_rand.h, fixed seeds. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "../../tracer/illum.h"
+#include "../../tracer/output/exrout.h"
+#include "geo_rand.h"
+#include "test.h"
+
+static const enum object_kind all_kinds[] = {OBJ_SPHERE,   OBJ_PLANE, OBJ_BOX,   OBJ_DISC,
+                                             OBJ_CYLINDER, OBJ_CONE,  OBJ_TORUS, OBJ_TRIANGLE};
+#define NKINDS(a) ((int)(sizeof(a) / sizeof(a[0])))
+
+/* A fixed primitive of each kind (identity transform). */
+static struct object prim(enum object_kind k)
+{
+	struct object o = mk_obj(k);
+	switch (k) {
+	case OBJ_SPHERE: o.g.sphere.c = v3(0.5, 1, -2); o.g.sphere.r = 1.5; break;
+	case OBJ_PLANE: o.g.plane.n = v3(0, 1, 0); o.g.plane.d = 0; break;
+	case OBJ_BOX: o.g.box.lo = v3(-1, -0.5, -2); o.g.box.hi = v3(1, 1, 1); break;
+	case OBJ_DISC: o.g.disc.c = v3(0, 1, 0); o.g.disc.n = v3(0, 1, 0); o.g.disc.r = 2; break;
+	case OBJ_CYLINDER: o.g.cylinder.a = v3(0, 0, 0); o.g.cylinder.b = v3(0, 2, 0); o.g.cylinder.r = 1; break;
+	case OBJ_CONE:
+		o.g.cone.a = v3(0, 0, 0); o.g.cone.ra = 1; o.g.cone.b = v3(0, 2, 0); o.g.cone.rb = 0;
+		break;
+	case OBJ_TORUS: o.g.torus.major = 2; o.g.torus.minor = 0.5; break;
+	case OBJ_TRIANGLE:
+		o.g.triangle.p[0] = v3(0, 0, 0); o.g.triangle.p[1] = v3(2, 0, 0); o.g.triangle.p[2] = v3(0, 0, 2);
+		break;
+	default: break;
+	}
+	return o;
+}
+
+static struct illum_map *map_res(const struct object *o, int r)
+{
+	struct illum_spec s = {r, 0};
+	return illum_new(o, &s);
+}
+
+static struct illum_map *map_cell(const struct object *o, double c)
+{
+	struct illum_spec s = {0, c};
+	return illum_new(o, &s);
+}
+
+/* ==== collecting nodes ==================================================== */
+
+#define MAXN 4096
+struct nodes {
+	int n;
+	struct illum_node a[MAXN];
+};
+
+static void collect(void *ctx, const struct illum_node *n)
+{
+	struct nodes *s = ctx;
+	if (s->n < MAXN)
+		s->a[s->n++] = *n;
+}
+
+static struct nodes *nodes_of(const struct illum_map *m)
+{
+	struct nodes *s = calloc(1, sizeof *s);
+	illum_each(m, collect, s);
+	return s;
+}
+
+/* Energy of node (i,j) in channel 0, 0 when absent. */
+static double node_e(const struct nodes *s, long i, long j)
+{
+	for (int k = 0; k < s->n; k++)
+		if (s->a[k].i == i && s->a[k].j == j)
+			return s->a[k].energy[0];
+	return 0;
+}
+
+/* ==== energy conservation ================================================= */
+
+static void t_conservation(void)
+{
+	rng_seed(11);
+	for (int k = 0; k < NKINDS(all_kinds); k++) {
+		struct object o = prim(all_kinds[k]);
+		struct uv_range r;
+		CHECK(shape_uv_range(&o, &r));
+		struct illum_map *m = o.kind == OBJ_PLANE ? map_cell(&o, 0.25) : map_res(&o, 12);
+		CHECK(m != NULL);
+		double want[3] = {0, 0, 0};
+		for (int n = 0; n < 20000; n++) {
+			double u = r.bounded ? rnd() : rndr(-3, 3), v = r.bounded ? rnd() : rndr(-3, 3);
+			if (n % 4 == 0 && r.u_wraps)
+				u = rnd() < 0.5 ? rndr(0.99, 1.0) : rndr(-0.3, 1.3); /* seam, out of period */
+			if (n % 4 == 1 && r.v_wraps)
+				v = rndr(-0.05, 0.05);
+			double e[3] = {rnd(), 1e-6 * rnd(), 100 * rnd()};
+			illum_deposit(m, u, v, e);
+			for (int c = 0; c < 3; c++)
+				want[c] += e[c];
+		}
+		double got[3];
+		illum_total(m, got);
+		struct nodes *s = nodes_of(m);
+		double sum0 = 0;
+		for (int q = 0; q < s->n; q++)
+			sum0 += s->a[q].energy[0];
+		for (int c = 0; c < 3; c++)
+			CHECK_NEAR(got[c] / want[c], 1, 1e-12);
+		CHECK_NEAR(sum0 / want[0], 1, 1e-12);
+		free(s);
+		illum_free(m);
+	}
+}
+
+/* ==== bilinear split ====================================================== */
+
+static void t_split(void)
+{
+	struct object o = prim(OBJ_SPHERE);
+	struct illum_map *m = map_res(&o, 8);
+	long nu, nv;
+	double du, dv;
+	illum_grid(m, &nu, &nv, &du, &dv);
+	CHECK(nu == 8 && nv == 9); /* u wraps: no seam duplicate; v: both poles */
+	CHECK_NEAR(du, 0.125, 0);
+	double u, v, one[3] = {1, 1, 1};
+	illum_node_uv(m, 3, 4, &u, &v);
+	illum_deposit(m, u, v, one);                    /* on node (3,4): all of it */
+	illum_deposit(m, 5.5 / 8, 2.5 / 8, one);        /* cell centre: ¼ each */
+	illum_deposit(m, 1.0 / 8, 6.25 / 8, one);       /* on a u line: ¾ and ¼ */
+	illum_deposit(m, 7.5 / 8, 1.0, one);            /* across the seam, at the north pole */
+	illum_deposit(m, 0.5, 1.5, one);                /* beyond v = 1: clamped to the pole row */
+	struct nodes *s = nodes_of(m);
+	CHECK_NEAR(node_e(s, 3, 4), 1, 0);
+	CHECK(node_e(s, 2, 4) == 0 && node_e(s, 3, 3) == 0 && node_e(s, 4, 5) == 0);
+	CHECK_NEAR(node_e(s, 5, 2), 0.25, 1e-15);
+	CHECK_NEAR(node_e(s, 6, 2), 0.25, 1e-15);
+	CHECK_NEAR(node_e(s, 5, 3), 0.25, 1e-15);
+	CHECK_NEAR(node_e(s, 6, 3), 0.25, 1e-15);
+	CHECK_NEAR(node_e(s, 1, 6), 0.75, 1e-15);
+	CHECK_NEAR(node_e(s, 1, 7), 0.25, 1e-15);
+	CHECK_NEAR(node_e(s, 7, 8), 0.5, 1e-15);
+	CHECK_NEAR(node_e(s, 0, 8), 0.5, 1e-15);
+	CHECK_NEAR(node_e(s, 4, 8), 1, 0);
+	CHECK(s->n == 10);
+	free(s);
+	illum_free(m);
+}
+
+/* ==== uniform irradiance ================================================== */
+
+/* ‖∂T/∂u × ∂T/∂v‖ at (u,v). */
+static double jac(const struct object *o, double u, double v)
+{
+	struct vec3 p, pu, pv;
+	shape_uv_point(o, u, v, &p, &pu, &pv);
+	return v_len(v_cross(pu, pv));
+}
+
+/* Deposits total flux phi as n samples uniform in AREA over the bounded
+ * surface o (rejection on the Jacobian), finishes, and checks every node's
+ * irradiance against phi/area within 5σ (σ from the node's Σw²), the mean
+ * z² (χ²/dof), and the pooled edge rows v = 0 and v = 1 (poles, apex, disc
+ * centre, cap centres) against a 5σ band: no spike. */
+static void uniform_case(struct object *o, struct illum_map *m, long n, const char *name)
+{
+	double jmax = 0, phi = 3.0;
+	for (int a = 0; a <= 200; a++)
+		for (int b = 0; b <= 200; b++)
+			jmax = fmax(jmax, jac(o, a / 200.0, b / 200.0));
+	jmax *= 1.05;
+	double e[3] = {phi / (double)n, 2 * phi / (double)n, 0.5 * phi / (double)n};
+	for (long k = 0; k < n;) {
+		double u = rnd(), v = rnd();
+		if (o->kind == OBJ_TRIANGLE && u + v > 1)
+			continue;
+		if (rnd() * jmax < jac(o, u, v)) {
+			illum_deposit(m, u, v, e);
+			k++;
+		}
+	}
+	double removed[3];
+	illum_finish(m, true, removed);
+	CHECK(removed[0] == 0);
+	double e0 = phi / shape_area(o), chi = 0, edge[2][3] = {{0}}; /* energy, area, Σw² */
+	long nv;
+	illum_grid(m, NULL, &nv, NULL, NULL);
+	struct nodes *s = nodes_of(m);
+	int bad = 0;
+	for (int q = 0; q < s->n; q++) {
+		const struct illum_node *x = &s->a[q];
+		double sig = sqrt(x->sumsq[0]) / x->area, z = (x->irr[0] - e0) / sig;
+		chi += z * z;
+		if (fabs(z) > 5 && bad++ < 3)
+			printf("#   %s: node (%ld,%ld) E = %g, expected %g ± %g\n", name, x->i, x->j, x->irr[0], e0, sig);
+		CHECK_NEAR(x->irr[1], 2 * x->irr[0], 1e-12 * x->irr[0]);
+		for (int side = 0; side < 2; side++)
+			if (x->j == (side ? nv - 1 : 0)) {
+				edge[side][0] += x->energy[0];
+				edge[side][1] += x->area;
+				edge[side][2] += x->sumsq[0];
+			}
+	}
+	CHECK(bad == 0);
+	chi /= s->n;
+	if (!(fabs(chi - 1) < 5 * sqrt(2.0 / s->n) + 0.05))
+		printf("#   %s: chi2/dof = %g over %d nodes\n", name, chi, s->n);
+	CHECK(fabs(chi - 1) < 5 * sqrt(2.0 / s->n) + 0.05);
+	for (int side = 0; side < 2; side++) {
+		double E = edge[side][0] / edge[side][1], sig = sqrt(edge[side][2]) / edge[side][1];
+		if (!(fabs(E - e0) < 5 * sig))
+			printf("#   %s: edge row %d E = %g, expected %g ± %g\n", name, side, E, e0, sig);
+		CHECK(fabs(E - e0) < 5 * sig);
+		CHECK(sig < 0.05 * e0);
+	}
+	double lk[3];
+	illum_lookup(m, 0.37, 0.41, lk);
+	CHECK_NEAR(lk[0], e0, 0.2 * e0);
+	free(s);
+}
+
+static void t_uniform(void)
+{
+	static const enum object_kind kinds[] = {OBJ_SPHERE, OBJ_BOX,  OBJ_DISC,
+	                                         OBJ_CYLINDER, OBJ_CONE, OBJ_TORUS};
+	static const char *names[] = {"sphere", "box", "disc", "cylinder", "cone", "torus"};
+	rng_seed(23);
+	for (int k = 0; k < NKINDS(kinds); k++) {
+		struct object o = prim(kinds[k]);
+		struct illum_map *m = map_res(&o, 12);
+		uniform_case(&o, m, 400000, names[k]);
+		illum_free(m);
+	}
+	/* an ellipsoid (non-uniform scale): node areas by cubature, with cell */
+	struct object o = prim(OBJ_SPHERE);
+	o.xf = xf_scale(v3(1, 2, 0.7));
+	struct illum_map *m = map_cell(&o, 0.6);
+	long nu, nv;
+	illum_grid(m, &nu, &nv, NULL, NULL);
+	CHECK(nu >= 10 && nu <= 24 && nv >= 8 && nv <= 24);
+	uniform_case(&o, m, 400000, "ellipsoid");
+	illum_free(m);
+}
+
+/* The plane with cell: uniform flux over [-1,1]², interior nodes at phi/4. */
+static void t_uniform_plane(void)
+{
+	rng_seed(5);
+	struct object o = prim(OBJ_PLANE);
+	struct illum_map *m = map_cell(&o, 0.1);
+	double phi = 2, e[3];
+	long n = 400000;
+	e[0] = e[1] = e[2] = phi / (double)n;
+	for (long k = 0; k < n; k++)
+		illum_deposit(m, rndr(-1, 1), rndr(-1, 1), e);
+	illum_finish(m, true, NULL);
+	struct nodes *s = nodes_of(m);
+	int checked = 0, bad = 0;
+	for (int q = 0; q < s->n; q++) {
+		const struct illum_node *x = &s->a[q];
+		CHECK_NEAR(x->area, 0.01, 1e-15);
+		if (fabs(x->u) > 0.95 || fabs(x->v) > 0.95)
+			continue;
+		checked++;
+		double sig = sqrt(x->sumsq[0]) / x->area;
+		bad += fabs(x->irr[0] - phi / 4) > 5 * sig;
+	}
+	CHECK(checked == 19 * 19);
+	CHECK(bad == 0);
+	free(s);
+	illum_free(m);
+}
+
+/* ==== sparse tiles ======================================================== */
+
+static void t_plane_sparse(void)
+{
+	rng_seed(7);
+	struct object o = prim(OBJ_PLANE);
+	struct illum_map *m = map_cell(&o, 0.01);
+	size_t empty = illum_memory(m);
+	double e[3] = {1e-3, 1e-3, 1e-3}, out[3];
+	for (int k = 0; k < 10000; k++) {
+		double r = 0.05 * sqrt(rnd()), a = rndr(0, 2 * M_PI);
+		illum_deposit(m, 1000 + r * cos(a), -500 + r * sin(a), e);
+	}
+	illum_finish(m, true, NULL);
+	CHECK(illum_tiles(m) >= 1 && illum_tiles(m) <= 4);
+	CHECK(illum_memory(m) - empty <= 4 * 16 * 16 * 128 + 4096);
+	illum_lookup(m, 0, 0, out);
+	CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0);
+	illum_lookup(m, 1000.5, -500, out);
+	CHECK(out[0] == 0);
+	illum_lookup(m, 1000, -500, out);
+	CHECK_NEAR(out[0], 10 / (M_PI * 0.0025), 0.25 * 10 / (M_PI * 0.0025));
+	illum_free(m);
+}
+
+/* ==== merge =============================================================== */
+
+static void t_merge(void)
+{
+	rng_seed(99);
+	struct object o = prim(OBJ_TORUS);
+	struct illum_map *one = map_res(&o, 24);
+	struct illum_map *pa = illum_new_like(one), *pb = illum_new_like(one);
+	struct illum_map *ab = illum_new_like(one), *ba = illum_new_like(one);
+	for (int k = 0; k < 20000; k++) {
+		double u = rnd(), v = rnd(), e[3] = {rnd(), rnd() * 1e-9, rnd() * 1e3};
+		illum_deposit(one, u, v, e);
+		illum_deposit(k < 12000 ? pa : pb, u, v, e);
+	}
+	CHECK(illum_merge(ab, pa) && illum_merge(ab, pb));
+	CHECK(illum_merge(ba, pb) && illum_merge(ba, pa));
+	struct illum_map *other = map_res(&o, 12);
+	CHECK(!illum_merge(other, pa));
+	illum_finish(one, true, NULL);
+	illum_finish(ab, true, NULL);
+	illum_finish(ba, true, NULL);
+	struct nodes *s1 = nodes_of(one), *s2 = nodes_of(ab), *s3 = nodes_of(ba);
+	CHECK(s1->n == s2->n && s1->n == s3->n && s1->n == 24 * 24);
+	int diff = 0;
+	for (int q = 0; q < s1->n && q < s2->n && q < s3->n; q++) {
+		const struct illum_node *a = &s1->a[q], *b = &s2->a[q], *c = &s3->a[q];
+		diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
+		diff += memcmp(a->energy, c->energy, sizeof a->energy) != 0;
+		diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
+		diff += memcmp(a->irr, c->irr, sizeof a->irr) != 0;
+		diff += a->count != b->count || a->count != c->count || a->i != b->i || a->j != c->j;
+		CHECK_NEAR(a->sumsq[2], b->sumsq[2], 1e-12 * a->sumsq[2]);
+	}
+	CHECK(diff == 0);
+	free(s1);
+	free(s2);
+	free(s3);
+	illum_free(one);
+	illum_free(pa);
+	illum_free(pb);
+	illum_free(ab);
+	illum_free(ba);
+	illum_free(other);
+}
+
+/* ==== isolated samples ==================================================== */
+
+static void t_isolated(void)
+{
+	rng_seed(3);
+	struct object o = prim(OBJ_PLANE);
+	struct illum_map *m = map_cell(&o, 0.1);
+	double e[3] = {1e-4, 1e-4, 1e-4}, lone[3] = {0.5, 0.25, 0.125}, rem[3], out[3];
+	for (int k = 0; k < 40000; k++)
+		illum_deposit(m, rndr(0, 2), rndr(0, 2), e);
+	illum_finish(m, false, rem);
+	struct nodes *before = nodes_of(m);
+	CHECK(rem[0] == 0);
+	illum_finish(m, true, rem);
+	CHECK(rem[0] == 0 && rem[1] == 0 && rem[2] == 0); /* dense: changed by exactly 0 */
+	struct nodes *after = nodes_of(m);
+	CHECK(before->n == after->n && memcmp(before->a, after->a, sizeof(struct illum_node) * (size_t)before->n) == 0);
+	illum_deposit(m, 10.03, 10.07, lone); /* far away and alone */
+	illum_finish(m, true, rem);
+	CHECK_NEAR(rem[0], 0.5, 1e-15);
+	CHECK_NEAR(rem[1], 0.25, 1e-15);
+	CHECK_NEAR(rem[2], 0.125, 1e-15);
+	illum_lookup(m, 10.03, 10.07, out);
+	CHECK(out[0] == 0);
+	illum_finish(m, false, rem); /* switched off: kept */
+	illum_lookup(m, 10.03, 10.07, out);
+	CHECK(out[0] > 0 && rem[0] == 0);
+	free(before);
+	free(after);
+	illum_free(m);
+}
+
+/* ==== ray density and EXR dump ============================================ */
+
+static void t_auto_cell(void)
+{
+	CHECK_NEAR(illum_auto_cell(1.6e5, 1, 0), 0.01, 1e-15);
+	CHECK_NEAR(illum_auto_cell(1e6, 4, 64), 0.016, 1e-15);
+	CHECK(illum_auto_cell(0, 1, 0) == 0 && illum_auto_cell(10, INFINITY, 0) == 0);
+	/* on a sphere: 200000 rays at the default density → ~16 rays per node */
+	struct object o = prim(OBJ_SPHERE);
+	double S = illum_auto_cell(2e5, shape_area(&o), 0);
+	struct illum_map *m = map_cell(&o, S);
+	long nu, nv;
+	illum_grid(m, &nu, &nv, NULL, NULL);
+	double per = 2e5 / (double)(nu * (nv - 1));
+	CHECK(per >= 16 / 1.6 && per <= 16 * 1.1); /* cell S gives nodes at most ~S apart */
+	illum_free(m);
+}
+
+static void t_exr(void)
+{
+	struct object o = prim(OBJ_SPHERE);
+	struct illum_map *m = map_res(&o, 20);
+	double e[3] = {1, 2, 3}, u, v;
+	illum_node_uv(m, 5, 7, &u, &v);
+	illum_deposit(m, u, v, e);
+	illum_finish(m, false, NULL);
+	char path[] = "/tmp/test_illum_XXXXXX.exr";
+	int fd = mkstemps(path, 4);
+	CHECK(fd >= 0);
+	close(fd);
+	CHECK(illum_write_exr(m, path) == NULL);
+	struct framebuffer *fb = NULL;
+	CHECK(out_exr_read(path, &fb, NULL) == NULL);
+	if (fb) {
+		CHECK(fb->w == 16 && fb->h == 16); /* the one allocated tile */
+		float *g = fb_find(fb, "G");
+		double area = 0, want;
+		struct nodes *s = nodes_of(m);
+		area = s->a[0].area;
+		want = 2 / area;
+		CHECK(g && fabs(g[(15 - 7) * 16 + 5] - want) <= 1e-6 * want);
+		free(s);
+		fb_free(fb);
+	}
+	unlink(path);
+	illum_free(m);
+}
+
+int main(void)
+{
+	RUN(t_conservation);
+	RUN(t_split);
+	RUN(t_uniform);
+	RUN(t_uniform_plane);
+	RUN(t_plane_sparse);
+	RUN(t_merge);
+	RUN(t_isolated);
+	RUN(t_auto_cell);
+	RUN(t_exr);
+	return test_done();
+}

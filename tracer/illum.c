@@ -1,0 +1,649 @@
+/* SPDX-License-Identifier: MIT */
+/* illum.c: sparse, tiled illumination maps (see illum.h for the conventions).
+ *
+ * Storage: nodes live in 16×16 tiles allocated on first deposit and found
+ * through an open-addressing hash table keyed by tile coordinates. The same
+ * table serves bounded domains and the unbounded plane, so memory grows with
+ * the number of tiles light reached, never with the surface. */
+#include "illum.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../common/arena.h"
+#include "output/exrout.h"
+#include "output/framebuffer.h"
+#include "shape.h"
+
+#define TN (ILLUM_TILE * ILLUM_TILE) /* nodes per tile */
+#define PLANE_LIMIT 1073741824.0     /* |node index| bound on the plane (2^30) */
+#define MAX_NODES (1L << 26)         /* node count bound per bounded axis */
+
+/* ==== 128-bit fixed point: value = (hi·2^64 + lo)·2^-96 =================== */
+
+struct fx {
+	uint64_t lo, hi; /* low and high 64 bits of the unsigned 128-bit integer */
+};
+
+/* Rounds d (≥ 0) to the nearest quantum; saturates at 2^32. */
+static struct fx fx_from(double d)
+{
+	struct fx r = {0, 0};
+	double m = rint(ldexp(d, 96));
+	if (!(m > 0))
+		return r;
+	if (!(m < 0x1p128))
+		return (struct fx){UINT64_MAX, UINT64_MAX};
+	double h = floor(ldexp(m, -64));
+	r.hi = (uint64_t)h;
+	r.lo = (uint64_t)(m - ldexp(h, 64));
+	return r;
+}
+
+static double fx_to_double(struct fx a) { return ldexp((double)a.hi, -32) + ldexp((double)a.lo, -96); }
+
+/* *a += b, saturating. */
+static void fx_add(struct fx *a, struct fx b)
+{
+	uint64_t lo = a->lo + b.lo, carry = lo < a->lo;
+	uint64_t hi = a->hi + b.hi, hi2 = hi + carry;
+	if (hi < a->hi || hi2 < hi) {
+		a->lo = a->hi = UINT64_MAX;
+		return;
+	}
+	a->lo = lo;
+	a->hi = hi2;
+}
+
+/* ==== the map ============================================================= */
+
+struct acc {
+	struct fx e[3];  /* energy per channel */
+	double sq[3];    /* Σ (w·e)² per channel */
+	uint64_t count;  /* deposits with nonzero weight here */
+};
+
+struct fin {
+	double irr[3];  /* irradiance (W/m²) */
+	double area;    /* A_node (m²) */
+	bool isolated;  /* discarded by the isolated-sample rule */
+};
+
+struct tile {
+	int32_t ti, tj;    /* tile coordinates (node i = ti·16 + k) */
+	struct acc n[TN];  /* accumulators, row-major (j then i inside the tile) */
+	struct fin *fin;   /* TN finished values, allocated by illum_finish */
+};
+
+struct axis {
+	double lo, hi; /* parameter interval (bounded axes) */
+	double step;   /* node spacing in parameter units */
+	long n;        /* node count (0: unbounded) */
+	bool wraps;    /* periodic: node n ≡ node 0 */
+	bool bounded;  /* false on the plane */
+};
+
+struct illum_map {
+	const struct object *obj; /* the primitive (world space via its xf) */
+	struct axis ax[2];        /* u and v */
+	struct tile **tiles;      /* allocated tiles, in order of allocation */
+	long ntiles, cap;         /* used and allocated entries of tiles[] */
+	long *slots;              /* hash: tile index + 1, 0 = empty */
+	long nslots;              /* power of two, > 2·ntiles */
+	long last;                /* tile index of the last deposit (cache), -1 */
+	bool finished;            /* irradiance is current */
+	long dropped;             /* deposits with non-finite (u,v) */
+	size_t bytes;             /* memory held */
+};
+
+static long floordiv(long a) { return a >= 0 ? a / ILLUM_TILE : -((-a + ILLUM_TILE - 1) / ILLUM_TILE); }
+
+static uint64_t tile_hash(int32_t ti, int32_t tj)
+{
+	uint64_t z = ((uint64_t)(uint32_t)ti << 32) | (uint32_t)tj;
+	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+	z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+	return z ^ (z >> 31);
+}
+
+/* Index of tile (ti,tj) in m->tiles, or -1. */
+static long tile_find(const struct illum_map *m, int32_t ti, int32_t tj)
+{
+	if (!m->nslots)
+		return -1;
+	for (uint64_t h = tile_hash(ti, tj);; h++) {
+		long s = m->slots[h & (uint64_t)(m->nslots - 1)];
+		if (!s)
+			return -1;
+		if (m->tiles[s - 1]->ti == ti && m->tiles[s - 1]->tj == tj)
+			return s - 1;
+	}
+}
+
+static void slot_insert(struct illum_map *m, long idx)
+{
+	const struct tile *t = m->tiles[idx];
+	uint64_t h = tile_hash(t->ti, t->tj);
+	while (m->slots[h & (uint64_t)(m->nslots - 1)])
+		h++;
+	m->slots[h & (uint64_t)(m->nslots - 1)] = idx + 1;
+}
+
+/* Appends a zeroed tile (ti,tj), growing the table; returns its index. */
+static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
+{
+	if (m->ntiles == m->cap) {
+		long cap = m->cap ? 2 * m->cap : 8;
+		m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
+		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
+		m->cap = cap;
+	}
+	struct tile *t = mem_calloc(1, sizeof *t);
+	t->ti = ti;
+	t->tj = tj;
+	m->tiles[m->ntiles++] = t;
+	m->bytes += sizeof *t;
+	if (2 * m->ntiles >= m->nslots) {
+		long ns = m->nslots ? 2 * m->nslots : 16;
+		free(m->slots);
+		m->bytes -= (size_t)m->nslots * sizeof *m->slots;
+		m->slots = mem_calloc((size_t)ns, sizeof *m->slots);
+		m->bytes += (size_t)ns * sizeof *m->slots;
+		m->nslots = ns;
+		for (long k = 0; k < m->ntiles; k++)
+			slot_insert(m, k);
+	} else {
+		slot_insert(m, m->ntiles - 1);
+	}
+	return m->ntiles - 1;
+}
+
+/* The accumulator of node (i,j), or NULL when its tile is absent and create
+ * is false. Indices must already be wrapped/clamped (axis_node). */
+static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
+{
+	long ti = floordiv(i), tj = floordiv(j), k;
+	if (m->last >= 0 && m->tiles[m->last]->ti == ti && m->tiles[m->last]->tj == tj)
+		k = m->last;
+	else if ((k = tile_find(m, (int32_t)ti, (int32_t)tj)) < 0) {
+		if (!create)
+			return NULL;
+		k = tile_add(m, (int32_t)ti, (int32_t)tj);
+	}
+	m->last = k;
+	return &m->tiles[k]->n[(j - tj * ILLUM_TILE) * ILLUM_TILE + (i - ti * ILLUM_TILE)];
+}
+
+/* Read-only lookup of node (i,j): its tile and slot, or NULL. */
+static const struct tile *node_tile(const struct illum_map *m, long i, long j, int *slot)
+{
+	long ti = floordiv(i), tj = floordiv(j);
+	long k = tile_find(m, (int32_t)ti, (int32_t)tj);
+	if (k < 0)
+		return NULL;
+	*slot = (int)((j - tj * ILLUM_TILE) * ILLUM_TILE + (i - ti * ILLUM_TILE));
+	return m->tiles[k];
+}
+
+/* ==== axes: parameter ↔ node indices ====================================== */
+
+/* Splits parameter x between nodes *i0 (weight 1 − *f) and *i1 (weight *f):
+ * wrapped on periodic axes, clamped to the edges of bounded ones. A point
+ * within 1e-9 spacings of a node is snapped onto it (then *f = 0). */
+static void axis_split(const struct axis *a, double x, long *i0, long *i1, double *f)
+{
+	double t = (x - a->lo) / a->step, r = nearbyint(t);
+	if (fabs(t - r) < 1e-9)
+		t = r;
+	if (a->wraps) {
+		t = fmod(t, (double)a->n);
+		if (t < 0)
+			t += (double)a->n;
+		long i = (long)floor(t);
+		if (i >= a->n)
+			i -= a->n;
+		*f = t - floor(t);
+		*i0 = i;
+		*i1 = i + 1 == a->n ? 0 : i + 1;
+		return;
+	}
+	double lo = a->bounded ? 0 : -PLANE_LIMIT, hi = a->bounded ? (double)(a->n - 1) : PLANE_LIMIT;
+	t = fmin(fmax(t, lo), hi);
+	long i = (long)floor(t);
+	if (a->bounded && i > a->n - 2)
+		i = a->n - 2;
+	*f = t - (double)i;
+	*i0 = i;
+	*i1 = i + 1;
+}
+
+/* Node index i + d on axis a: wrapped, or -1 past a bounded edge. */
+static long axis_step(const struct axis *a, long i, long d)
+{
+	if (a->wraps)
+		return ((i + d) % a->n + a->n) % a->n;
+	if (a->bounded && (i + d < 0 || i + d >= a->n))
+		return -1;
+	return i + d;
+}
+
+static double axis_node(const struct axis *a, long i)
+{
+	if (a->bounded && !a->wraps && i == a->n - 1)
+		return a->hi;
+	return a->lo + (double)i * a->step;
+}
+
+/* Sets up a bounded axis [lo,hi] with `intervals` spacings. */
+static void axis_bounded(struct axis *a, double lo, double hi, bool wraps, long intervals)
+{
+	a->lo = lo;
+	a->hi = hi;
+	a->wraps = wraps;
+	a->bounded = true;
+	if (wraps && intervals < 3)
+		intervals = 3;
+	a->n = wraps ? intervals : intervals + 1;
+	a->step = (hi - lo) / (double)intervals;
+}
+
+/* The longest world length of the curves along parameter `axis` (0: u, 1: v)
+ * at 33 values of the other parameter, each as a 64-segment polyline. */
+static double max_curve_length(const struct object *o, const struct uv_range *r, int axis)
+{
+	double best = 0;
+	for (int k = 0; k <= 32; k++) {
+		double len = 0;
+		struct vec3 prev = {0, 0, 0}, p;
+		for (int s = 0; s <= 64; s++) {
+			double a = axis ? r->v0 + (r->v1 - r->v0) * s / 64.0 : r->u0 + (r->u1 - r->u0) * s / 64.0;
+			double b = axis ? r->u0 + (r->u1 - r->u0) * k / 32.0 : r->v0 + (r->v1 - r->v0) * k / 32.0;
+			if (!shape_uv_point(o, axis ? b : a, axis ? a : b, &p, NULL, NULL))
+				return 0;
+			if (s)
+				len += v_len(v_sub(p, prev));
+			prev = p;
+		}
+		best = fmax(best, len);
+	}
+	return best;
+}
+
+/* ==== construction ======================================================== */
+
+struct illum_map *illum_new(const struct object *o, const struct illum_spec *spec)
+{
+	struct uv_range r;
+	if (!o || !spec || !shape_uv_range(o, &r))
+		return NULL;
+	struct illum_map *m = mem_calloc(1, sizeof *m);
+	m->obj = o;
+	m->last = -1;
+	m->bytes = sizeof *m;
+	if (!r.bounded) {
+		struct vec3 p, pu, pv;
+		if (!(spec->cell > 0) || !shape_uv_point(o, 0, 0, &p, &pu, &pv) || !(v_len(pu) > 0) ||
+		    !(v_len(pv) > 0))
+			goto fail;
+		m->ax[0] = (struct axis){0, 0, spec->cell / v_len(pu), 0, false, false};
+		m->ax[1] = (struct axis){0, 0, spec->cell / v_len(pv), 0, false, false};
+		return m;
+	}
+	long n[2];
+	if (spec->resolution > 0) {
+		n[0] = n[1] = spec->resolution;
+	} else if (spec->cell > 0) {
+		for (int a = 0; a < 2; a++) {
+			double q = ceil(max_curve_length(o, &r, a) / spec->cell * (1 - 1e-9));
+			if (!(q <= (double)MAX_NODES))
+				goto fail;
+			n[a] = q < 1 ? 1 : (long)q;
+		}
+		if (o->kind == OBJ_BOX) { /* nodes on the atlas's face boundaries */
+			n[0] = (n[0] + 2) / 3 * 3;
+			n[1] = (n[1] + 1) / 2 * 2;
+		}
+	} else {
+		goto fail;
+	}
+	if (n[0] > MAX_NODES || n[1] > MAX_NODES)
+		goto fail;
+	axis_bounded(&m->ax[0], r.u0, r.u1, r.u_wraps, n[0]);
+	axis_bounded(&m->ax[1], r.v0, r.v1, r.v_wraps, n[1]);
+	return m;
+fail:
+	free(m);
+	return NULL;
+}
+
+struct illum_map *illum_new_like(const struct illum_map *src)
+{
+	struct illum_map *m = mem_calloc(1, sizeof *m);
+	m->obj = src->obj;
+	m->ax[0] = src->ax[0];
+	m->ax[1] = src->ax[1];
+	m->last = -1;
+	m->bytes = sizeof *m;
+	return m;
+}
+
+void illum_free(struct illum_map *m)
+{
+	if (!m)
+		return;
+	for (long k = 0; k < m->ntiles; k++) {
+		free(m->tiles[k]->fin);
+		free(m->tiles[k]);
+	}
+	free(m->tiles);
+	free(m->slots);
+	free(m);
+}
+
+void illum_grid(const struct illum_map *m, long *nu, long *nv, double *du, double *dv)
+{
+	if (nu)
+		*nu = m->ax[0].n;
+	if (nv)
+		*nv = m->ax[1].n;
+	if (du)
+		*du = m->ax[0].step;
+	if (dv)
+		*dv = m->ax[1].step;
+}
+
+void illum_node_uv(const struct illum_map *m, long i, long j, double *u, double *v)
+{
+	*u = axis_node(&m->ax[0], i);
+	*v = axis_node(&m->ax[1], j);
+}
+
+/* ==== deposit and merge =================================================== */
+
+static void acc_add(struct acc *n, double w, const double e[3])
+{
+	for (int c = 0; c < 3; c++) {
+		double x = w * e[c];
+		fx_add(&n->e[c], fx_from(x));
+		n->sq[c] += x * x;
+	}
+	n->count++;
+}
+
+void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
+{
+	if (!isfinite(u) || !isfinite(v)) {
+		m->dropped++;
+		return;
+	}
+	double e[3];
+	for (int c = 0; c < 3; c++)
+		e[c] = energy[c] > 0 ? energy[c] : 0; /* NaN and negatives → 0 */
+	if (e[0] == 0 && e[1] == 0 && e[2] == 0)
+		return;
+	long iu[2], iv[2];
+	double fu, fv;
+	axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
+	axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
+	double wu[2] = {1 - fu, fu}, wv[2] = {1 - fv, fv};
+	for (int b = 0; b < 2; b++)
+		for (int a = 0; a < 2; a++) {
+			double w = wu[a] * wv[b];
+			if (w > 0)
+				acc_add(node_acc(m, iu[a], iv[b], true), w, e);
+		}
+	m->finished = false;
+}
+
+static bool same_axis(const struct axis *a, const struct axis *b)
+{
+	return a->lo == b->lo && a->hi == b->hi && a->step == b->step && a->n == b->n &&
+	       a->wraps == b->wraps && a->bounded == b->bounded;
+}
+
+bool illum_merge(struct illum_map *dst, const struct illum_map *src)
+{
+	if (dst->obj != src->obj || !same_axis(&dst->ax[0], &src->ax[0]) ||
+	    !same_axis(&dst->ax[1], &src->ax[1]))
+		return false;
+	for (long k = 0; k < src->ntiles; k++) {
+		const struct tile *s = src->tiles[k];
+		long di = tile_find(dst, s->ti, s->tj);
+		if (di < 0)
+			di = tile_add(dst, s->ti, s->tj);
+		struct tile *d = dst->tiles[di];
+		for (int q = 0; q < TN; q++) {
+			for (int c = 0; c < 3; c++) {
+				fx_add(&d->n[q].e[c], s->n[q].e[c]);
+				d->n[q].sq[c] += s->n[q].sq[c];
+			}
+			d->n[q].count += s->n[q].count;
+		}
+	}
+	dst->dropped += src->dropped;
+	dst->finished = false;
+	return true;
+}
+
+/* ==== finish: energy → irradiance ========================================= */
+
+/* A_node = ∫ φ dA with φ(u,v) = tent(u)·tent(v), the node's bilinear weight.
+ * A tent of half-width h is the average of centred boxes of half-width
+ * s ∈ [0,h]: tent(x) = (1/h)∫₀ʰ [|x| < s] ds. So
+ *   A_node = (1/(hu·hv)) ∫₀^hu ∫₀^hv C(s,t) ds dt,
+ *   C(s,t) = shape_cell_area([u−s,u+s]×[v−t,v+t]),
+ * which clips at domain edges exactly as the bilinear split does (half tents
+ * at edge nodes). C is linear in s and t for planar pieces and smooth for
+ * the curved ones (e.g. ∝ s·sin πt at a sphere pole), so 4×4 Gauss–Legendre
+ * is exact or close to machine precision; atlas kinks (box faces) fall on
+ * nodes when the map follows the box rule. */
+static double node_area(const struct illum_map *m, long i, long j)
+{
+	static const double x[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+	                            0.8611363115940526};
+	static const double w[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+	                            0.3478548451374538};
+	double u = axis_node(&m->ax[0], i), v = axis_node(&m->ax[1], j), a = 0;
+	double hu = m->ax[0].step, hv = m->ax[1].step;
+	for (int k = 0; k < 4; k++) {
+		double s = 0.5 * hu * (1 + x[k]);
+		for (int l = 0; l < 4; l++) {
+			double t = 0.5 * hv * (1 + x[l]);
+			a += 0.25 * w[k] * w[l] * shape_cell_area(m->obj, u - s, u + s, v - t, v + t);
+		}
+	}
+	return a;
+}
+
+/* Pitfall 2, the isolated-sample rule: a node is ISOLATED when the deposit
+ * counts of the 5×5 nodes around it (itself and everything within two
+ * spacings, wrapping and clipping as the axes do) add up to at most 4, i.e.
+ * at most one ray's bilinear splat reached that neighbourhood. Its energy is
+ * then left out of the irradiance (and reported). At the density pitfall 1
+ * asks for (≥ 16 rays per node, so ~1600 touches per 5×5 block) a converged
+ * map has no such node, and the rule removes exactly nothing. */
+static bool node_isolated(const struct illum_map *m, long i, long j, uint64_t own)
+{
+	if (own > 4)
+		return false;
+	long ru = m->ax[0].wraps ? (m->ax[0].n - 1) / 2 : 2, rv = m->ax[1].wraps ? (m->ax[1].n - 1) / 2 : 2;
+	ru = ru > 2 ? 2 : ru;
+	rv = rv > 2 ? 2 : rv;
+	uint64_t sum = 0;
+	for (long dj = -rv; dj <= rv; dj++)
+		for (long di = -ru; di <= ru; di++) {
+			long a = axis_step(&m->ax[0], i, di), b = axis_step(&m->ax[1], j, dj);
+			int slot;
+			const struct tile *t = a < 0 || b < 0 ? NULL : node_tile(m, a, b, &slot);
+			if (t && (sum += t->n[slot].count) > 4)
+				return false;
+		}
+	return true;
+}
+
+void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
+{
+	double rem[3] = {0, 0, 0};
+	for (long k = 0; k < m->ntiles; k++) {
+		struct tile *t = m->tiles[k];
+		if (!t->fin) {
+			t->fin = mem_calloc(TN, sizeof *t->fin);
+			m->bytes += TN * sizeof *t->fin;
+		}
+		for (int q = 0; q < TN; q++) {
+			struct fin *f = &t->fin[q];
+			memset(f, 0, sizeof *f);
+			if (!t->n[q].count)
+				continue;
+			long i = (long)t->ti * ILLUM_TILE + q % ILLUM_TILE;
+			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
+			f->area = node_area(m, i, j);
+			f->isolated = discard_isolated && node_isolated(m, i, j, t->n[q].count);
+			for (int c = 0; c < 3; c++) {
+				double e = fx_to_double(t->n[q].e[c]);
+				if (f->isolated)
+					rem[c] += e;
+				else if (f->area > 0)
+					f->irr[c] = e / f->area;
+			}
+		}
+	}
+	if (removed)
+		memcpy(removed, rem, sizeof rem);
+	m->finished = true;
+}
+
+void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
+{
+	out[0] = out[1] = out[2] = 0;
+	if (!m->finished || !isfinite(u) || !isfinite(v))
+		return;
+	long iu[2], iv[2];
+	double fu, fv;
+	axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
+	axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
+	double wu[2] = {1 - fu, fu}, wv[2] = {1 - fv, fv};
+	for (int b = 0; b < 2; b++)
+		for (int a = 0; a < 2; a++) {
+			double w = wu[a] * wv[b];
+			int slot;
+			const struct tile *t = w > 0 ? node_tile(m, iu[a], iv[b], &slot) : NULL;
+			if (t)
+				for (int c = 0; c < 3; c++)
+					out[c] += w * t->fin[slot].irr[c];
+		}
+}
+
+/* ==== queries ============================================================= */
+
+void illum_total(const struct illum_map *m, double out[3])
+{
+	struct fx s[3] = {{0, 0}, {0, 0}, {0, 0}};
+	for (long k = 0; k < m->ntiles; k++)
+		for (int q = 0; q < TN; q++)
+			for (int c = 0; c < 3; c++)
+				fx_add(&s[c], m->tiles[k]->n[q].e[c]);
+	for (int c = 0; c < 3; c++)
+		out[c] = fx_to_double(s[c]);
+}
+
+long illum_dropped(const struct illum_map *m) { return m->dropped; }
+size_t illum_memory(const struct illum_map *m) { return m->bytes; }
+long illum_tiles(const struct illum_map *m) { return m->ntiles; }
+
+static int tile_cmp(const void *pa, const void *pb)
+{
+	const struct tile *a = *(const struct tile *const *)pa, *b = *(const struct tile *const *)pb;
+	if (a->tj != b->tj)
+		return a->tj < b->tj ? -1 : 1;
+	return a->ti < b->ti ? -1 : a->ti > b->ti;
+}
+
+/* The tiles sorted by (tj, ti); free the result. */
+static struct tile **sorted_tiles(const struct illum_map *m)
+{
+	struct tile **s = mem_alloc((size_t)(m->ntiles ? m->ntiles : 1) * sizeof *s);
+	if (m->ntiles)
+		memcpy(s, m->tiles, (size_t)m->ntiles * sizeof *s);
+	qsort(s, (size_t)m->ntiles, sizeof *s, tile_cmp);
+	return s;
+}
+
+void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct illum_node *n),
+                void *ctx)
+{
+	struct tile **s = sorted_tiles(m);
+	for (long k = 0; k < m->ntiles; k++)
+		for (int q = 0; q < TN; q++) {
+			const struct acc *a = &s[k]->n[q];
+			if (!a->count)
+				continue;
+			struct illum_node n;
+			memset(&n, 0, sizeof n);
+			n.i = (long)s[k]->ti * ILLUM_TILE + q % ILLUM_TILE;
+			n.j = (long)s[k]->tj * ILLUM_TILE + q / ILLUM_TILE;
+			illum_node_uv(m, n.i, n.j, &n.u, &n.v);
+			for (int c = 0; c < 3; c++) {
+				n.energy[c] = fx_to_double(a->e[c]);
+				n.sumsq[c] = a->sq[c];
+			}
+			n.count = a->count;
+			if (m->finished && s[k]->fin) {
+				n.area = s[k]->fin[q].area;
+				n.isolated = s[k]->fin[q].isolated;
+				memcpy(n.irr, s[k]->fin[q].irr, sizeof n.irr);
+			}
+			fn(ctx, &n);
+		}
+	free(s);
+}
+
+double illum_auto_cell(double rays, double area, double rays_per_node)
+{
+	if (!(rays > 0) || !(area > 0) || !isfinite(area))
+		return 0;
+	if (!(rays_per_node > 0))
+		rays_per_node = ILLUM_RAYS_PER_NODE;
+	return sqrt(rays_per_node * area / rays);
+}
+
+const char *illum_write_exr(const struct illum_map *m, const char *path)
+{
+	if (!m->finished || !m->ntiles)
+		return out_errorf("cannot write '%s': the map is empty or not finished", path);
+	long i0 = LONG_MAX, j0 = LONG_MAX, i1 = LONG_MIN, j1 = LONG_MIN; /* node extent, inclusive */
+	for (long k = 0; k < m->ntiles; k++) {
+		const struct tile *t = m->tiles[k];
+		long ti = (long)t->ti * ILLUM_TILE, tj = (long)t->tj * ILLUM_TILE;
+		i0 = ti < i0 ? ti : i0;
+		j0 = tj < j0 ? tj : j0;
+		i1 = ti + ILLUM_TILE - 1 > i1 ? ti + ILLUM_TILE - 1 : i1;
+		j1 = tj + ILLUM_TILE - 1 > j1 ? tj + ILLUM_TILE - 1 : j1;
+	}
+	for (int a = 0; a < 2; a++) /* bounded axes: clip to the grid */
+		if (m->ax[a].bounded) {
+			long *hi = a ? &j1 : &i1;
+			*hi = *hi > m->ax[a].n - 1 ? m->ax[a].n - 1 : *hi;
+		}
+	long w = i1 - i0 + 1, h = j1 - j0 + 1;
+	if (w * h > (1L << 28))
+		return out_errorf("cannot write '%s': map extent %ldx%ld too large", path, w, h);
+	struct framebuffer *fb = fb_new((int)w, (int)h);
+	float *pl[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
+	for (long k = 0; k < m->ntiles; k++) {
+		const struct tile *t = m->tiles[k];
+		for (int q = 0; q < TN; q++) {
+			long i = (long)t->ti * ILLUM_TILE + q % ILLUM_TILE;
+			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
+			if (i > i1 || j > j1)
+				continue;
+			for (int c = 0; c < 3; c++)
+				pl[c][(j1 - j) * w + (i - i0)] = (float)t->fin[q].irr[c];
+		}
+	}
+	const char *err = out_exr_write(fb, path, NULL);
+	fb_free(fb);
+	return err;
+}
