@@ -1,0 +1,235 @@
+/* SPDX-License-Identifier: MIT */
+/* test_caustics.c: the light pass against the analytic caustic references
+ * (tests/accuracy/, from the project's refs: mirror A, glass sphere B, glass
+ * slab C). Metric as the references prescribe: flux-weighted relative L1 of
+ * binned flux, L1 <= 1.5·L1_noise + 0.5 %, and total flux to 0.5 %. The map's
+ * node energies are binned by the node's position (bilinear splats conserve
+ * energy; the ±h smear at bin edges is what the 0.5 % allows for). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../common/diag.h"
+#include "../../eval/eval.h"
+#include "../../tracer/bvh.h"
+#include "../../tracer/lightpass.h"
+#include "../../tracer/shape.h"
+#include "test.h"
+
+#define RAYS 1000000L
+
+struct run {
+	struct scene s;
+	struct bvh *b;
+	struct lp_result *r;
+	struct lp_stats st;
+	const struct object *floor; /* the last object: the plane */
+};
+
+/* Evaluates a scene (with one -D) and runs the light pass on it. */
+static int start(struct run *R, const char *path, const char *define, int channel, bool transmit_only)
+{
+	struct diag dg;
+	diag_init(&dg, stderr);
+	struct eval_options eo;
+	eval_default_options(&eo);
+	const char *defs[1] = {define};
+	eo.defines = defs;
+	eo.ndefines = define ? 1 : 0;
+	if (eval_scene(path, &eo, &dg, &R->s) != 0)
+		return 0;
+	R->b = bvh_build(R->s.objects, R->s.nobjects);
+	struct mat_cache mc;
+	memset(&mc, 0, sizeof mc);
+	struct lp_opts o = {.rays = RAYS, .max_depth = 10, .min_weight = 1e-9, .threads = 2,
+	                    .channel = channel, .transmit_only = transmit_only};
+	R->r = lp_run(&R->s, R->b, &mc, &o, &R->st);
+	R->floor = R->s.objects[R->s.nobjects - 1];
+	return R->r != NULL && lp_map(R->r, R->floor) != NULL;
+}
+
+static void stop(struct run *R)
+{
+	lp_free(R->r);
+	bvh_free(R->b);
+	scene_free(&R->s);
+}
+
+/* ---- binning ------------------------------------------------------------ */
+
+struct bins {
+	const struct object *floor;
+	int radial;       /* 1: annuli of width w from the y axis; 0: grid cells */
+	double w;         /* bin width */
+	double x0, z0;    /* grid origin */
+	int nx, nz;       /* grid size (radial: nx annuli) */
+	double *flux;     /* per bin, green channel */
+	int channel;
+};
+
+static void bin_node(void *ctx, const struct illum_node *n)
+{
+	struct bins *B = ctx;
+	struct vec3 p, du, dv;
+	shape_uv_point(B->floor, n->u, n->v, &p, &du, &dv);
+	if (B->radial) {
+		int k = (int)(sqrt(p.x * p.x + p.z * p.z) / B->w);
+		if (k < B->nx)
+			B->flux[k] += n->energy[B->channel];
+	} else {
+		double fx = (p.x - B->x0) / B->w, fz = (p.z - B->z0) / B->w;
+		if (fx >= 0 && fz >= 0 && fx < B->nx && fz < B->nz)
+			B->flux[(int)fx * B->nz + (int)fz] += n->energy[B->channel];
+	}
+}
+
+/* Reads column `col` (0-based) of a reference CSV, at most n rows. */
+static int read_column(const char *path, int col, double *out, int n)
+{
+	FILE *f = fopen(path, "r");
+	char line[1024];
+	int k = 0;
+	if (!f || !fgets(line, sizeof line, f))
+		return 0;
+	while (k < n && fgets(line, sizeof line, f)) {
+		char *p = line;
+		for (int c = 0; c < col && p; c++)
+			p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL;
+		if (!p)
+			break;
+		out[k++] = strtod(p, NULL);
+	}
+	fclose(f);
+	return k;
+}
+
+/* Flux-weighted relative L1 and its noise-only expectation. */
+static void compare(const double *got, const double *ref, int n, double w, double *l1, double *noise,
+                    double *got_total, double *ref_total)
+{
+	double d = 0, t = 0, g = 0, s = 0;
+	for (int k = 0; k < n; k++) {
+		d += fabs(got[k] - ref[k]);
+		t += ref[k];
+		g += got[k];
+		s += sqrt(w * ref[k]);
+	}
+	*l1 = d / t;
+	*noise = sqrt(2 / M_PI) * s / t;
+	*got_total = g;
+	*ref_total = t;
+}
+
+/* Radial scenes B and C: 60 annuli of 0.05 out to r = 3. */
+static void radial_case(const char *scene, const char *define, const char *csv, int col, double exact_total)
+{
+	struct run R;
+	CHECK(start(&R, scene, define, -1, true));
+	if (!R.r)
+		return;
+	double flux[60] = {0}, ref[60];
+	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1};
+	illum_each(lp_map(R.r, R.floor), bin_node, &B);
+	CHECK(read_column(csv, col, ref, 60) == 60);
+	double l1, noise, g, t;
+	compare(flux, ref, 60, R.st.emitted[1] / (double)R.st.rays, &l1, &noise, &g, &t);
+	printf("# %s %s: L1 %.5f (noise %.5f), flux r<=3 %.6g (ref %.6g), deposited %.7g\n", scene,
+	       define, l1, noise, g, t, R.st.deposited[1]);
+	CHECK(l1 <= 1.5 * noise + 0.005);
+	CHECK_NEAR(g / t, 1, 0.005);
+	CHECK(R.st.deposited[1] <= R.st.emitted[1]);
+	if (exact_total > 0)
+		CHECK_NEAR(R.st.deposited[1] / exact_total, 1, 0.005);
+	stop(&R);
+}
+
+static void t_sphere_ideal(void)
+{
+	radial_case("tests/accuracy/sphere.scn", "Fresnel=0", "tests/accuracy/B_profile_binned_0.05.csv", 3,
+	            0.0644446);
+}
+
+static void t_sphere_fresnel(void)
+{
+	radial_case("tests/accuracy/sphere.scn", "Fresnel=1", "tests/accuracy/B_profile_binned_0.05.csv", 5,
+	            0.0538253);
+}
+
+static void t_slab_ideal(void)
+{
+	radial_case("tests/accuracy/slab.scn", "Fresnel=0", "tests/accuracy/C_profile_binned_0.05.csv", 6, 0);
+}
+
+static void t_slab_fresnel(void)
+{
+	radial_case("tests/accuracy/slab.scn", "Fresnel=1", "tests/accuracy/C_profile_binned_0.05.csv", 7, 0);
+}
+
+/* Energy: for the lossless sphere, the maps hold exactly what entered it
+ * (2π(1 − cos θmax), θmax = asin(1/7)) to 0.1 %. */
+static void t_energy_lossless(void)
+{
+	struct run R;
+	CHECK(start(&R, "tests/accuracy/sphere.scn", "Fresnel=0", -1, false));
+	double entering = 2 * M_PI * (1 - cos(asin(1.0 / 7)));
+	CHECK_NEAR(R.st.deposited[1] / entering, 1, 0.001);
+	CHECK(R.st.deposited[0] <= R.st.emitted[0] && R.st.deposited[2] <= R.st.emitted[2]);
+	stop(&R);
+}
+
+/* Mirror A, reflectance 1: 0.1 cells over x in [-3, 1], z in [-4, 4]. */
+static void t_mirror(void)
+{
+	struct run R;
+	CHECK(start(&R, "tests/accuracy/mirror.scn", NULL, -1, false));
+	if (!R.r)
+		return;
+	enum { NX = 40, NZ = 80 };
+	static double flux[NX * NZ], ref[NX * NZ];
+	memset(flux, 0, sizeof flux);
+	struct bins B = {R.floor, 0, 0.1, -3, -4, NX, NZ, flux, 1};
+	illum_each(lp_map(R.r, R.floor), bin_node, &B);
+	CHECK(read_column("tests/accuracy/A_grid_cellavg_0.1.csv", 5, ref, NX * NZ) == NX * NZ);
+	for (int k = 0; k < NX * NZ; k++)
+		ref[k] *= 0.01; /* Ebar × cell area */
+	double l1, noise, g, t;
+	compare(flux, ref, NX * NZ, R.st.emitted[1] / (double)R.st.rays, &l1, &noise, &g, &t);
+	printf("# mirror: L1 %.5f (noise %.5f), flux in the grid %.6g (ref %.6g), on the floor %.7g (exact 1.3694384)\n",
+	       l1, noise, g, t, R.st.deposited[1]);
+	CHECK(l1 <= 1.5 * noise + 0.005);
+	CHECK_NEAR(g / t, 1, 0.005);
+	/* all reflected light reaches the floor: the solid angle of the mirror's lower half */
+	CHECK_NEAR(R.st.deposited[1] / 1.3694384, 1, 0.005);
+	stop(&R);
+}
+
+/* Chromatic aberration: with dispersion the red pass (lower index) focuses
+ * farther from the sphere, nearer the floor, than the blue one: red is
+ * brighter at the centre. */
+static void t_dispersion(void)
+{
+	double centre[3];
+	for (int c = 0; c < 3; c += 2) {
+		struct run R;
+		CHECK(start(&R, "tests/accuracy/dispersion.scn", NULL, c, false));
+		double e[3];
+		lp_lookup(R.r, R.floor, 0, 0, e);
+		centre[c] = e[c];
+		CHECK(e[1] == 0 && e[2 - c] == 0); /* a channel pass carries its channel only */
+		stop(&R);
+	}
+	printf("# dispersion: centre irradiance red %.5g blue %.5g\n", centre[0], centre[2]);
+	CHECK(centre[0] > 1.05 * centre[2]);
+}
+
+int main(void)
+{
+	RUN(t_sphere_ideal);
+	RUN(t_sphere_fresnel);
+	RUN(t_slab_ideal);
+	RUN(t_slab_fresnel);
+	RUN(t_energy_lossless);
+	RUN(t_mirror);
+	RUN(t_dispersion);
+	srcfile_free_all();
+	return test_done();
+}

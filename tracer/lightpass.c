@@ -1,0 +1,475 @@
+/* SPDX-License-Identifier: MIT */
+/* lightpass.c: Arvo's light pass (see lightpass.h).
+ *
+ * Steps: find the specular objects and the cone of directions each subtends
+ * from each light; shoot a stratified set of rays into each cone (a direction
+ * already covered by an earlier cone is skipped, so overlapping cones count
+ * light once); follow every ray through reflection and refraction; record
+ * each diffuse landing (after at least one specular bounce) as a hit record;
+ * then give each surface that was reached a map (its illum_map { } or a cell
+ * size chosen from the ray count: pitfall 1) and deposit the records.
+ * Map sums are exact (illum.h), so the result is the same for any thread
+ * count. */
+#include "lightpass.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "optics.h"
+#include "sampler.h"
+#include "shape.h"
+
+#define CHUNK 4096 /* rays per work item */
+
+/* A diffuse landing, kept until the maps exist. */
+struct rec {
+	const struct object *obj; /* primitive hit */
+	double u, v;              /* where on it */
+	double e[3];              /* energy per channel (W) */
+	struct vec3 p;            /* world point (for the automatic cell size) */
+};
+
+struct recbuf {
+	struct rec *r;
+	long n, cap;
+};
+
+/* The cone of directions toward one specular object from one light. */
+struct target {
+	struct vec3 axis;  /* unit direction to the bounds' centre */
+	struct vec3 t1, t2;/* frame around axis */
+	double cosmax;     /* cosine of the half-angle (-1: every direction) */
+	double omega;      /* solid angle, sr */
+	long side;         /* rays per side of the stratified grid (side² rays) */
+};
+
+/* One work item: rays [first, first+count) of target k of light l. */
+struct item {
+	int light, target;
+	long first, count;
+};
+
+struct lp_result {
+	const struct object **objs; /* primitives with a map, deterministic order */
+	struct illum_map **maps;
+	int n;
+};
+
+struct job {
+	const struct scene *s;
+	const struct bvh *b;
+	const struct mat_cache *mc;
+	const struct lp_opts *o;
+	struct target **targets;    /* per light */
+	int *ntargets;              /* per light */
+	struct item *items;
+	long nitems;
+	atomic_long next;           /* next item to take */
+};
+
+struct worker {
+	struct job *job;
+	struct recbuf recs;
+	long long segments;
+	double emitted[3];
+};
+
+static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+
+static double eps_at(struct vec3 p)
+{
+	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+}
+
+/* ==== which objects can form caustics ==================================== */
+
+/* True when o (or a part of it) reflects or transmits light specularly. */
+static bool is_specular(const struct object *o)
+{
+	if (o->kind >= OBJ_UNION) {
+		for (int i = 0; i < o->g.csg.n; i++)
+			if (is_specular(o->g.csg.kids[i]))
+				return true;
+		return false;
+	}
+	const struct texture *t = mat_texture(o);
+	const struct finish *f = &t->finish;
+	const struct pigment *p = &t->pigment;
+	bool refl = maxc(opt_rgb(f->refl_min)) > 0 || maxc(opt_rgb(f->refl_max)) > 0;
+	bool trans = p->kind == PIG_SOLID ? p->c[0].f + p->c[0].t > 0 : true;
+	return refl || trans;
+}
+
+bool lp_dispersive(const struct scene *s)
+{
+	for (int i = 0; i < s->nobjects; i++) {
+		const struct object *stack[64];
+		int n = 0;
+		stack[n++] = s->objects[i];
+		while (n > 0) {
+			const struct object *o = stack[--n];
+			if (o->interior && o->interior->dispersion != 1)
+				return true;
+			if (o->kind >= OBJ_UNION)
+				for (int k = 0; k < o->g.csg.n && n < 64; k++)
+					stack[n++] = o->g.csg.kids[k];
+		}
+	}
+	return false;
+}
+
+/* The cone from light position L that holds bounds bb. */
+static struct target cone_to(struct vec3 L, struct bbox bb)
+{
+	struct target t;
+	memset(&t, 0, sizeof t);
+	t.cosmax = -1;
+	t.axis = v3(0, -1, 0);
+	if (isfinite(bb.lo.x) && isfinite(bb.hi.x) && isfinite(bb.lo.y) && isfinite(bb.hi.y) &&
+	    isfinite(bb.lo.z) && isfinite(bb.hi.z)) {
+		struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
+		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9), d = v_len(v_sub(c, L));
+		if (d > r) {
+			t.axis = v_scale(v_sub(c, L), 1 / d);
+			t.cosmax = sqrt(1 - (r / d) * (r / d));
+		}
+	}
+	t.omega = 2 * M_PI * (1 - t.cosmax);
+	struct vec3 a = fabs(t.axis.x) < 0.9 ? v3(1, 0, 0) : v3(0, 1, 0);
+	t.t1 = v_norm(v_cross(a, t.axis));
+	t.t2 = v_cross(t.axis, t.t1);
+	return t;
+}
+
+static bool in_cone(const struct target *t, struct vec3 d) { return v_dot(d, t->axis) >= t->cosmax; }
+
+/* ==== tracing ============================================================ */
+
+static void record(struct worker *w, const struct hit *h, const double e[3])
+{
+	struct recbuf *rb = &w->recs;
+	if (rb->n == rb->cap) {
+		rb->cap = rb->cap ? rb->cap * 2 : 4096;
+		rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)rb->cap);
+	}
+	rb->r[rb->n++] = (struct rec){h->obj, h->u, h->v, {e[0], e[1], e[2]}, h->p};
+}
+
+/* The index of refraction of an interior for this pass's channel. */
+static double pass_ior(const struct lp_opts *o, const struct interior *in)
+{
+	double ior = in->ior > 0 ? in->ior : 1;
+	if (o->channel < 0 || in->dispersion == 1)
+		return ior;
+	double k = sqrt(in->dispersion);
+	return o->channel == 0 ? ior / k : o->channel == 2 ? ior * k : ior;
+}
+
+/* Follows one light ray; nspec counts its specular bounces so far. */
+static void trace(struct worker *w, struct ray r, const double e[3], double cutoff, int depth, int nspec)
+{
+	const struct job *J = w->job;
+	struct hit h;
+	w->segments++;
+	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h))
+		return;
+	const struct texture *tex = mat_texture(h.obj);
+	struct colour pc = mat_pigment(J->mc, &tex->pigment, h.p);
+	struct vec3 d = v_norm(r.d);
+	struct vec3 nf = v_dot(h.n, d) < 0 ? h.n : v_neg(h.n);
+	double opacity = 1 - pc.f - pc.t;
+	if (tex->finish.diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct))
+		record(w, &h, e);
+	if (depth >= J->o->max_depth)
+		return;
+	double ior = pass_ior(J->o, mat_interior(h.obj));
+	double n1 = h.entering ? 1 : ior, n2 = h.entering ? ior : 1, ci = -v_dot(d, nf), eps = eps_at(h.p);
+	struct vec3 R = opt_reflection(&tex->finish, pc, ci, n1, n2), T = opt_transmission(pc), td;
+	if (maxc(T) > 0) {
+		if (!opt_refract(d, nf, n1 / n2, &td)) {
+			R = v_add(R, T); /* total internal reflection */
+		} else {
+			if (tex->finish.refl_fresnel || tex->finish.conserve_energy)
+				T = v_mul(T, v_sub(v3(1, 1, 1), R));
+			double te[3] = {e[0] * T.x, e[1] * T.y, e[2] * T.z};
+			if (fmax(te[0], fmax(te[1], te[2])) > cutoff)
+				trace(w, (struct ray){v_madd(h.p, nf, -eps), td}, te, cutoff, depth + 1, nspec + 1);
+		}
+	}
+	if (maxc(R) > 0 && !J->o->transmit_only) {
+		double re[3] = {e[0] * R.x, e[1] * R.y, e[2] * R.z};
+		if (fmax(re[0], fmax(re[1], re[2])) > cutoff)
+			trace(w, (struct ray){v_madd(h.p, nf, eps), opt_reflect(d, nf)}, re, cutoff, depth + 1, nspec + 1);
+	}
+}
+
+/* Shoots the rays of one work item. */
+static void run_item(struct worker *w, const struct item *it)
+{
+	const struct job *J = w->job;
+	const struct light *l = &J->s->lights[it->light];
+	const struct target *tg = J->targets[it->light];
+	const struct target *t = &tg[it->target];
+	long n = t->side * t->side;
+	double scale = t->omega / (double)n;
+	double e0[3] = {l->colour.r * scale, l->colour.g * scale, l->colour.b * scale};
+	if (J->o->channel >= 0)
+		for (int c = 0; c < 3; c++)
+			if (c != J->o->channel)
+				e0[c] = 0;
+	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
+	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
+	for (long i = it->first; i < it->first + it->count; i++) {
+		/* stratified in (cos θ, φ) over the cone */
+		double sx = ((double)(i % t->side) + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
+		double sy = ((double)(i / t->side) + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
+		double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct)), ph = 2 * M_PI * sy;
+		struct vec3 d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+		bool covered = false;
+		for (int k = 0; k < it->target && !covered; k++)
+			covered = in_cone(&tg[k], d);
+		if (covered)
+			continue;
+		for (int c = 0; c < 3; c++)
+			w->emitted[c] += e0[c];
+		trace(w, (struct ray){l->pos, d}, e0, cutoff, 0, 0);
+	}
+}
+
+static void *work(void *arg)
+{
+	struct worker *w = arg;
+	struct job *J = w->job;
+	for (;;) {
+		long k = atomic_fetch_add_explicit(&J->next, 1, memory_order_relaxed);
+		if (k >= J->nitems)
+			return NULL;
+		run_item(w, &J->items[k]);
+	}
+}
+
+/* ==== maps =============================================================== */
+
+static int by_source(const void *a, const void *b)
+{
+	const struct object *x = *(const struct object *const *)a, *y = *(const struct object *const *)b;
+	if (x->loc.file != y->loc.file)
+		return x->loc.file < y->loc.file ? -1 : 1;
+	if (x->loc.line != y->loc.line)
+		return x->loc.line < y->loc.line ? -1 : 1;
+	if (x->loc.col != y->loc.col)
+		return x->loc.col < y->loc.col ? -1 : 1;
+	return x < y ? -1 : x > y;
+}
+
+static int find_map(const struct lp_result *r, const struct object *o)
+{
+	for (int i = 0; i < r->n; i++)
+		if (r->objs[i] == o)
+			return i;
+	return -1;
+}
+
+/* The grid for a surface: its illum_map { }, else a cell size from the
+ * number of rays that reached it and the extent they cover (pitfall 1). */
+static struct illum_spec choose_spec(const struct object *o, const struct recbuf *all, int nbuf)
+{
+	if (o->illum.resolution > 0 || o->illum.cell > 0)
+		return o->illum;
+	struct bbox bb = bbox_empty();
+	long k = 0;
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < all[b].n; i++)
+			if (all[b].r[i].obj == o)
+				bb = bbox_add(bb, all[b].r[i].p), k++;
+	double ex[3] = {bb.hi.x - bb.lo.x, bb.hi.y - bb.lo.y, bb.hi.z - bb.lo.z};
+	for (int i = 0; i < 2; i++) /* two largest extents first */
+		for (int j = i + 1; j < 3; j++)
+			if (ex[j] > ex[i]) {
+				double t = ex[i];
+				ex[i] = ex[j];
+				ex[j] = t;
+			}
+	double area = ex[0] * (ex[1] > ex[0] * 1e-3 ? ex[1] : ex[0] * 1e-3);
+	double cell = illum_auto_cell((double)k, area, 0);
+	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
+	return sp;
+}
+
+/* Gives every surface reached a map and deposits the records into it. */
+static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const struct lp_opts *o)
+{
+	struct lp_result *r = mem_calloc(1, sizeof *r);
+	const struct object **objs = NULL;
+	int n = 0, cap = 0;
+	for (int b = 0; b < nbuf; b++) {
+		for (long i = 0; i < bufs[b].n; i++) {
+			const struct object *ob = bufs[b].r[i].obj;
+			int seen = 0;
+			for (int k = 0; k < n && !seen; k++)
+				seen = objs[k] == ob;
+			if (seen)
+				continue;
+			if (n == cap)
+				objs = mem_realloc(objs, sizeof *objs * (size_t)(cap = cap ? cap * 2 : 8));
+			objs[n++] = ob;
+		}
+	}
+	if (n > 1)
+		qsort(objs, (size_t)n, sizeof *objs, by_source);
+	r->objs = objs;
+	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
+	for (int k = 0; k < n; k++) {
+		struct illum_spec sp = choose_spec(objs[k], bufs, nbuf);
+		r->maps[k] = illum_new(objs[k], &sp);
+	}
+	r->n = n;
+	for (int b = 0; b < nbuf; b++) {
+		for (long i = 0; i < bufs[b].n; i++) {
+			const struct rec *rc = &bufs[b].r[i];
+			int k = find_map(r, rc->obj);
+			if (k >= 0 && r->maps[k])
+				illum_deposit(r->maps[k], rc->u, rc->v, rc->e);
+		}
+	}
+	for (int k = 0; k < n; k++)
+		if (r->maps[k])
+			illum_finish(r->maps[k], o->discard_isolated, NULL);
+	return r;
+}
+
+/* ==== driver ============================================================= */
+
+/* Cones and ray counts for every light; returns the number of work items. */
+static long plan(struct job *J)
+{
+	const struct scene *s = J->s;
+	long nitems = 0, capitems = 0;
+	for (int li = 0; li < s->nlights; li++) {
+		const struct light *l = &s->lights[li];
+		struct target *tg = mem_calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *tg);
+		int nt = 0;
+		double total = 0;
+		if (l->kind != LIGHT_PARALLEL) {
+			for (int i = 0; i < s->nobjects; i++) {
+				if (!is_specular(s->objects[i]))
+					continue;
+				tg[nt] = cone_to(l->pos, shape_bounds(s->objects[i]));
+				total += tg[nt++].omega;
+			}
+		}
+		J->targets[li] = tg;
+		J->ntargets[li] = nt;
+		for (int k = 0; k < nt; k++) {
+			double share = (double)J->o->rays * tg[k].omega / total;
+			tg[k].side = (long)fmax(1, floor(sqrt(share) + 0.5));
+			long nr = tg[k].side * tg[k].side;
+			for (long f = 0; f < nr; f += CHUNK) {
+				if (nitems == capitems)
+					J->items = mem_realloc(J->items, sizeof *J->items * (size_t)(capitems = capitems ? capitems * 2 : 64));
+				J->items[nitems++] = (struct item){li, k, f, nr - f < CHUNK ? nr - f : CHUNK};
+			}
+		}
+	}
+	return nitems;
+}
+
+struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                         const struct lp_opts *o, struct lp_stats *st)
+{
+	struct job J;
+	memset(&J, 0, sizeof J);
+	J.s = s, J.b = b, J.mc = mc, J.o = o;
+	J.targets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.targets);
+	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
+	J.nitems = plan(&J);
+	atomic_init(&J.next, 0);
+	int nt = o->threads > 0 ? o->threads : 1;
+	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
+	pthread_t *tids = mem_calloc((size_t)nt, sizeof *tids);
+	for (int i = 0; i < nt; i++) {
+		ws[i].job = &J;
+		if (i > 0 && pthread_create(&tids[i], NULL, work, &ws[i]) != 0)
+			ws[i].job = NULL; /* fewer threads: the others take its share */
+	}
+	work(&ws[0]);
+	for (int i = 1; i < nt; i++)
+		if (ws[i].job)
+			pthread_join(tids[i], NULL);
+	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
+	struct lp_stats acc;
+	memset(&acc, 0, sizeof acc);
+	for (int i = 0; i < nt; i++) {
+		bufs[i] = ws[i].recs;
+		acc.segments += ws[i].segments;
+		for (int c = 0; c < 3; c++)
+			acc.emitted[c] += ws[i].emitted[c];
+	}
+	struct lp_result *r = J.nitems > 0 ? build_maps(bufs, nt, o) : NULL;
+	for (long k = 0; k < J.nitems; k++)
+		acc.rays += J.items[k].count;
+	for (int k = 0; r && k < r->n; k++) {
+		double tot[3];
+		if (!r->maps[k])
+			continue;
+		illum_total(r->maps[k], tot);
+		for (int c = 0; c < 3; c++)
+			acc.deposited[c] += tot[c];
+		acc.maps++;
+		acc.map_bytes += illum_memory(r->maps[k]);
+	}
+	if (st)
+		*st = acc;
+	for (int i = 0; i < nt; i++)
+		free(bufs[i].r);
+	for (int li = 0; li < s->nlights; li++)
+		free(J.targets[li]);
+	free(bufs), free(ws), free(tids), free(J.items), free(J.targets), free(J.ntargets);
+	return r;
+}
+
+void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_isolated)
+{
+	for (int k = 0; k < src->n; k++) {
+		int i = find_map(dst, src->objs[k]);
+		if (i >= 0 && dst->maps[i] && src->maps[k]) {
+			illum_merge(dst->maps[i], src->maps[k]);
+			illum_finish(dst->maps[i], discard_isolated, NULL);
+		}
+	}
+}
+
+const struct illum_map *lp_map(const struct lp_result *r, const struct object *o)
+{
+	int k = r ? find_map(r, o) : -1;
+	return k >= 0 ? r->maps[k] : NULL;
+}
+
+void lp_lookup(const struct lp_result *r, const struct object *o, double u, double v, double out[3])
+{
+	const struct illum_map *m = lp_map(r, o);
+	out[0] = out[1] = out[2] = 0;
+	if (m)
+		illum_lookup(m, u, v, out);
+}
+
+void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o,
+                 const struct illum_map *m), void *ctx)
+{
+	for (int k = 0; r && k < r->n; k++)
+		if (r->maps[k])
+			fn(ctx, r->objs[k], r->maps[k]);
+}
+
+void lp_free(struct lp_result *r)
+{
+	if (!r)
+		return;
+	for (int k = 0; k < r->n; k++)
+		illum_free(r->maps[k]);
+	free(r->maps);
+	free(r->objs);
+	free(r);
+}

@@ -1,0 +1,59 @@
+/* SPDX-License-Identifier: MIT */
+/* lightpass.h: Arvo's light pass (DESIGN.md §4). Rays leave every light
+ * toward the bounds of the objects that reflect or refract (only where a
+ * caustic can form), carry Φ = I·Ω/N each, recurse through Fresnel-weighted
+ * reflection and refraction, and deposit their energy into the illumination
+ * map of each diffuse surface they reach after at least one specular bounce. */
+#ifndef ARVO_LIGHTPASS_H
+#define ARVO_LIGHTPASS_H
+
+#include <stdbool.h>
+
+#include "bvh.h"
+#include "illum.h"
+#include "material.h"
+#include "scene.h"
+
+struct lp_opts {
+	long rays;            /* light-ray budget per light (> 0) */
+	int max_depth;        /* specular bounces followed (> 0) */
+	double min_weight;    /* stop a branch below this fraction of its ray's energy */
+	int threads;          /* worker threads (>= 1) */
+	bool deposit_direct;  /* debug: deposit first-generation light too (eq. 1 checks) */
+	bool discard_isolated;/* apply the isolated-sample rule (illum.h) */
+	bool transmit_only;   /* debug: follow refraction only (the references'
+	                         twice-transmitted light) */
+	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
+	                         refracting with its dispersed index */
+};
+
+struct lp_stats {
+	long long rays;       /* light rays shot (primary) */
+	long long segments;   /* ray segments traced (primary and secondary) */
+	double emitted[3];    /* energy sent toward the specular objects (W) */
+	double deposited[3];  /* energy held by the maps (W) */
+	double removed[3];    /* energy the isolated-sample rule discarded (W) */
+	long maps;            /* surfaces that received a map */
+	size_t map_bytes;     /* memory held by the maps */
+};
+
+struct lp_result;
+
+/* Runs the light pass; NULL when the scene has no light or no specular object
+ * (nothing to do). The maps are finished and ready for lp_lookup. */
+struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                         const struct lp_opts *o, struct lp_stats *st);
+/* Adds another pass's energies (for the per-channel passes) and refinishes. */
+void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_isolated);
+/* The finished map of primitive o, or NULL when no light reached it. */
+const struct illum_map *lp_map(const struct lp_result *r, const struct object *o);
+/* Irradiance from the maps at a hit on o (W/m²); zero where there is none. */
+void lp_lookup(const struct lp_result *r, const struct object *o, double u, double v, double out[3]);
+/* Calls fn for each map (deterministic order). */
+void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o,
+                 const struct illum_map *m), void *ctx);
+/* True when some interior has dispersion != 1 (three channel passes needed). */
+bool lp_dispersive(const struct scene *s);
+void lp_free(struct lp_result *r);
+
+#endif

@@ -1,0 +1,67 @@
+/* SPDX-License-Identifier: MIT */
+/* optics.h: the specular optics the light pass and the eye pass share:
+ * unpolarised Fresnel reflectance, Snell refraction, mirror reflection, and
+ * a surface's reflected and transmitted colours (POV-Ray's finish reflection
+ * and pigment filter/transmit, DESIGN.md §3). */
+#ifndef ARVO_OPTICS_H
+#define ARVO_OPTICS_H
+
+#include <stdbool.h>
+#include <string.h>
+
+#include "scene.h"
+
+/* Unpolarised Fresnel reflectance R = (Rs+Rp)/2 for cosine ci (> 0, on the
+ * incident side) going from index n1 into n2; 1 under total internal reflection. */
+static inline double opt_fresnel(double ci, double n1, double n2)
+{
+	double eta = n1 / n2, s2 = eta * eta * (1 - ci * ci);
+	if (s2 >= 1)
+		return 1;
+	double ct = sqrt(1 - s2);
+	double rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
+	double rp = (n1 * ct - n2 * ci) / (n1 * ct + n2 * ci);
+	return 0.5 * (rs * rs + rp * rp);
+}
+
+/* Refracted unit direction of unit d through the facing unit normal nf with
+ * eta = n1/n2; false under total internal reflection. */
+static inline bool opt_refract(struct vec3 d, struct vec3 nf, double eta, struct vec3 *out)
+{
+	double ci = -v_dot(d, nf), s2 = eta * eta * (1 - ci * ci);
+	if (s2 > 1)
+		return false;
+	*out = v_norm(v_add(v_scale(d, eta), v_scale(nf, eta * ci - sqrt(1 - s2))));
+	return true;
+}
+
+static inline struct vec3 opt_reflect(struct vec3 d, struct vec3 nf)
+{
+	return v_sub(d, v_scale(nf, 2 * v_dot(d, nf)));
+}
+
+static inline struct vec3 opt_rgb(struct colour c) { return v3(c.r, c.g, c.b); }
+
+/* The finish's reflection colour at cosine ci: constant, POV's variable
+ * reflection (falloff), or Fresnel between refl_min and refl_max; metallic
+ * tints it by the pigment colour pc. */
+static inline struct vec3 opt_reflection(const struct finish *f, struct colour pc, double ci, double n1, double n2)
+{
+	struct vec3 lo = opt_rgb(f->refl_min), hi = opt_rgb(f->refl_max);
+	double t = 1;
+	if (f->refl_fresnel)
+		t = opt_fresnel(ci, n1, n2);
+	else if (memcmp(&lo, &hi, sizeof lo) != 0)
+		t = pow(1 - ci, f->refl_falloff);
+	struct vec3 r = v_add(lo, v_scale(v_sub(hi, lo), t));
+	return f->refl_metallic ? v_mul(r, opt_rgb(pc)) : r;
+}
+
+/* The transmitted colour of a pigment: filter tints by its colour, transmit
+ * passes light unchanged. */
+static inline struct vec3 opt_transmission(struct colour pc)
+{
+	return v_add(v_scale(opt_rgb(pc), pc.f), v3(pc.t, pc.t, pc.t));
+}
+
+#endif
