@@ -125,7 +125,9 @@ static double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, s
 
 /* Direct light from l at surface sf: returns the reflected radiance and adds
  * the irradiance (W/m², before albedo) to *E. Area lights average their
- * size1×size2 samples, each with its own shadow ray. */
+ * size1×size2 samples, each with its own shadow ray. As in POV-Ray, the
+ * diffuse term is scaled by the surface's opacity (1 - filter - transmit)
+ * but highlights are not, so clear glass still shows them. */
 static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
                              struct vec3 *E)
 {
@@ -159,7 +161,7 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 			struct vec3 hl = v_scale(Li, highlight(f, sf->nf, sf->v, L) * k);
 			if (f->refl_metallic)
 				hl = v_mul(hl, col3(sf->pc));
-			out = v_add(out, v_add(v_scale(v_mul(rho, Li), cb * k), hl));
+			out = v_add(out, v_add(v_scale(v_mul(rho, Li), cb * k * sf->opacity), hl));
 		}
 	return out;
 }
@@ -210,10 +212,10 @@ static bool refract(struct vec3 d, struct vec3 nf, double eta, struct vec3 *out)
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
                          struct aov *aov);
 
-/* The reflected and transmitted light at a hit: mirror reflection by the
- * finish, transmission by the pigment's filter/transmit, refracted by the
- * interior's ior. Under total internal reflection the transmitted share is
- * reflected; with fresnel or conserve_energy, transmission keeps 1 - R. */
+/* The reflected and transmitted light at a hit: mirror reflection R by the
+ * finish, transmission T by the pigment's filter/transmit, refracted by the
+ * interior's ior. With fresnel or conserve_energy, T keeps only 1 - R.
+ * Under total internal reflection the transmitted share is reflected. */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
                             double weight, unsigned skip)
 {
@@ -226,11 +228,11 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	struct vec3 T = v_add(v_scale(col3(sf->pc), sf->pc.f), v3(sf->pc.t, sf->pc.t, sf->pc.t));
 	if (v_maxc(T) > 0) {
 		struct vec3 td;
+		if (f->refl_fresnel || f->conserve_energy)
+			T = v_mul(T, v_sub(v3(1, 1, 1), R));
 		if (!refract(d, sf->nf, n1 / n2, &td)) {
 			R = v_add(R, T); /* total internal reflection */
 		} else {
-			if (f->refl_fresnel || f->conserve_energy)
-				T = v_mul(T, v_sub(v3(1, 1, 1), R));
 			struct ray tr = {v_madd(sf->h->p, sf->nf, -e), td};
 			out = v_mul(T, trace(pa, tr, depth + 1, weight * v_maxc(T), skip, NULL));
 		}
@@ -274,9 +276,9 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0);
 	struct vec3 out = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
 	                                  col3(f->emission)));
+	out = v_scale(out, sf.opacity);
 	for (int i = 0; i < s->nlights; i++)
 		out = v_add(out, light_one(pa, &s->lights[i], &sf, &E));
-	out = v_scale(out, sf.opacity);
 	if (aov) {
 		aov->direct = E;
 		aov->albedo = v_scale(pc, f->diffuse);

@@ -12,7 +12,8 @@
 # Scenes: prims.scn/.pov (a few primitives, reflection and refraction) and
 # spheres.scn/.pov with N spheres for N in $SIZES (POV-Ray for $POV_SIZES;
 # its 1M-sphere run parses for a long time, add it with POV_SIZES=...).
-# Every time is the median of $RUNS runs (default 3), wall clock, start-up
+# Every time is the median of $RUNS runs (default 3; eye-pass and trace
+# times are medians of their own), wall clock, start-up
 # included (POV-Ray's is ~0.73 s, see ../shared/POVRAY.md; povray_trace_s
 # is the "Trace Time" it prints, without start-up, parsing and bounding).
 #   ratio             povray_s / arvo_s (above 1: arvo is faster)
@@ -43,24 +44,32 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
-# run_arvo SCENE N: median wall time; leaves the last --stats in $tmp/a.log.
+# run_arvo SCENE N: median wall time; the median eye-pass time goes to
+# $tmp/a.eye, the last --stats to $tmp/a.log.
 run_arvo() {
+	: > "$tmp/a.eyes"
 	for i in $(seq "$RUNS"); do
 		t0=$(now)
 		"$ARVO" -q --stats --threads "$THREADS" --spp 1 --width "$W" --height "$H" \
 			-D N="$2" -o "$tmp/a.png" "$1" 2> "$tmp/a.log"
 		elapsed "$t0" "$(now)"; echo
+		stat_arvo "eye pass" >> "$tmp/a.eyes"
 	done | median
+	median < "$tmp/a.eyes" > "$tmp/a.eye"
 }
 
-# run_pov SCENE N: the same for POV-Ray; its statistics in $tmp/p.log.
+# run_pov SCENE N: the same for POV-Ray; median trace time in $tmp/p.trace,
+# the last statistics in $tmp/p.log.
 run_pov() {
+	: > "$tmp/p.traces"
 	for i in $(seq "$RUNS"); do
 		t0=$(now)
 		(cd "$tmp" && "$POVRAY" +I"$1" +O"$tmp/p.png" +FN +W"$W" +H"$H" -A -D +WT"$THREADS" \
 			Declare=N="$2" > /dev/null 2> "$tmp/p.log")
 		elapsed "$t0" "$(now)"; echo
+		pov_trace >> "$tmp/p.traces"
 	done | median
+	median < "$tmp/p.traces" > "$tmp/p.trace"
 }
 
 stat_arvo() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$tmp/a.log"; }
@@ -72,10 +81,10 @@ per_core() { awk -v r="$1" -v t="$2" -v n="$THREADS" 'BEGIN { if (r == "" || t =
 # bench NAME SCENE N POV: one CSV row (POV-Ray too when POV is 1).
 bench() {
 	a=$(run_arvo "$here/$2.scn" "$3")
-	ar=$(stat_arvo "rays traced"); ae=$(stat_arvo "eye pass")
+	ar=$(stat_arvo "rays traced"); ae=$(cat "$tmp/a.eye")
 	p= pr= pt=
 	if [ "$have_pov" = 1 ] && [ "$4" = 1 ]; then
-		p=$(run_pov "$here/$2.pov" "$3"); pr=$(pov_rays); pt=$(pov_trace)
+		p=$(run_pov "$here/$2.pov" "$3"); pr=$(pov_rays); pt=$(cat "$tmp/p.trace")
 	fi
 	echo "$1,$3,$a,$p,$(ratio "$p" "$a"),$(ratio "$pt" "$ae"),$ar,$ae,$(per_core "$ar" "$ae"),$pr,$pt,$(per_core "$pr" "$pt")" >> "$res/eye.csv"
 	tail -1 "$res/eye.csv"
