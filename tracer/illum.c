@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* illum.c: sparse, tiled illumination maps (see illum.h for the conventions).
  *
- * Storage: nodes live in 16×16 tiles allocated on first deposit and found
+ * Storage: nodes live in ILLUM_TILE² tiles allocated on first deposit and found
  * through an open-addressing hash table keyed by tile coordinates. The same
  * table serves bounded domains and the unbounded plane, so memory grows with
  * the number of tiles light reached, never with the surface. */
@@ -72,7 +72,7 @@ struct fin {
 };
 
 struct tile {
-	int32_t ti, tj;    /* tile coordinates (node i = ti·16 + k) */
+	int32_t ti, tj;    /* tile coordinates (node i = ti·ILLUM_TILE + k) */
 	struct acc n[TN];  /* accumulators, row-major (j then i inside the tile) */
 	struct fin *fin;   /* TN finished values, allocated by illum_finish */
 };

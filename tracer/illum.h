@@ -45,7 +45,7 @@
 
 #include "scene.h"
 
-#define ILLUM_TILE 16           /* nodes per tile side (tiles are 16×16 nodes) */
+#define ILLUM_TILE 8            /* nodes per tile side (tiles are 8×8 nodes) */
 #define ILLUM_RAYS_PER_NODE 16  /* illum_auto_cell's default ray density */
 
 struct illum_map;
