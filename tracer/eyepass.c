@@ -332,15 +332,22 @@ static void put3(float *dst, struct vec3 v, double k)
 	dst[2] = (float)(v.z * k);
 }
 
+/* Shades one pixel: spp camera samples, stratified over an m×m grid of the
+ * pixel (m = ⌊√spp⌋, remaining samples uniform), averaged with equal weights. */
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
 {
 	uint64_t pixel = (uint64_t)y * (uint64_t)ctx->w + (uint64_t)x;
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), A = v3(0, 0, 0), N = v3(0, 0, 0);
 	double z = 0;
 	bool jitter = ctx->spp > 1;
+	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	for (int i = 0; i < ctx->spp; i++) {
 		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0};
 		double jx = jitter ? smp_next(&pa.rng) : 0.5, jy = jitter ? smp_next(&pa.rng) : 0.5;
+		if (jitter && i < m * m) {
+			jx = (i % m + jx) / m;
+			jy = (i / m + jy) / m;
+		}
 		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
 		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 		struct aov aov = {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), 0};
