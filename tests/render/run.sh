@@ -3,6 +3,8 @@
 # tests/render/run.sh: renders through the CLI (TAP lines).
 #   - golden EXRs (tests/render/golden/, 48×36) compared with idiff
 #     -fail 0.01 -failpercent 0.1 -hardfail 0.5; UPDATE_GOLDEN=1 rewrites them;
+#   - POV-Ray 3.7's own render of pov_legacy.scn (#version 3.7) against
+#     arvo's, same tolerance;
 #   - determinism: the EXR is bit-identical for --threads 1, 2, 7 and reruns;
 #   - the OCIO path: a linear 0.18 through each view of the shipped config
 #     matches ocioconvert's answer to within one 8-bit step;
@@ -44,6 +46,12 @@ for g in g_glass g_lights g_legacy g_dof; do
 	fi
 	check "golden $g" $st
 done
+
+# ---- the legacy light model against POV-Ray's own render ----
+"$ARVO" -q --width 64 --height 48 -o "$tmp/pl.exr" "$T/pov_legacy.scn" > "$tmp/log" 2>&1 &&
+	oiiotool "$tmp/pl.exr" --ch R,G,B -o "$tmp/pl3.exr" >> "$tmp/log" 2>&1 &&
+	idiff -fail 0.01 -failpercent 0.1 -hardfail 0.5 "$T/golden/pov_legacy.exr" "$tmp/pl3.exr" > "$tmp/log" 2>&1
+check "legacy model matches POV-Ray 3.7's render of pov_legacy.scn" $?
 
 # ---- determinism across thread counts and runs ----
 st=0
