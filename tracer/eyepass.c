@@ -215,7 +215,8 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 /* The reflected and transmitted light at a hit: mirror reflection R by the
  * finish, transmission T by the pigment's filter/transmit, refracted by the
  * interior's ior. With fresnel or conserve_energy, T keeps only 1 - R.
- * Under total internal reflection the transmitted share is reflected. */
+ * Under total internal reflection the transmitted share is reflected (all
+ * the light, in the legacy model, as POV-Ray does: see pov_glass.scn). */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
                             double weight, unsigned skip)
 {
@@ -231,7 +232,9 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 		if (f->refl_fresnel || f->conserve_energy)
 			T = v_mul(T, v_sub(v3(1, 1, 1), R));
 		if (!refract(d, sf->nf, n1 / n2, &td)) {
-			R = v_add(R, T); /* total internal reflection */
+			/* total internal reflection: POV-Ray (legacy) reflects all of
+			 * it; the physical model reflects the share that would pass */
+			R = pa->ctx->scene->legacy_lights ? v3(1, 1, 1) : v_add(R, T);
 		} else {
 			struct ray tr = {v_madd(sf->h->p, sf->nf, -e), td};
 			out = v_mul(T, trace(pa, tr, depth + 1, weight * v_maxc(T), skip, NULL));
