@@ -60,14 +60,25 @@ static double spot_factor(const struct light *l, struct vec3 d)
 	return k;
 }
 
+/* The position of sample i of n along an area light's edge, in [-½, ½]:
+ * evenly spaced with the end samples on the edge's ends, as POV-Ray places
+ * them; jitter moves a sample anywhere in its cell. */
+static double edge_pos(struct path *pa, bool jitter, int i, int n)
+{
+	if (n <= 1)
+		return jitter ? smp_next(&pa->rng) - 0.5 : 0;
+	double o = jitter ? smp_next(&pa->rng) - 0.5 : 0;
+	return (i + o) / (n - 1) - 0.5;
+}
+
 /* Where sample (i, j) of light l sits, jittered from the path's numbers when
  * the area light asks for it. */
 static struct vec3 light_point(struct path *pa, const struct light *l, int i, int j)
 {
 	if (!l->area)
 		return l->pos;
-	double a = (i + (l->jitter ? smp_next(&pa->rng) : 0.5)) / l->size1 - 0.5;
-	double b = (j + (l->jitter ? smp_next(&pa->rng) : 0.5)) / l->size2 - 0.5;
+	double a = edge_pos(pa, l->jitter, i, l->size1);
+	double b = edge_pos(pa, l->jitter, j, l->size2);
 	if (l->circular && (a != 0 || b != 0)) { /* square → disc, keeping the rim */
 		double r = fmax(fabs(a), fabs(b)), s = sqrt(a * a + b * b);
 		a *= r / s;
@@ -123,47 +134,73 @@ static double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, s
 	return k;
 }
 
-/* Direct light from l at surface sf: returns the reflected radiance and adds
- * the irradiance (W/m², before albedo) to *E. Area lights average their
- * size1×size2 samples, each with its own shadow ray. As in POV-Ray, the
- * diffuse term is scaled by the surface's opacity (1 - filter - transmit)
- * but highlights are not, so clear glass still shows them. */
-static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
-                             struct vec3 *E)
+/* The direction (unit, into *L) and distance from the surface point to the
+ * light point q; parallel lights shine from infinitely far along -point_at. */
+static double towards(const struct light *l, struct vec3 p, struct vec3 q, struct vec3 *L)
+{
+	if (l->kind == LIGHT_PARALLEL) {
+		*L = v_norm(v_sub(l->pos, l->point_at));
+		return INFINITY;
+	}
+	*L = v_sub(q, p);
+	double dist = v_len(*L);
+	*L = v_scale(*L, 1 / dist);
+	return dist;
+}
+
+/* The light from point q of l (weighted by w) reflected at sf: diffuse and
+ * highlights; adds the irradiance to *E. Tests the shadow ray when asked.
+ * As in POV-Ray, the diffuse term is scaled by the surface's opacity
+ * (1 - filter - transmit) but highlights are not, so clear glass shows them. */
+static struct vec3 from_point(struct path *pa, const struct light *l, const struct surf *sf,
+                              struct vec3 q, double w, bool test, struct vec3 *E)
 {
 	const struct scene *s = pa->ctx->scene;
 	const struct finish *f = &sf->tex->finish;
-	int n1 = l->area && l->size1 > 0 ? l->size1 : 1, n2 = l->area && l->size2 > 0 ? l->size2 : 1;
-	struct vec3 out = v3(0, 0, 0), rho = v_scale(col3(sf->pc), f->diffuse);
-	double k = s->legacy_lights ? 1 : 1 / M_PI, w = 1.0 / (n1 * n2);
+	struct vec3 L;
+	double dist = towards(l, sf->h->p, q, &L), c = v_dot(sf->nf, L);
+	if (c <= 0)
+		return v3(0, 0, 0);
+	struct vec3 Li = v_scale(arriving(s, l, dist), w);
+	if (l->kind == LIGHT_SPOT)
+		Li = v_scale(Li, spot_factor(l, v_neg(L)));
+	if (v_maxc(Li) <= 0 || (test && shadowed(pa, l, sf->h->p, sf->nf, L, dist)))
+		return v3(0, 0, 0);
+	*E = v_madd(*E, Li, c);
+	double k = s->legacy_lights ? 1 : 1 / M_PI;
+	double cb = f->brilliance != 1 ? pow(c, f->brilliance) : c;
+	struct vec3 rho = v_scale(col3(sf->pc), f->diffuse);
+	struct vec3 hl = v_scale(Li, highlight(f, sf->nf, sf->v, L) * k);
+	if (f->refl_metallic)
+		hl = v_mul(hl, col3(sf->pc));
+	return v_add(v_scale(v_mul(rho, Li), cb * k * sf->opacity), hl);
+}
+
+/* Direct light from l at surface sf: returns the reflected radiance and adds
+ * the irradiance (W/m², before albedo) to *E. Physical model: an area light
+ * is size1×size2 point lights of 1/(size1·size2) the intensity, each with
+ * its own shadow ray. Legacy model (POV-Ray): the area only softens the
+ * shadow; shading uses the centre, scaled by the fraction of samples seen. */
+static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
+                             struct vec3 *E)
+{
+	bool area = l->area && (l->size1 > 1 || l->size2 > 1);
+	int n1 = area && l->size1 > 0 ? l->size1 : 1, n2 = area && l->size2 > 0 ? l->size2 : 1;
+	double w = 1.0 / (n1 * n2), seen = 0;
+	bool legacy = pa->ctx->scene->legacy_lights && area;
+	struct vec3 out = v3(0, 0, 0), L;
 	for (int i = 0; i < n1; i++)
 		for (int j = 0; j < n2; j++) {
-			struct vec3 q = light_point(pa, l, i, j), L;
-			double dist;
-			if (l->kind == LIGHT_PARALLEL) {
-				L = v_norm(v_sub(l->pos, l->point_at));
-				dist = INFINITY;
-			} else {
-				L = v_sub(q, sf->h->p);
-				dist = v_len(L);
-				L = v_scale(L, 1 / dist);
+			struct vec3 q = light_point(pa, l, i, j);
+			if (!legacy) {
+				out = v_add(out, from_point(pa, l, sf, q, w, true, E));
+				continue;
 			}
-			double c = v_dot(sf->nf, L);
-			if (c <= 0)
-				continue;
-			struct vec3 Li = v_scale(arriving(s, l, dist), w);
-			if (l->kind == LIGHT_SPOT)
-				Li = v_scale(Li, spot_factor(l, v_neg(L)));
-			if (v_maxc(Li) <= 0 || shadowed(pa, l, sf->h->p, sf->nf, L, dist))
-				continue;
-			*E = v_madd(*E, Li, c);
-			double cb = f->brilliance != 1 ? pow(c, f->brilliance) : c;
-			struct vec3 hl = v_scale(Li, highlight(f, sf->nf, sf->v, L) * k);
-			if (f->refl_metallic)
-				hl = v_mul(hl, col3(sf->pc));
-			out = v_add(out, v_add(v_scale(v_mul(rho, Li), cb * k * sf->opacity), hl));
+			double dist = towards(l, sf->h->p, q, &L);
+			if (v_dot(sf->nf, L) > 0 && !shadowed(pa, l, sf->h->p, sf->nf, L, dist))
+				seen += w;
 		}
-	return out;
+	return legacy && seen > 0 ? from_point(pa, l, sf, l->pos, seen, false, E) : out;
 }
 
 /* ==== reflection and refraction ========================================== */
