@@ -3,13 +3,15 @@
 // photons, for bench/caustics. A point light at (0,10,0), a glass sphere
 // (r 1, ior 1.5, ideal transmission: no reflection, no Fresnel) centred at
 // (0,3,0), a white diffuse floor at y = 0.
-//   Declare=Count=N   photons shot (global photons count; 0: photons off)
+//   Declare=Count=N   global photons `count` (0: photons off); POV-Ray 3.7
+//                     shoots about N/3 photons here and stores about 2N/3
 //   Declare=Radius=R  gather radius (default 0.05, per POVRAY.md)
 //   Declare=Gmax=M    most photons per gather (default 100, POV's default)
 // The image is the caustic alone, seen straight down: the orthographic camera
 // maps the square x, z in [-3, 3] onto the whole image (pixel centre (i + 0.5)
 // · 6/W - 3), the camera sits at y = 1.5, below the sphere (eye rays start
-// there and never see it; no_image would also hide it from photons), and an invisible opaque sheet just above
+// there and never see it; no_image would also hide it from photons), and an
+// invisible opaque sheet just above
 // the floor that photons pass through blocks every shadow ray, so the floor
 // holds no direct light: its value is the photon irradiance estimate × diffuse
 // 1, in POV-Ray's own units (normalise by total flux to compare).
