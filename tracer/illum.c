@@ -96,6 +96,7 @@ struct illum_map {
 	bool finished;            /* irradiance is current */
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
+	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
 };
 
 static long floordiv(long a) { return a >= 0 ? a / ILLUM_TILE : -((-a + ILLUM_TILE - 1) / ILLUM_TILE); }
@@ -447,6 +448,12 @@ static double node_area(const struct illum_map *m, long i, long j)
 	                            0.3478548451374538};
 	double u = axis_node(&m->ax[0], i), v = axis_node(&m->ax[1], j), a = 0;
 	double hu = m->ax[0].step, hv = m->ax[1].step;
+	if (m->obj->kind == OBJ_PLANE) { /* constant Jacobian: the tent integrates to |J|·hu·hv */
+		struct illum_map *mm = (struct illum_map *)m;
+		if (mm->flat_area <= 0)
+			mm->flat_area = shape_cell_area(m->obj, u - 0.5 * hu, u + 0.5 * hu, v - 0.5 * hv, v + 0.5 * hv);
+		return mm->flat_area;
+	}
 	for (int k = 0; k < 4; k++) {
 		double s = 0.5 * hu * (1 + x[k]);
 		for (int l = 0; l < 4; l++) {
