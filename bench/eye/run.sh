@@ -90,6 +90,13 @@ bench() {
 	tail -1 "$res/eye.csv"
 }
 
+# growth CSV: how arvo's wall and eye-pass times grow with the sphere count.
+growth() {
+	awk -F, '$1 == "spheres" { if (!f) { f = $3; e = $8; fn = $2 } l = $3; le = $8; ln = $2 }
+		END { if (f) printf "arvo: %d -> %d spheres (x%d): wall %.3f -> %.3f s (x%.2f), eye pass %.3f -> %.3f s (x%.2f)\n",
+			fn, ln, ln / fn, f, l, l / f, e, le, le / e }' "$1"
+}
+
 if [ "${PLOT_ONLY:-0}" != 1 ]; then
 echo "scene,objects,arvo_s,povray_s,ratio,trace_ratio,arvo_rays,arvo_eye_s,arvo_rays_per_s_core,povray_rays,povray_trace_s,povray_rays_per_s_core" > "$res/eye.csv"
 head -1 "$res/eye.csv"
@@ -106,8 +113,7 @@ done
 	echo "cpu: $(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo), $(nproc) online"
 	echo "load average at the end: $(cut -d" " -f1-3 /proc/loadavg) (other work on the machine inflates times)"
 	column -s, -t < "$res/eye.csv"
-	awk -F, '$1 == "spheres" { if (!f) { f = $3; fn = $2 } l = $3; ln = $2 }
-		END { if (f) printf "arvo: %d -> %d spheres: %.3f s -> %.3f s (x%.2f for x%d objects)\n", fn, ln, f, l, l / f, ln / fn }' "$res/eye.csv"
+	growth "$res/eye.csv"
 } > "$res/eye.txt"
 fi
 cat "$res/eye.txt"
