@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "common/arena.h"
@@ -48,6 +49,8 @@ struct options {
 	const char *ocio_config;     /* --ocio-config */
 	int half;                    /* --half: 16-bit EXR */
 	enum out_exr_compression compression; /* --compression */
+	long rays;                   /* --rays: light-pass rays per light */
+	const char *dump_maps;       /* --dump-maps DIR */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -62,6 +65,8 @@ static void usage(FILE *out)
 	      "  --compression C    EXR compression: zip (default), none, zips, piz, rle\n"
 	      "  --display NAME, --view NAME   OCIO display and view for PNG output\n"
 	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
+	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000)\n"
+	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
@@ -224,6 +229,14 @@ static int parse_args(int argc, char **argv, struct options *o)
 			o->quiet = 1;
 		} else if (!strcmp(a, "--stats")) {
 			o->stats = 1;
+		} else if (!strcmp(a, "--rays")) {
+			NEED_ARG();
+			if (!parse_int(next, 1, 1000000000000L, &v))
+				return usage_error("bad value for --rays: '%s' (expected 1 to 1e12)", next);
+			o->rays = v;
+		} else if (!strcmp(a, "--dump-maps")) {
+			NEED_ARG();
+			o->dump_maps = next;
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -393,8 +406,8 @@ static int can_create(const char *path)
 	return access(dir, W_OK | X_OK) == 0;
 }
 
-/* Render: the eye pass (and, later, the light pass) into a framebuffer,
- * then the EXR or the PNG through OCIO. */
+/* Render: the light pass and the eye pass into a framebuffer, then the EXR
+ * or the PNG through OCIO. */
 static int render_and_write(const struct options *o, const struct scene *scene, const char *output)
 {
 	int kind = output_kind(output);
@@ -404,8 +417,13 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", output, strerror(errno));
 		return EX_CANTCREAT;
 	}
+	struct stat sb;
+	if (o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
+		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
+		return EX_CANTCREAT;
+	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
-	                         o->ocio_config};
+	                         o->ocio_config, o->rays, o->dump_maps};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);

@@ -20,6 +20,7 @@ struct aov {
 	struct vec3 albedo; /* pigment × diffuse */
 	struct vec3 n;      /* facing normal */
 	double z;           /* hit distance */
+	struct vec3 caustic;/* irradiance from the illumination maps */
 };
 
 /* What the shading of one hit needs to know about the surface. */
@@ -303,6 +304,18 @@ static struct vec3 fade(const struct interior *in, double dist)
 }
 
 /* The radiance leaving hit h back along ray direction d. */
+/* Irradiance the light pass left at a hit (summed over the channel passes). */
+static struct vec3 caustic_at(const struct eye_ctx *ctx, const struct hit *h)
+{
+	struct vec3 E = v3(0, 0, 0);
+	for (int i = 0; i < ctx->ncaustics; i++) {
+		double e[3];
+		lp_lookup(ctx->caustics[i], h->obj, h->u, h->v, e);
+		E = v_add(E, v3(e[0], e[1], e[2]));
+	}
+	return E;
+}
+
 static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, int depth,
                          double weight, unsigned skip, struct aov *aov)
 {
@@ -319,7 +332,12 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	out = v_scale(out, sf.opacity);
 	for (int i = 0; i < s->nlights; i++)
 		out = v_add(out, light_one(pa, &s->lights[i], &sf, &E));
+	struct vec3 Ec = caustic_at(pa->ctx, h);
+	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
+		out = v_add(out, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
+		                         (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
 	if (aov) {
+		aov->caustic = Ec;
 		aov->direct = E;
 		aov->albedo = v_scale(pc, f->diffuse);
 		aov->n = sf.nf;
@@ -377,7 +395,7 @@ static void put3(float *dst, struct vec3 v, double k)
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
 {
 	uint64_t pixel = (uint64_t)y * (uint64_t)ctx->w + (uint64_t)x;
-	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), A = v3(0, 0, 0), N = v3(0, 0, 0);
+	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), A = v3(0, 0, 0), N = v3(0, 0, 0), C = v3(0, 0, 0);
 	double z = 0;
 	bool jitter = ctx->spp > 1;
 	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
@@ -390,11 +408,12 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 		}
 		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
 		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
-		struct aov aov = {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), 0};
+		struct aov aov = {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), 0, v3(0, 0, 0)};
 		sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
 		E = v_add(E, aov.direct);
 		A = v_add(A, aov.albedo);
 		N = v_add(N, aov.n);
+		C = v_add(C, aov.caustic);
 		z += aov.z;
 		*rays += pa.rays;
 	}
@@ -403,5 +422,6 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	put3(out->direct, E, k);
 	put3(out->albedo, A, k);
 	put3(out->n, N, k);
+	put3(out->caustic, C, k);
 	out->z = (float)(z * k);
 }

@@ -23,6 +23,7 @@
 #include "bvh.h"
 #include "camera.h"
 #include "material.h"
+#include "lightpass.h"
 #include "scene.h"
 
 /* What every render thread shares, read-only. */
@@ -33,6 +34,8 @@ struct eye_ctx {
 	struct cam cam;                /* the prepared camera */
 	int w, h;                      /* image size */
 	int spp;                       /* camera samples per pixel */
+	struct lp_result *const *caustics; /* light-pass results (one, or one per channel) */
+	int ncaustics;                 /* entries in caustics (0: no light pass) */
 };
 
 /* One pixel's result, averaged over its samples. */
@@ -42,6 +45,7 @@ struct eye_px {
 	float albedo[3]; /* pigment × diffuse at the first hit */
 	float n[3];      /* world normal at the first hit (facing the camera) */
 	float z;         /* distance from the camera to the first hit (0: none) */
+	float caustic[3];/* irradiance from the illumination maps at the first hit, W/m² */
 };
 
 /* Sets up ctx for scene s rendered at w×h with spp samples per pixel. */

@@ -272,19 +272,36 @@ static int find_map(const struct lp_result *r, const struct object *o)
 	return -1;
 }
 
-/* The grid for a surface: its illum_map { }, else a cell size from the
- * number of rays that reached it and the extent they cover (pitfall 1). */
+static int cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* The grid for a surface: its illum_map { }, else a cell size chosen from
+ * the rays that reached it (pitfall 1): ILLUM_RAYS_PER_NODE rays per node
+ * over the region where most of them landed. The region is the 5th to 95th
+ * percentile of the landing points on each axis, so a few grazing rays that
+ * land far away do not inflate it. */
 static struct illum_spec choose_spec(const struct object *o, const struct recbuf *all, int nbuf)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
-	struct bbox bb = bbox_empty();
 	long k = 0;
 	for (int b = 0; b < nbuf; b++)
 		for (long i = 0; i < all[b].n; i++)
-			if (all[b].r[i].obj == o)
-				bb = bbox_add(bb, all[b].r[i].p), k++;
-	double ex[3] = {bb.hi.x - bb.lo.x, bb.hi.y - bb.lo.y, bb.hi.z - bb.lo.z};
+			k += all[b].r[i].obj == o;
+	double *c = mem_alloc(sizeof *c * (size_t)(k ? k : 1)), ex[3];
+	for (int axis = 0; axis < 3; axis++) {
+		long n = 0;
+		for (int b = 0; b < nbuf; b++)
+			for (long i = 0; i < all[b].n; i++)
+				if (all[b].r[i].obj == o)
+					c[n++] = v_comp(all[b].r[i].p, axis);
+		qsort(c, (size_t)n, sizeof *c, cmp_double);
+		ex[axis] = n ? c[(long)(0.95 * (double)(n - 1))] - c[(long)(0.05 * (double)(n - 1))] : 0;
+	}
+	free(c);
 	for (int i = 0; i < 2; i++) /* two largest extents first */
 		for (int j = i + 1; j < 3; j++)
 			if (ex[j] > ex[i]) {
@@ -292,8 +309,8 @@ static struct illum_spec choose_spec(const struct object *o, const struct recbuf
 				ex[i] = ex[j];
 				ex[j] = t;
 			}
-	double area = ex[0] * (ex[1] > ex[0] * 1e-3 ? ex[1] : ex[0] * 1e-3);
-	double cell = illum_auto_cell((double)k, area, 0);
+	double area = ex[0] * fmax(ex[1], ex[0] * 1e-3);
+	double cell = illum_auto_cell(0.9 * (double)k, area, 0);
 	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
 	return sp;
 }

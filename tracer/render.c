@@ -14,6 +14,7 @@
 #include "../common/arena.h"
 #include "bvh.h"
 #include "eyepass.h"
+#include "lightpass.h"
 #include "material.h"
 #include "output/exrout.h"
 
@@ -25,7 +26,7 @@
 struct eye_job {
 	const struct eye_ctx *ctx; /* shading context */
 	struct framebuffer *fb;    /* output planes */
-	float *pl[13];             /* R G B, direct RGB, albedo RGB, N XYZ, Z */
+	float *pl[16];             /* R G B, direct RGB, albedo RGB, N XYZ, Z, caustic RGB */
 	int tx, ty;                /* tiles across and down */
 	atomic_int next;           /* next tile to render */
 	atomic_int done;           /* tiles finished */
@@ -41,17 +42,18 @@ static double now(void)
 	return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static const char *const plane_names[13] = {
+static const char *const plane_names[16] = {
 	"R", "G", "B", "direct.R", "direct.G", "direct.B", "albedo.R", "albedo.G", "albedo.B",
-	"N.X", "N.Y", "N.Z", "Z"};
+	"N.X", "N.Y", "N.Z", "Z", "caustic.R", "caustic.G", "caustic.B"};
 
 /* Stores one pixel's result in the planes. */
 static void store(struct eye_job *j, size_t i, const struct eye_px *px)
 {
-	const float *src[13] = {&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->direct[0],
+	const float *src[16] = {&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->direct[0],
 	                        &px->direct[1], &px->direct[2], &px->albedo[0], &px->albedo[1],
-	                        &px->albedo[2], &px->n[0], &px->n[1], &px->n[2], &px->z};
-	for (int k = 0; k < 13; k++)
+	                        &px->albedo[2], &px->n[0], &px->n[1], &px->n[2], &px->z,
+	                        &px->caustic[0], &px->caustic[1], &px->caustic[2]};
+	for (int k = 0; k < 16; k++)
 		j->pl[k][i] = *src[k];
 }
 
@@ -104,7 +106,7 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	memset(&j, 0, sizeof j);
 	j.ctx = ctx;
 	j.fb = fb;
-	for (int k = 0; k < 13; k++)
+	for (int k = 0; k < 16; k++)
 		j.pl[k] = fb_plane(fb, plane_names[k]);
 	j.tx = (ctx->w + TILE - 1) / TILE;
 	j.ty = (ctx->h + TILE - 1) / TILE;
@@ -125,6 +127,65 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	pthread_mutex_destroy(&j.lock);
 	*rays = atomic_load(&j.rays);
 	return NULL;
+}
+
+/* The light pass (DESIGN.md §4): one pass, or one per colour channel when a
+ * material disperses (chromatic aberration). Returns the number of results. */
+static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
+                      const struct render_opts *o, int threads, struct lp_result *out[3],
+                      struct render_stats *st)
+{
+	if (s->nlights == 0)
+		return 0;
+	struct lp_opts lo = {
+		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays : 1000000,
+		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
+		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
+		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
+	};
+	int passes = lp_dispersive(s) ? 3 : 1, n = 0;
+	for (int c = 0; c < passes; c++) {
+		struct lp_stats ls;
+		lo.channel = passes == 3 ? c : -1;
+		struct lp_result *r = lp_run(s, b, mats, &lo, &ls);
+		if (!r)
+			continue;
+		out[n++] = r;
+		st->light_rays += ls.rays;
+		st->maps += ls.maps;
+		st->map_bytes += ls.map_bytes;
+	}
+	return n;
+}
+
+struct dump_ctx {
+	const char *dir;  /* --dump-maps directory */
+	int pass;         /* which channel pass */
+	const char *err;  /* first error */
+};
+
+static void dump_one(void *ctx, const struct object *o, const struct illum_map *m)
+{
+	struct dump_ctx *d = ctx;
+	char path[4096];
+	snprintf(path, sizeof path, "%s/map-%s-%d-%d%s.exr", d->dir, scene_object_kind_name(o->kind),
+	         o->loc.line, o->loc.col, d->pass < 0 ? "" : d->pass == 0 ? "-R" : d->pass == 1 ? "-G" : "-B");
+	const char *e = illum_write_exr(m, path);
+	if (e && strstr(e, "too large")) /* a few far-flung rays on an unbounded plane */
+		fprintf(stderr, "arvo: warning: %s; not dumped\n", e);
+	else if (e && !d->err)
+		d->err = e;
+}
+
+/* --dump-maps DIR: every map as an EXR named after its object and source line. */
+static const char *dump_maps(struct lp_result *const *maps, int n, const char *dir)
+{
+	struct dump_ctx d = {dir, -1, NULL};
+	for (int i = 0; i < n && !d.err; i++) {
+		d.pass = n == 3 ? i : -1;
+		lp_each_map(maps[i], dump_one, &d);
+	}
+	return d.err;
 }
 
 /* The number of threads to use: the option, else one per online CPU. */
@@ -156,16 +217,21 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	double t1 = now();
 	st.t_setup = t1 - t0;
 
-	/* The light pass (illumination maps, DESIGN.md §4) goes here, between
-	 * setup and the eye pass: light_pass(s, b, &maps) fills the maps that
-	 * the eye pass then reads as a diffuse light, and its time is t_light. */
+	struct lp_result *maps[3] = {NULL, NULL, NULL};
+	int nmaps = light_pass(s, b, &mats, o, st.threads, maps, &st);
+	err = nmaps > 0 && o->dump_maps ? dump_maps(maps, nmaps, o->dump_maps) : NULL;
 	double t2 = now();
 	st.t_light = t2 - t1;
 
 	struct eye_ctx ctx;
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
-	err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
+	ctx.caustics = maps;
+	ctx.ncaustics = nmaps;
+	if (!err)
+		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;
+	for (int i = 0; i < nmaps; i++)
+		lp_free(maps[i]);
 
 	bvh_free(b);
 	mat_cache_free(&mats);
@@ -188,7 +254,8 @@ void render_print_stats(FILE *f, const struct render_stats *st)
 	fprintf(f, "arvo: threads          %d\n", st->threads);
 	fprintf(f, "arvo: rays traced      %lld\n", st->rays);
 	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
-	fprintf(f, "arvo: light pass       %.3f s\n", st->t_light);
+	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %ld maps, %.1f MiB)\n", st->t_light,
+	        st->light_rays, st->maps, st->map_bytes / 1048576.0);
 	fprintf(f, "arvo: eye pass         %.3f s (%.3g rays/s)\n", st->t_eye,
 	        st->t_eye > 0 ? (double)st->rays / st->t_eye : 0.0);
 	fprintf(f, "arvo: total            %.3f s\n", total);

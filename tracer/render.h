@@ -5,7 +5,8 @@
  * Layers written: R G B (beauty), direct.R/G/B (irradiance from shadow rays
  * at the first visible point, W/m², before albedo), albedo.R/G/B,
  * N.X/Y/Z (world normal facing the camera) and Z (distance to the first
- * hit; 0 where the ray escaped). The result is bit-identical for any thread
+ * hit; 0 where the ray escaped), and caustic.R/G/B (irradiance from the
+ * illumination maps at the first visible point, W/m², before albedo). The result is bit-identical for any thread
  * count: every pixel depends only on (pixel, sample) keyed random numbers. */
 #ifndef ARVO_RENDER_H
 #define ARVO_RENDER_H
@@ -19,12 +20,17 @@ struct render_opts {
 	int threads;             /* worker threads (0: one per online CPU) */
 	int quiet;               /* no progress bar */
 	const char *ocio_config; /* config for image_map colour conversion, or NULL */
+	long rays;               /* light-pass rays per light (0: the scene's, else 1e6) */
+	const char *dump_maps;   /* write every illumination map as an EXR here, or NULL */
 };
 
 struct render_stats {
 	long long rays;     /* camera, reflected, refracted and shadow rays */
 	double t_setup;     /* seconds building the BVH and loading images */
-	double t_light;     /* seconds in the light pass (0 until it exists) */
+	double t_light;     /* seconds in the light pass */
+	long long light_rays; /* light rays shot (all passes) */
+	long maps;          /* surfaces with an illumination map */
+	size_t map_bytes;   /* memory held by the maps */
 	double t_eye;       /* seconds in the eye pass */
 	long peak_rss_kb;   /* peak resident memory (getrusage) */
 	int threads;        /* threads used */

@@ -12,6 +12,7 @@
 #include "../../eval/eval.h"
 #include "../../tracer/bvh.h"
 #include "../../tracer/lightpass.h"
+#include "../../tracer/render.h"
 #include "../../tracer/shape.h"
 #include "test.h"
 
@@ -221,6 +222,37 @@ static void t_dispersion(void)
 	CHECK(centre[0] > 1.05 * centre[2]);
 }
 
+/* End to end: the eye pass reads the map. Under the sphere the floor gets no
+ * direct light, the caustic layer holds E(0) = 0.0625 W/m² (paraxial, the
+ * reference's point value), and the beauty is diffuse · E / π exactly. */
+static void t_render_caustic_layer(void)
+{
+	struct scene s;
+	struct diag dg;
+	diag_init(&dg, stderr);
+	struct eval_options eo;
+	eval_default_options(&eo);
+	CHECK(eval_scene("tests/accuracy/sphere_view.scn", &eo, &dg, &s) == 0);
+	struct render_opts ro = {.width = 21, .height = 21, .spp = 1, .threads = 2, .quiet = 1, .rays = 2000000};
+	struct framebuffer *fb = NULL;
+	struct render_stats st;
+	CHECK(render(&s, &ro, &fb, &st) == NULL);
+	if (fb) {
+		float *c = fb_find(fb, "caustic.G"), *d = fb_find(fb, "direct.G"), *g = fb_find(fb, "G");
+		CHECK(c && d && g);
+		if (c && d && g) {
+			int i = 10 * 21 + 10;
+			printf("# centre: caustic %.5f W/m2, direct %.5f, beauty %.6f\n", c[i], d[i], g[i]);
+			CHECK_NEAR(c[i], 0.0625, 0.0625 * 0.08);
+			CHECK(d[i] == 0);
+			CHECK_NEAR(g[i], 0.6 * c[i] / M_PI, 1e-6);
+		}
+		fb_free(fb);
+	}
+	CHECK(st.light_rays > 0 && st.maps == 1);
+	scene_free(&s);
+}
+
 int main(void)
 {
 	RUN(t_sphere_ideal);
@@ -230,6 +262,7 @@ int main(void)
 	RUN(t_energy_lossless);
 	RUN(t_mirror);
 	RUN(t_dispersion);
+	RUN(t_render_caustic_layer);
 	srcfile_free_all();
 	return test_done();
 }

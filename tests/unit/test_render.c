@@ -35,7 +35,7 @@ static struct framebuffer *render_file(const char *name, int w, int h, int spp, 
 		printf("#   cannot evaluate %s\n", path);
 		return NULL;
 	}
-	struct render_opts ro = {w, h, spp, nthreads, 1, NULL};
+	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = nthreads, .quiet = 1};
 	struct framebuffer *fb = NULL, *back = NULL;
 	const char *err = render(&s, &ro, &fb, NULL);
 	if (!err)
