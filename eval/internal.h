@@ -38,6 +38,8 @@ struct sink {
 	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
 	int nparams;
 	int modified;              /* a modifier was applied (params must come first) */
+	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
+	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
 };

@@ -784,12 +784,28 @@ static void camera_look_at(struct eval *E, struct camera *c, struct vec3 at, str
 	c->right = v_scale(r, hand > 0 ? rl : -rl);
 }
 
+enum { CAM_LOOK_AT = 1, CAM_ANGLE = 2, CAM_XF = 4 };
+
+/* As POV-Ray does, angle and look_at take effect once every vector of the
+ * block is known, and the block's transforms after them, whatever the order
+ * of the items. */
+static void camera_finish(struct eval *E, struct sink *s, struct camera *c)
+{
+	if ((s->pending & CAM_ANGLE) && c->kind == CAM_PERSPECTIVE)
+		c->direction = v_scale(v_norm(c->direction), v_len(c->right) / tan(c->angle * M_PI / 360) / 2);
+	if (s->pending & CAM_LOOK_AT)
+		camera_look_at(E, c, c->look_at, s->ploc[0]);
+	if (s->pending & CAM_XF)
+		camera_transform(c, &s->pending_xf);
+}
+
 static void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct camera *c = s->target;
 	struct xform X;
 	if (transform_of(E, n, &X)) {
-		camera_transform(c, &X);
+		s->pending_xf = s->pending & CAM_XF ? xf_then(s->pending_xf, X) : X;
+		s->pending |= CAM_XF;
 		return;
 	}
 	switch (n->op) {
@@ -800,14 +816,17 @@ static void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_UP: c->up = arg_vec3(E, n); return;
 	case TK_RIGHT: c->right = arg_vec3(E, n); return;
 	case TK_SKY: c->sky = arg_vec3(E, n); return;
-	case TK_LOOK_AT: camera_look_at(E, c, arg_vec3(E, n), n->loc); return;
+	case TK_LOOK_AT:
+		c->look_at = arg_vec3(E, n);
+		s->ploc[0] = n->loc; /* for its error */
+		s->pending |= CAM_LOOK_AT;
+		return;
 	case TK_ANGLE: {
 		double a = arg_float(E, n);
 		if (a <= 0 || (c->kind == CAM_PERSPECTIVE && a >= 180))
 			eval_fail(E, n->kids[0]->loc, "camera angle must be between 0 and 180 degrees, found %g", a);
 		c->angle = a;
-		if (c->kind == CAM_PERSPECTIVE)
-			c->direction = v_scale(v_norm(c->direction), v_len(c->right) / tan(a * M_PI / 360) / 2);
+		s->pending |= CAM_ANGLE;
 		return;
 	}
 	case TK_APERTURE: c->aperture = arg_float(E, n); return;
@@ -944,6 +963,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		*v.p.cam = scene_default_camera();
 		v.p.cam->loc = blk->loc;
 		run_block(E, blk, SK_CAMERA, v.p.cam, &s);
+		camera_finish(E, &s, v.p.cam);
 		return v;
 	case TK_TRANSFORM:
 		v.kind = V_TRANSFORM;
