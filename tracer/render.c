@@ -138,7 +138,9 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 	if (s->nlights == 0)
 		return 0;
 	struct lp_opts lo = {
-		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays : 1000000,
+		/* --rays, else illumination { rays }, else POV-Ray's photons { count }, else 1e6 */
+		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays
+		      : s->gs.illum.count > 0 ? s->gs.illum.count : 1000000,
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,

@@ -73,6 +73,14 @@ for t in 1 7; do
 done
 cmp "$tmp/dof1.exr" "$tmp/dof7.exr" >> "$tmp/log" 2>&1 || st=1
 check "depth of field bit-identical for --threads 1 and 7" $st
+st=0
+for t in 1 2 7; do
+	"$ARVO" -q --threads $t --rays 200000 --width 33 --height 21 -o "$tmp/cau$t.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1 || st=1
+done
+cmp "$tmp/cau1.exr" "$tmp/cau2.exr" >> "$tmp/log" 2>&1 || st=1
+cmp "$tmp/cau1.exr" "$tmp/cau7.exr" >> "$tmp/log" 2>&1 || st=1
+oiiotool "$tmp/cau1.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000' && st=1
+check "light pass: caustic layer non-zero and bit-identical for --threads 1, 2, 7" $st
 
 # ---- the OCIO path ----
 cfg=stdlib-scenes/ocio/config.ocio
