@@ -371,7 +371,7 @@ static long plan(struct job *J)
 		double total = 0;
 		if (l->kind != LIGHT_PARALLEL) {
 			for (int i = 0; i < s->nobjects; i++) {
-				if (!is_specular(s->objects[i]))
+				if (!J->o->aim_all && !is_specular(s->objects[i]))
 					continue;
 				tg[nt] = cone_to(l->pos, shape_bounds(s->objects[i]));
 				total += tg[nt++].omega;

@@ -23,6 +23,8 @@ struct lp_opts {
 	bool discard_isolated;/* apply the isolated-sample rule (illum.h) */
 	bool transmit_only;   /* debug: follow refraction only (the references'
 	                         twice-transmitted light) */
+	bool aim_all;         /* debug: aim at every object, not only specular ones
+	                         (with deposit_direct: the eq. 1 consistency checks) */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
 	                         refracting with its dispersed index */
 };
