@@ -49,7 +49,7 @@ struct options {
 	const char *ocio_config;     /* --ocio-config */
 	int half;                    /* --half: 16-bit EXR */
 	enum out_exr_compression compression; /* --compression */
-	long rays;                   /* --rays: light-pass rays per light */
+	long rays;                   /* --rays: light-pass rays per light (-1: not given, 0: off) */
 	const char *dump_maps;       /* --dump-maps DIR */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
@@ -65,7 +65,7 @@ static void usage(FILE *out)
 	      "  --compression C    EXR compression: zip (default), none, zips, piz, rle\n"
 	      "  --display NAME, --view NAME   OCIO display and view for PNG output\n"
 	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
-	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000)\n"
+	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000; 0: off)\n"
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
@@ -231,8 +231,8 @@ static int parse_args(int argc, char **argv, struct options *o)
 			o->stats = 1;
 		} else if (!strcmp(a, "--rays")) {
 			NEED_ARG();
-			if (!parse_int(next, 1, 1000000000000L, &v))
-				return usage_error("bad value for --rays: '%s' (expected 1 to 1e12)", next);
+			if (!parse_int(next, 0, 1000000000000L, &v))
+				return usage_error("bad value for --rays: '%s' (expected 0 to 1e12)", next);
 			o->rays = v;
 		} else if (!strcmp(a, "--dump-maps")) {
 			NEED_ARG();
@@ -423,7 +423,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		return EX_CANTCREAT;
 	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
-	                         o->ocio_config, o->rays, o->dump_maps};
+	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);
@@ -452,7 +452,7 @@ int main(int argc, char **argv)
 {
 	struct options o;
 	memset(&o, 0, sizeof o);
-	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000;
+	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000, o.rays = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;

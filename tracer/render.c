@@ -135,7 +135,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
                       const struct render_opts *o, int threads, struct lp_result *out[3],
                       struct render_stats *st)
 {
-	if (s->nlights == 0)
+	if (s->nlights == 0 || o->rays < 0)
 		return 0;
 	struct lp_opts lo = {
 		/* --rays, else illumination { rays }, else POV-Ray's photons { count }, else 1e6 */

@@ -20,7 +20,8 @@ struct render_opts {
 	int threads;             /* worker threads (0: one per online CPU) */
 	int quiet;               /* no progress bar */
 	const char *ocio_config; /* config for image_map colour conversion, or NULL */
-	long rays;               /* light-pass rays per light (0: the scene's, else 1e6) */
+	long rays;               /* light-pass rays per light: > 0 this many; 0 the scene's
+	                            (else 1e6); < 0 no light pass */
 	const char *dump_maps;   /* write every illumination map as an EXR here, or NULL */
 };
 

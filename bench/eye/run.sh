@@ -7,7 +7,7 @@
 # Builds nothing: uses ${ARVO:-./arvo} and ${POVRAY:-povray} (its columns are
 # left empty when it is not installed). Both render the same scene at the same
 # size, without antialiasing, on the same number of threads, to PNG:
-#   arvo -q --stats --threads $THREADS --spp 1 --width $W --height $H -o x.png
+#   arvo -q --stats --rays 0 --threads $THREADS --spp 1 --width $W --height $H -o x.png
 #   povray +Ix.pov +Ox.png +FN +W$W +H$H -A -D +WT$THREADS
 # Scenes: prims.scn/.pov (a few primitives, reflection and refraction) and
 # spheres.scn/.pov with N spheres for N in $SIZES (POV-Ray for $POV_SIZES;
@@ -50,7 +50,7 @@ run_arvo() {
 	: > "$tmp/a.eyes"
 	for i in $(seq "$RUNS"); do
 		t0=$(now)
-		"$ARVO" -q --stats --threads "$THREADS" --spp 1 --width "$W" --height "$H" \
+		"$ARVO" -q --stats --rays 0 --threads "$THREADS" --spp 1 --width "$W" --height "$H" \
 			-D N="$2" -o "$tmp/a.png" "$1" 2> "$tmp/a.log"
 		elapsed "$t0" "$(now)"; echo
 		stat_arvo "eye pass" >> "$tmp/a.eyes"

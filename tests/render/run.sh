@@ -81,6 +81,9 @@ cmp "$tmp/cau1.exr" "$tmp/cau2.exr" >> "$tmp/log" 2>&1 || st=1
 cmp "$tmp/cau1.exr" "$tmp/cau7.exr" >> "$tmp/log" 2>&1 || st=1
 oiiotool "$tmp/cau1.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000' && st=1
 check "light pass: caustic layer non-zero and bit-identical for --threads 1, 2, 7" $st
+"$ARVO" -q --rays 0 --width 33 --height 21 -o "$tmp/nolp.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1
+oiiotool "$tmp/nolp.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000 (float)'
+check "--rays 0 turns the light pass off (caustic layer all zero)" $?
 
 # ---- the OCIO path ----
 cfg=stdlib-scenes/ocio/config.ocio
