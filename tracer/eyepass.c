@@ -5,6 +5,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "optics.h"
 #include "sampler.h"
 
 /* The state of one camera sample's tree of rays. */
@@ -43,23 +44,6 @@ static double eps_at(struct vec3 p)
 }
 
 /* ==== lights ============================================================= */
-
-/* POV's spotlight cone: 1 inside radius, a smooth cubic to 0 at falloff,
- * times cos^tightness. d is the unit direction from the light to the point. */
-static double spot_factor(const struct light *l, struct vec3 d)
-{
-	struct vec3 axis = v_norm(v_sub(l->point_at, l->pos));
-	double c = v_dot(d, axis);
-	double cf = cos(l->falloff * M_PI / 180), cr = cos(l->radius * M_PI / 180);
-	if (c <= cf)
-		return 0;
-	double k = l->tightness > 0 ? pow(c, l->tightness) : 1;
-	if (c < cr && cr > cf) {
-		double t = (c - cf) / (cr - cf);
-		k *= t * t * (3 - 2 * t);
-	}
-	return k;
-}
 
 /* The position of sample i of n along an area light's edge, in [-½, ½]:
  * evenly spaced with the end samples on the edge's ends, as POV-Ray places
@@ -164,7 +148,7 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
 		return v3(0, 0, 0);
 	struct vec3 Li = v_scale(arriving(s, l, dist), w);
 	if (l->kind == LIGHT_SPOT)
-		Li = v_scale(Li, spot_factor(l, v_neg(L)));
+		Li = v_scale(Li, opt_spot(l, v_neg(L)));
 	if (v_maxc(Li) <= 0 || (test && shadowed(pa, l, sf->h->p, sf->nf, L, dist)))
 		return v3(0, 0, 0);
 	*E = v_madd(*E, Li, c);
@@ -206,47 +190,6 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 
 /* ==== reflection and refraction ========================================== */
 
-/* Unpolarised Fresnel reflectance for cosine ci (incident side, > 0) going
- * from index n1 into n2; 1 under total internal reflection. */
-static double fresnel(double ci, double n1, double n2)
-{
-	double eta = n1 / n2, s2 = eta * eta * (1 - ci * ci);
-	if (s2 >= 1)
-		return 1;
-	double ct = sqrt(1 - s2);
-	double rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct);
-	double rp = (n1 * ct - n2 * ci) / (n1 * ct + n2 * ci);
-	return 0.5 * (rs * rs + rp * rp);
-}
-
-/* The reflection colour of the finish at cosine ci (POV's variable and
- * fresnel reflection between refl_min and refl_max). */
-static struct vec3 refl_colour(const struct surf *sf, double ci, double n1, double n2)
-{
-	const struct finish *f = &sf->tex->finish;
-	struct vec3 lo = col3(f->refl_min), hi = col3(f->refl_max);
-	double t;
-	if (f->refl_fresnel)
-		t = fresnel(ci, n1, n2);
-	else if (memcmp(&lo, &hi, sizeof lo) != 0)
-		t = pow(1 - ci, f->refl_falloff);
-	else
-		t = 1;
-	struct vec3 r = v_add(lo, v_scale(v_sub(hi, lo), t));
-	return f->refl_metallic ? v_mul(r, col3(sf->pc)) : r;
-}
-
-/* The refracted unit direction of unit d through facing normal nf with
- * index ratio eta = n1/n2; false under total internal reflection. */
-static bool refract(struct vec3 d, struct vec3 nf, double eta, struct vec3 *out)
-{
-	double ci = -v_dot(d, nf), s2 = eta * eta * (1 - ci * ci);
-	if (s2 > 1)
-		return false;
-	*out = v_norm(v_add(v_scale(d, eta), v_scale(nf, eta * ci - sqrt(1 - s2))));
-	return true;
-}
-
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
                          struct aov *aov);
 
@@ -263,13 +206,13 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	double ior = in->ior > 0 ? in->ior : 1;
 	double n1 = sf->h->entering ? 1 : ior, n2 = sf->h->entering ? ior : 1;
 	double ci = v_dot(sf->nf, sf->v), e = eps_at(sf->h->p);
-	struct vec3 R = refl_colour(sf, ci, n1, n2), out = v3(0, 0, 0);
+	struct vec3 R = opt_reflection(f, sf->pc, ci, n1, n2), out = v3(0, 0, 0);
 	struct vec3 T = v_add(v_scale(col3(sf->pc), sf->pc.f), v3(sf->pc.t, sf->pc.t, sf->pc.t));
 	if (v_maxc(T) > 0) {
 		struct vec3 td;
 		if (f->refl_fresnel || f->conserve_energy)
 			T = v_mul(T, v_sub(v3(1, 1, 1), R));
-		if (!refract(d, sf->nf, n1 / n2, &td)) {
+		if (!opt_refract(d, sf->nf, n1 / n2, &td)) {
 			/* total internal reflection: POV-Ray (legacy) reflects all of
 			 * it; the physical model reflects the share that would pass */
 			R = pa->ctx->scene->legacy_lights ? v3(1, 1, 1) : v_add(R, T);

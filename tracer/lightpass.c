@@ -232,9 +232,16 @@ static void run_item(struct worker *w, const struct item *it)
 			covered = in_cone(&tg[k], d);
 		if (covered)
 			continue;
+		double e[3] = {e0[0], e0[1], e0[2]};
+		if (l->kind == LIGHT_SPOT) {
+			double k = opt_spot(l, d);
+			if (k <= 0)
+				continue;
+			e[0] *= k, e[1] *= k, e[2] *= k;
+		}
 		for (int c = 0; c < 3; c++)
-			w->emitted[c] += e0[c];
-		trace(w, (struct ray){l->pos, d}, e0, cutoff, 0, 0);
+			w->emitted[c] += e[c];
+		trace(w, (struct ray){l->pos, d}, e, cutoff, 0, 0);
 	}
 }
 

@@ -64,4 +64,21 @@ static inline struct vec3 opt_transmission(struct colour pc)
 	return v_add(v_scale(opt_rgb(pc), pc.f), v3(pc.t, pc.t, pc.t));
 }
 
+/* POV-Ray's spotlight cone for the unit direction d from the light: 1 inside
+ * radius, a smooth cubic to 0 at falloff, times cos^tightness (both passes). */
+static inline double opt_spot(const struct light *l, struct vec3 d)
+{
+	struct vec3 axis = v_norm(v_sub(l->point_at, l->pos));
+	double c = v_dot(d, axis);
+	double cf = cos(l->falloff * M_PI / 180), cr = cos(l->radius * M_PI / 180);
+	if (c <= cf)
+		return 0;
+	double k = l->tightness > 0 ? pow(c, l->tightness) : 1;
+	if (c < cr && cr > cf) {
+		double t = (c - cf) / (cr - cf);
+		k *= t * t * (3 - 2 * t);
+	}
+	return k;
+}
+
 #endif

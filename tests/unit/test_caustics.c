@@ -178,6 +178,17 @@ static void t_energy_lossless(void)
 	stop(&R);
 }
 
+/* A spotlight weights the light rays by its cone, as the eye pass does. */
+static void t_spotlight(void)
+{
+	struct run R;
+	CHECK(start(&R, "tests/accuracy/spot.scn", NULL, -1, false));
+	double want = 2 * M_PI * (1 - cos(5 * M_PI / 180));
+	printf("# spotlight: deposited %.7g, expected %.7g\n", R.st.deposited[1], want);
+	CHECK_NEAR(R.st.deposited[1] / want, 1, 0.005);
+	stop(&R);
+}
+
 /* Mirror A: 0.1 cells over x in [-3, 1], z in [-4, 4]; reflectance 1, or
  * Fresnel for n = 1.5 (then the total on the floor is 0.0707892 W). */
 static void mirror_case(const char *define, int col, double exact_total)
@@ -374,6 +385,7 @@ int main(void)
 	RUN(t_slab_ideal);
 	RUN(t_slab_fresnel);
 	RUN(t_energy_lossless);
+	RUN(t_spotlight);
 	RUN(t_mirror);
 	RUN(t_mirror_fresnel);
 	RUN(t_dispersion);
