@@ -13,6 +13,8 @@ struct path {
 	const struct eye_ctx *ctx; /* shared context */
 	struct smp_stream rng;     /* this sample's random numbers */
 	long long rays;            /* rays traced so far */
+	int channel;               /* -1: all channels; 0..2: a single-channel path
+	                              split off at dispersive glass */
 };
 
 /* The AOVs of the first visible point (filled at depth 1 only). */
@@ -203,7 +205,23 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 {
 	const struct interior *in = mat_interior(sf->h->obj);
 	const struct finish *f = &sf->tex->finish;
+	bool disperses = in->dispersion > 0 && in->dispersion != 1;
+	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
+	if (disperses && clear && pa->channel < 0) {
+		/* chromatic aberration: one path per channel from here on, each
+		 * refracting with its own index (red ior/√D, green ior, blue ior·√D) */
+		double o[3];
+		for (int c = 0; c < 3; c++) {
+			pa->channel = c;
+			struct vec3 r = specular(pa, sf, d, depth, weight, skip);
+			o[c] = c == 0 ? r.x : c == 1 ? r.y : r.z;
+		}
+		pa->channel = -1;
+		return v3(o[0], o[1], o[2]);
+	}
 	double ior = in->ior > 0 ? in->ior : 1;
+	if (disperses && pa->channel >= 0)
+		ior *= pow(in->dispersion, (pa->channel - 1) / 2.0);
 	double n1 = sf->h->entering ? 1 : ior, n2 = sf->h->entering ? ior : 1;
 	double ci = v_dot(sf->nf, sf->v), e = eps_at(sf->h->p);
 	struct vec3 R = opt_reflection(f, sf->pc, ci, n1, n2), out = v3(0, 0, 0);
@@ -343,7 +361,7 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	bool jitter = ctx->spp > 1;
 	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	for (int i = 0; i < ctx->spp; i++) {
-		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0};
+		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0, -1};
 		double jx = jitter ? smp_next(&pa.rng) : 0.5, jy = jitter ? smp_next(&pa.rng) : 0.5;
 		if (jitter && i < m * m) {
 			jx = (i % m + jx) / m;

@@ -269,6 +269,44 @@ static void t_render_caustic_layer(void)
 	scene_free(&s);
 }
 
+/* The largest |R − B| of a render of dispersion_view.scn with dispersion D. */
+static double fringe(const char *define)
+{
+	struct scene s;
+	struct diag dg;
+	diag_init(&dg, stderr);
+	struct eval_options eo;
+	eval_default_options(&eo);
+	const char *defs[1] = {define};
+	eo.defines = defs;
+	eo.ndefines = 1;
+	double worst = -1;
+	if (eval_scene("tests/accuracy/dispersion_view.scn", &eo, &dg, &s) != 0)
+		return worst;
+	struct render_opts ro = {.width = 48, .height = 36, .spp = 1, .threads = 2, .quiet = 1, .rays = -1};
+	struct framebuffer *fb = NULL;
+	if (render(&s, &ro, &fb, NULL) == NULL && fb) {
+		const float *r = fb_find(fb, "R"), *b = fb_find(fb, "B");
+		worst = 0;
+		for (int i = 0; i < 48 * 36; i++)
+			worst = fmax(worst, fabs((double)r[i] - b[i]));
+		fb_free(fb);
+	}
+	scene_free(&s);
+	return worst;
+}
+
+/* Chromatic aberration in the eye pass: each channel refracts with its own
+ * index, so a neutral scene seen through dispersive glass gets colour
+ * fringes, and none without dispersion. */
+static void t_eye_dispersion(void)
+{
+	double none = fringe("D=1"), some = fringe("D=1.2");
+	printf("# eye-pass dispersion: max |R-B| %.4f without, %.4f with\n", none, some);
+	CHECK(none == 0);
+	CHECK(some > 0.1);
+}
+
 /* ---- eq. (1) on every primitive ---------------------------------------- */
 
 struct eq1 {
@@ -390,6 +428,7 @@ int main(void)
 	RUN(t_mirror_fresnel);
 	RUN(t_dispersion);
 	RUN(t_render_caustic_layer);
+	RUN(t_eye_dispersion);
 	RUN(t_eq1_every_primitive);
 	srcfile_free_all();
 	return test_done();
