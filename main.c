@@ -51,6 +51,8 @@ struct options {
 	enum out_exr_compression compression; /* --compression */
 	long rays;                   /* --rays: light-pass rays per light (-1: not given, 0: off) */
 	const char *dump_maps;       /* --dump-maps DIR */
+	const char *save_maps;       /* --save-maps FILE */
+	const char *load_maps;       /* --load-maps FILE */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -67,6 +69,7 @@ static void usage(FILE *out)
 	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
 	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000; 0: off)\n"
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
+	      "  --save-maps FILE, --load-maps FILE   keep a light pass for later renders\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
@@ -237,6 +240,9 @@ static int parse_args(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "--dump-maps")) {
 			NEED_ARG();
 			o->dump_maps = next;
+		} else if (!strcmp(a, "--save-maps") || !strcmp(a, "--load-maps")) {
+			NEED_ARG();
+			*(a[2] == 's' ? &o->save_maps : &o->load_maps) = next;
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -422,8 +428,13 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
 		return EX_CANTCREAT;
 	}
+	if (o->save_maps && !can_create(o->save_maps)) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->save_maps, strerror(errno));
+		return EX_CANTCREAT;
+	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
-	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps};
+	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
+	                         o->save_maps, o->load_maps};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);

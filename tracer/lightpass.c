@@ -12,6 +12,7 @@
  * count. */
 #include "lightpass.h"
 
+#include <errno.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -54,6 +55,7 @@ struct item {
 struct lp_result {
 	const struct object **objs; /* primitives with a map, deterministic order */
 	struct illum_map **maps;
+	struct illum_spec *specs;   /* the grid each map was made with */
 	int n;
 };
 
@@ -345,9 +347,10 @@ static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const s
 		qsort(objs, (size_t)n, sizeof *objs, by_source);
 	r->objs = objs;
 	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
+	r->specs = mem_calloc((size_t)(n ? n : 1), sizeof *r->specs);
 	for (int k = 0; k < n; k++) {
-		struct illum_spec sp = choose_spec(objs[k], bufs, nbuf);
-		r->maps[k] = illum_new(objs[k], &sp);
+		r->specs[k] = choose_spec(objs[k], bufs, nbuf);
+		r->maps[k] = illum_new(objs[k], &r->specs[k]);
 	}
 	r->n = n;
 	for (int b = 0; b < nbuf; b++) {
@@ -494,6 +497,180 @@ void lp_free(struct lp_result *r)
 	for (int k = 0; k < r->n; k++)
 		illum_free(r->maps[k]);
 	free(r->maps);
+	free(r->specs);
 	free(r->objs);
 	free(r);
+}
+
+/* ==== --save-maps / --load-maps ========================================== */
+
+/* File layout (native byte order, for reuse on the same machine): the magic
+ * "ARVOMAP1", int32 passes, int32 primitives in the scene; per pass int32
+ * maps; per map int32 primitive index (depth-first over the scene's object
+ * tree), int32 resolution, double cell, int64 nodes, then per node int64 i,
+ * int64 j, double energy[3]. Loading deposits each energy exactly on its node
+ * (a deposit on a node gives it all) and finishes the maps again. */
+
+struct prims {
+	const struct object **o; /* primitives in depth-first order */
+	int n, cap;
+};
+
+static void collect(struct prims *p, const struct object *o)
+{
+	if (o->kind >= OBJ_UNION) {
+		for (int i = 0; i < o->g.csg.n; i++)
+			collect(p, o->g.csg.kids[i]);
+		return;
+	}
+	if (p->n == p->cap)
+		p->o = mem_realloc(p->o, sizeof *p->o * (size_t)(p->cap = p->cap ? p->cap * 2 : 64));
+	p->o[p->n++] = o;
+}
+
+static struct prims scene_prims(const struct scene *s)
+{
+	struct prims p = {NULL, 0, 0};
+	for (int i = 0; i < s->nobjects; i++)
+		collect(&p, s->objects[i]);
+	return p;
+}
+
+struct saver {
+	FILE *f;
+	long long nodes; /* written */
+};
+
+static void save_node(void *ctx, const struct illum_node *n)
+{
+	struct saver *sv = ctx;
+	if (n->isolated)
+		return;
+	int64_t ij[2] = {n->i, n->j};
+	fwrite(ij, sizeof ij, 1, sv->f);
+	fwrite(n->energy, sizeof n->energy, 1, sv->f);
+	sv->nodes++;
+}
+
+static void count_node(void *ctx, const struct illum_node *n)
+{
+	if (!n->isolated)
+		(*(long long *)ctx)++;
+}
+
+const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, int *failed_io)
+{
+	static _Thread_local char err[512];
+	struct prims P = scene_prims(s);
+	char tmp[4096];
+	snprintf(tmp, sizeof tmp, "%s.tmp", path);
+	FILE *f = fopen(tmp, "wb");
+	*failed_io = 1;
+	if (!f) {
+		free(P.o);
+		snprintf(err, sizeof err, "cannot create '%s': %s", path, strerror(errno));
+		return err;
+	}
+	int32_t hdr[2] = {npasses, P.n};
+	fwrite("ARVOMAP1", 8, 1, f);
+	fwrite(hdr, sizeof hdr, 1, f);
+	for (int p = 0; p < npasses; p++) {
+		int32_t nm = r[p] ? r[p]->n : 0;
+		fwrite(&nm, sizeof nm, 1, f);
+		for (int k = 0; k < nm; k++) {
+			int32_t idx = -1;
+			for (int i = 0; i < P.n; i++)
+				if (P.o[i] == r[p]->objs[k])
+					idx = i;
+			long long cnt = 0;
+			if (r[p]->maps[k])
+				illum_each(r[p]->maps[k], count_node, &cnt);
+			int32_t res = r[p]->specs[k].resolution;
+			double cell = r[p]->specs[k].cell;
+			int64_t nodes = cnt;
+			fwrite(&idx, sizeof idx, 1, f);
+			fwrite(&res, sizeof res, 1, f);
+			fwrite(&cell, sizeof cell, 1, f);
+			fwrite(&nodes, sizeof nodes, 1, f);
+			struct saver sv = {f, 0};
+			if (r[p]->maps[k])
+				illum_each(r[p]->maps[k], save_node, &sv);
+		}
+	}
+	free(P.o);
+	if (ferror(f) | (fclose(f) != 0) || rename(tmp, path) != 0) {
+		remove(tmp);
+		snprintf(err, sizeof err, "cannot write '%s': %s", path, strerror(errno));
+		return err;
+	}
+	*failed_io = 0;
+	return NULL;
+}
+
+int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
+            const char **errmsg)
+{
+	static _Thread_local char err[512];
+	struct prims P = scene_prims(s);
+	FILE *f = fopen(path, "rb");
+	int n = 0;
+	*errmsg = NULL;
+	if (!f) {
+		snprintf(err, sizeof err, "cannot open '%s': %s", path, strerror(errno));
+		*errmsg = err;
+		free(P.o);
+		return -1;
+	}
+	char magic[8];
+	int32_t hdr[2];
+	if (fread(magic, 8, 1, f) != 1 || memcmp(magic, "ARVOMAP1", 8) != 0 || fread(hdr, sizeof hdr, 1, f) != 1 ||
+	    hdr[0] < 0 || hdr[0] > 3 || hdr[1] != P.n)
+		goto bad;
+	for (int p = 0; p < hdr[0]; p++) {
+		int32_t nm;
+		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n)
+			goto bad;
+		struct lp_result *r = mem_calloc(1, sizeof *r);
+		out[n++] = r;
+		r->objs = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->objs);
+		r->maps = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->maps);
+		r->specs = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->specs);
+		for (int k = 0; k < nm; k++) {
+			int32_t idx, res;
+			double cell;
+			int64_t nodes;
+			if (fread(&idx, sizeof idx, 1, f) != 1 || fread(&res, sizeof res, 1, f) != 1 ||
+			    fread(&cell, sizeof cell, 1, f) != 1 || fread(&nodes, sizeof nodes, 1, f) != 1 ||
+			    idx < 0 || idx >= P.n || nodes < 0)
+				goto bad;
+			r->n = k + 1;
+			r->objs[k] = P.o[idx];
+			r->specs[k] = (struct illum_spec){res, cell};
+			r->maps[k] = illum_new(P.o[idx], &r->specs[k]);
+			if (!r->maps[k])
+				goto bad;
+			for (int64_t q = 0; q < nodes; q++) {
+				int64_t ij[2];
+				double e[3], u, v;
+				if (fread(ij, sizeof ij, 1, f) != 1 || fread(e, sizeof e, 1, f) != 1)
+					goto bad;
+				illum_node_uv(r->maps[k], (long)ij[0], (long)ij[1], &u, &v);
+				illum_deposit(r->maps[k], u, v, e);
+			}
+			illum_finish(r->maps[k], discard_isolated, NULL);
+		}
+	}
+	if (fgetc(f) != EOF)
+		goto bad;
+	fclose(f);
+	free(P.o);
+	return n;
+bad:
+	fclose(f);
+	free(P.o);
+	for (int i = 0; i < n; i++)
+		lp_free(out[i]);
+	snprintf(err, sizeof err, "'%s' is not a map file saved for this scene", path);
+	*errmsg = err;
+	return -1;
 }

@@ -57,5 +57,13 @@ void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct o
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);
 void lp_free(struct lp_result *r);
+/* --save-maps: writes the passes' maps to path (temp file + rename); NULL on
+ * success, else a message (*failed_io set when the file could not be written). */
+const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path,
+                    int *failed_io);
+/* --load-maps: reads maps saved for the same scene into out[0..2]; returns the
+ * number of passes, or -1 with *err set (missing file, or not for this scene). */
+int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
+            const char **err);
 
 #endif

@@ -220,8 +220,18 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	st.t_setup = t1 - t0;
 
 	struct lp_result *maps[3] = {NULL, NULL, NULL};
-	int nmaps = light_pass(s, b, &mats, o, st.threads, maps, &st);
-	err = nmaps > 0 && o->dump_maps ? dump_maps(maps, nmaps, o->dump_maps) : NULL;
+	int nmaps = 0, io;
+	if (o->load_maps) {
+		nmaps = lp_load(maps, s, o->load_maps, false, &err); /* isolated nodes were not saved */
+		if (nmaps < 0)
+			nmaps = 0;
+	} else {
+		nmaps = light_pass(s, b, &mats, o, st.threads, maps, &st);
+	}
+	if (!err && o->save_maps)
+		err = lp_save(maps, nmaps, s, o->save_maps, &io);
+	if (!err && nmaps > 0 && o->dump_maps)
+		err = dump_maps(maps, nmaps, o->dump_maps);
 	double t2 = now();
 	st.t_light = t2 - t1;
 

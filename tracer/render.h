@@ -23,6 +23,8 @@ struct render_opts {
 	long rays;               /* light-pass rays per light: > 0 this many; 0 the scene's
 	                            (else 1e6); < 0 no light pass */
 	const char *dump_maps;   /* write every illumination map as an EXR here, or NULL */
+	const char *save_maps;   /* save the light pass's maps to this file, or NULL */
+	const char *load_maps;   /* load the maps from this file instead of the light pass */
 };
 
 struct render_stats {
