@@ -249,21 +249,6 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 
 /* ==== shading ============================================================ */
 
-/* POV's absorption over distance dist inside interior in. */
-static struct vec3 fade(const struct interior *in, double dist)
-{
-	if (!(in->fade_distance > 0))
-		return v3(1, 1, 1);
-	struct vec3 fc = col3(in->fade_color);
-	if (in->fade_power >= 1000) /* exponential, as POV-Ray */
-		return v3(exp(-(1 - fc.x) * dist / in->fade_distance),
-		          exp(-(1 - fc.y) * dist / in->fade_distance),
-		          exp(-(1 - fc.z) * dist / in->fade_distance));
-	double fp = in->fade_power > 0 ? in->fade_power : 2;
-	double a = 1 / (1 + pow(dist / in->fade_distance, fp));
-	return v_add(v_scale(v3(1, 1, 1), a), v_scale(fc, 1 - a));
-}
-
 /* The radiance leaving hit h back along ray direction d. */
 /* Irradiance the light pass left at a hit (summed over the channel passes). */
 static struct vec3 caustic_at(const struct eye_ctx *ctx, const struct hit *h)
@@ -323,7 +308,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		aov->z = h.t * v_len(r.d);
 	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);
 	if (!h.entering)
-		c = v_mul(c, fade(mat_interior(h.obj), h.t * v_len(r.d)));
+		c = v_mul(c, opt_fade(mat_interior(h.obj), h.t * v_len(r.d)));
 	return c;
 }
 

@@ -177,6 +177,12 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	w->segments++;
 	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h))
 		return;
+	double ea[3] = {e[0], e[1], e[2]};
+	if (!h.entering) { /* leaving a medium: its absorption over the path inside */
+		struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
+		ea[0] *= k.x, ea[1] *= k.y, ea[2] *= k.z;
+		e = ea;
+	}
 	const struct texture *tex = mat_texture(h.obj);
 	struct colour pc = mat_pigment(J->mc, &tex->pigment, h.p);
 	struct vec3 d = v_norm(r.d);

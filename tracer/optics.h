@@ -81,4 +81,20 @@ static inline double opt_spot(const struct light *l, struct vec3 d)
 	return k;
 }
 
+/* POV-Ray's absorption over a distance dist inside interior in:
+ * fade_color + (1 − fade_color)/(1 + (dist/fade_distance)^fade_power), or
+ * exponential for fade_power >= 1000 (both passes). */
+static inline struct vec3 opt_fade(const struct interior *in, double dist)
+{
+	if (!(in->fade_distance > 0))
+		return v3(1, 1, 1);
+	struct vec3 fc = opt_rgb(in->fade_color);
+	if (in->fade_power >= 1000)
+		return v3(exp(-(1 - fc.x) * dist / in->fade_distance), exp(-(1 - fc.y) * dist / in->fade_distance),
+		          exp(-(1 - fc.z) * dist / in->fade_distance));
+	double fp = in->fade_power > 0 ? in->fade_power : 2;
+	double a = 1 / (1 + pow(dist / in->fade_distance, fp));
+	return v_add(v_scale(v3(1, 1, 1), a), v_scale(fc, 1 - a));
+}
+
 #endif

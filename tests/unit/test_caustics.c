@@ -178,6 +178,25 @@ static void t_energy_lossless(void)
 	stop(&R);
 }
 
+/* Absorption along light rays inside glass (POV-Ray's exponential fade):
+ * paraxial rays cross the sphere along its diameter, 2, so the centre of the
+ * caustic is dimmed by exp(-0.5 · 2). */
+static void t_absorption(void)
+{
+	double centre[2];
+	for (int f = 0; f < 2; f++) {
+		struct run R;
+		CHECK(start(&R, "tests/accuracy/sphere.scn", f ? "Fade=1" : "Fade=0", -1, true));
+		double e[3];
+		lp_lookup(R.r, R.floor, 0, 0, e);
+		centre[f] = e[1];
+		stop(&R);
+	}
+	printf("# absorption: centre %.5g clear, %.5g absorbing (ratio %.4f, exp(-1) = %.4f)\n", centre[0],
+	       centre[1], centre[1] / centre[0], exp(-1));
+	CHECK_NEAR(centre[1] / centre[0], exp(-1), 0.01);
+}
+
 /* A spotlight weights the light rays by its cone, as the eye pass does. */
 static void t_spotlight(void)
 {
@@ -424,6 +443,7 @@ int main(void)
 	RUN(t_slab_fresnel);
 	RUN(t_energy_lossless);
 	RUN(t_spotlight);
+	RUN(t_absorption);
 	RUN(t_mirror);
 	RUN(t_mirror_fresnel);
 	RUN(t_dispersion);
