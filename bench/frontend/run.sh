@@ -140,7 +140,7 @@ echo "scene,n,arvo_s,povray_parse_s,povray_wall_s,ratio,tokens_per_s,tokens,arvo
 {
 	echo "arvo front-end benchmark ($(date -u +%Y-%m-%dT%H:%MZ), median of $RUNS)"
 	echo "host: load $(cut -d" " -f1-3 /proc/loadavg) at start, $(nproc) CPUs, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1)"
-	echo "arvo: $ARVO (tree at $(cd "$root" && git describe --always --dirty 2>/dev/null || echo '?'))"
+	echo "arvo: ${ARVO#"$root"/} (tree at $(cd "$root" && git describe --always --dirty 2>/dev/null || echo '?'))"
 	[ $have_pov = 1 ] && echo "povray: $("$POVRAY" --version 2>&1 | sed -n 's/^POV-Ray \([0-9][^ ]*\).*/\1/p' | head -n 1)"
 	printf '%-9s %8s %9s %12s %11s %7s %12s %9s %9s %9s\n' scene n arvo_s pov_parse_s pov_wall_s ratio tokens/s tokens arvo_MB pov_MB
 } | tee "$txt"
