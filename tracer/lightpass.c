@@ -57,6 +57,8 @@ struct lp_result {
 	struct illum_map **maps;
 	struct illum_spec *specs;   /* the grid each map was made with */
 	int n;
+	int *slots;                 /* hash of objs: index + 1, 0 = empty */
+	int nslots;                 /* power of two, > 2n */
 };
 
 struct job {
@@ -279,12 +281,42 @@ static int by_source(const void *a, const void *b)
 	return x < y ? -1 : x > y;
 }
 
+static unsigned ptr_hash(const void *p)
+{
+	uint64_t x = (uint64_t)(uintptr_t)p;
+	x ^= x >> 33;
+	x *= 0xff51afd7ed558ccdull;
+	x ^= x >> 33;
+	return (unsigned)x;
+}
+
+/* The map of primitive o: a hash lookup (the eye pass asks at every hit). */
 static int find_map(const struct lp_result *r, const struct object *o)
 {
-	for (int i = 0; i < r->n; i++)
-		if (r->objs[i] == o)
-			return i;
-	return -1;
+	if (!r->nslots)
+		return -1;
+	for (unsigned h = ptr_hash(o) & (unsigned)(r->nslots - 1);; h = (h + 1) & (unsigned)(r->nslots - 1)) {
+		int k = r->slots[h];
+		if (k == 0)
+			return -1;
+		if (r->objs[k - 1] == o)
+			return k - 1;
+	}
+}
+
+/* Builds the hash over r->objs[0..n). */
+static void index_maps(struct lp_result *r)
+{
+	r->nslots = 8;
+	while (r->nslots <= 2 * r->n)
+		r->nslots *= 2;
+	r->slots = mem_calloc((size_t)r->nslots, sizeof *r->slots);
+	for (int k = 0; k < r->n; k++) {
+		unsigned h = ptr_hash(r->objs[k]) & (unsigned)(r->nslots - 1);
+		while (r->slots[h])
+			h = (h + 1) & (unsigned)(r->nslots - 1);
+		r->slots[h] = k + 1;
+	}
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -298,23 +330,16 @@ static int cmp_double(const void *a, const void *b)
  * over the region where most of them landed. The region is the 5th to 95th
  * percentile of the landing points on each axis, so a few grazing rays that
  * land far away do not inflate it. */
-static struct illum_spec choose_spec(const struct object *o, const struct recbuf *all, int nbuf)
+static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
-	long k = 0;
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < all[b].n; i++)
-			k += all[b].r[i].obj == o;
 	double *c = mem_alloc(sizeof *c * (size_t)(k ? k : 1)), ex[3];
 	for (int axis = 0; axis < 3; axis++) {
-		long n = 0;
-		for (int b = 0; b < nbuf; b++)
-			for (long i = 0; i < all[b].n; i++)
-				if (all[b].r[i].obj == o)
-					c[n++] = v_comp(all[b].r[i].p, axis);
-		qsort(c, (size_t)n, sizeof *c, cmp_double);
-		ex[axis] = n ? c[(long)(0.95 * (double)(n - 1))] - c[(long)(0.05 * (double)(n - 1))] : 0;
+		for (long i = 0; i < k; i++)
+			c[i] = v_comp(pts[i], axis);
+		qsort(c, (size_t)k, sizeof *c, cmp_double);
+		ex[axis] = k ? c[(long)(0.95 * (double)(k - 1))] - c[(long)(0.05 * (double)(k - 1))] : 0;
 	}
 	free(c);
 	for (int i = 0; i < 2; i++) /* two largest extents first */
@@ -330,46 +355,67 @@ static struct illum_spec choose_spec(const struct object *o, const struct recbuf
 	return sp;
 }
 
-/* Gives every surface reached a map and deposits the records into it. */
+static int by_address(const void *a, const void *b)
+{
+	uintptr_t x = (uintptr_t)*(const struct object *const *)a, y = (uintptr_t)*(const struct object *const *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* Gives every surface reached a map and deposits the records into it: the
+ * distinct surfaces by sorting, then the records grouped per surface, so the
+ * work is O(records · log records) whatever the number of surfaces. */
 static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const struct lp_opts *o)
 {
 	struct lp_result *r = mem_calloc(1, sizeof *r);
-	const struct object **objs = NULL;
-	int n = 0, cap = 0;
-	for (int b = 0; b < nbuf; b++) {
-		for (long i = 0; i < bufs[b].n; i++) {
-			const struct object *ob = bufs[b].r[i].obj;
-			int seen = 0;
-			for (int k = 0; k < n && !seen; k++)
-				seen = objs[k] == ob;
-			if (seen)
-				continue;
-			if (n == cap)
-				objs = mem_realloc(objs, sizeof *objs * (size_t)(cap = cap ? cap * 2 : 8));
-			objs[n++] = ob;
-		}
-	}
+	long total = 0, t = 0;
+	for (int b = 0; b < nbuf; b++)
+		total += bufs[b].n;
+	const struct object **objs = mem_alloc(sizeof *objs * (size_t)(total ? total : 1));
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < bufs[b].n; i++)
+			objs[t++] = bufs[b].r[i].obj;
+	qsort(objs, (size_t)total, sizeof *objs, by_address);
+	int n = 0;
+	for (long i = 0; i < total; i++)
+		if (i == 0 || objs[i] != objs[n - 1])
+			objs[n++] = objs[i];
 	if (n > 1)
 		qsort(objs, (size_t)n, sizeof *objs, by_source);
 	r->objs = objs;
+	r->n = n;
+	index_maps(r);
+	/* group the landing points per surface (counting sort by map index) */
+	int *ki = mem_alloc(sizeof *ki * (size_t)(total ? total : 1));
+	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
+	struct vec3 *pts = mem_alloc(sizeof *pts * (size_t)(total ? total : 1));
+	t = 0;
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < bufs[b].n; i++, t++)
+			start[(ki[t] = find_map(r, bufs[b].r[i].obj)) + 1]++;
+	for (int k = 0; k < n; k++)
+		start[k + 1] += start[k];
+	t = 0;
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < bufs[b].n; i++, t++)
+			pts[start[ki[t]] + fill[ki[t]]++] = bufs[b].r[i].p;
 	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
 	r->specs = mem_calloc((size_t)(n ? n : 1), sizeof *r->specs);
 	for (int k = 0; k < n; k++) {
-		r->specs[k] = choose_spec(objs[k], bufs, nbuf);
+		r->specs[k] = choose_spec(objs[k], pts + start[k], start[k + 1] - start[k]);
 		r->maps[k] = illum_new(objs[k], &r->specs[k]);
 	}
-	r->n = n;
+	t = 0;
 	for (int b = 0; b < nbuf; b++) {
-		for (long i = 0; i < bufs[b].n; i++) {
+		for (long i = 0; i < bufs[b].n; i++, t++) {
 			const struct rec *rc = &bufs[b].r[i];
-			int k = find_map(r, rc->obj);
-			if (k >= 0 && r->maps[k])
-				illum_deposit(r->maps[k], rc->u, rc->v, rc->e);
+			if (r->maps[ki[t]])
+				illum_deposit(r->maps[ki[t]], rc->u, rc->v, rc->e);
 		}
 	}
 	for (int k = 0; k < n; k++)
 		if (r->maps[k])
 			illum_finish(r->maps[k], o->discard_isolated, NULL);
+	free(ki), free(start), free(fill), free(pts);
 	return r;
 }
 
@@ -504,6 +550,7 @@ void lp_free(struct lp_result *r)
 		illum_free(r->maps[k]);
 	free(r->maps);
 	free(r->specs);
+	free(r->slots);
 	free(r->objs);
 	free(r);
 }
@@ -665,6 +712,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 			}
 			illum_finish(r->maps[k], discard_isolated, NULL);
 		}
+		index_maps(r);
 	}
 	if (fgetc(f) != EOF)
 		goto bad;
