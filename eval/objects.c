@@ -953,9 +953,8 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		*v.p.light = scene_default_light();
 		v.p.light->loc = blk->loc;
 		run_block(E, blk, SK_LIGHT, v.p.light, &s);
-		if (s.nparams < 2 && !(s.nparams == 1 && s.modified == 0 && 0))
-			if (s.nparams < 2)
-				eval_fail(E, blk->loc, "light_source needs a position and a colour: light_source { <x,y,z>, rgb 1 }");
+		if (s.nparams < 2)
+			eval_fail(E, blk->loc, "light_source needs a position and a colour: light_source { <x,y,z>, rgb 1 }");
 		return v;
 	case TK_CAMERA:
 		v.kind = V_CAMERA;
@@ -1118,12 +1117,13 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 			misplaced(E, s, n);
 		return;
 	}
-	case SK_VALUE:
+	case SK_VALUE: {
 		if (n->kind != N_BLOCK && n->op != TK_TRANSFORM)
 			misplaced(E, s, n);
-		sink_value(E, s, &(struct value){0}, n->loc); /* placeholder replaced below */
-		s->result = eval_block(E, n);
+		struct value v = eval_block(E, n);
+		sink_value(E, s, &v, n->loc);
 		return;
+	}
 	default: misplaced(E, s, n);
 	}
 }
