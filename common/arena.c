@@ -70,12 +70,27 @@ char *mem_strdup(const char *s) { return mem_strndup(s, strlen(s)); }
 
 void arena_init(struct arena *a) { memset(a, 0, sizeof *a); }
 
+void arena_init_sized(struct arena *a, size_t first)
+{
+	memset(a, 0, sizeof *a);
+	a->block = first;
+}
+
+size_t arena_bytes(const struct arena *a)
+{
+	size_t n = 0;
+	for (const struct arena_block *b = a->head; b; b = b->next)
+		n += sizeof *b + b->size;
+	return n;
+}
+
 void *arena_alloc(struct arena *a, size_t n)
 {
 	n = (n + 15) & ~(size_t)15;
 	struct arena_block *b = a->head;
 	if (!b || b->size - b->used < n) {
-		size_t size = n > 65536 ? n : 65536;
+		size_t want = a->block ? a->block : 65536, size = n > want ? n : want;
+		a->block = want < ((size_t)1 << 20) ? 2 * want : want;
 		b = mem_alloc(sizeof *b + size);
 		b->size = size;
 		b->used = 0;

@@ -17,13 +17,20 @@ void mem_set_oom(void (*handler)(size_t));
 
 struct arena_block;
 
-/* A chained bump allocator: one lifetime for everything allocated in it. */
+/* A chained bump allocator: one lifetime for everything allocated in it.
+ * Blocks start at `block` bytes (64 KiB after arena_init) and double up to
+ * 1 MiB, so an arena that holds little costs little. */
 struct arena {
 	struct arena_block *head; /* newest block */
 	size_t used;              /* bytes handed out, all blocks */
+	size_t block;             /* size of the next block (0: 64 KiB) */
 };
 
 void arena_init(struct arena *a);
+/* An arena whose first block holds `first` bytes (for many small arenas). */
+void arena_init_sized(struct arena *a, size_t first);
+/* Bytes obtained from the allocator, block headers included. */
+size_t arena_bytes(const struct arena *a);
 /* Zeroed, 16-byte aligned memory that lives until arena_free/arena_reset. */
 void *arena_alloc(struct arena *a, size_t n);
 char *arena_strndup(struct arena *a, const char *s, size_t n);

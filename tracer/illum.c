@@ -88,6 +88,7 @@ struct axis {
 struct illum_map {
 	const struct object *obj; /* the primitive (world space via its xf) */
 	struct axis ax[2];        /* u and v */
+	struct arena pool;        /* tiles and their finished values */
 	struct tile **tiles;      /* allocated tiles, in order of allocation */
 	long ntiles, cap;         /* used and allocated entries of tiles[] */
 	long *slots;              /* hash: tile index + 1, 0 = empty */
@@ -141,11 +142,10 @@ static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
 		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
 		m->cap = cap;
 	}
-	struct tile *t = mem_calloc(1, sizeof *t);
+	struct tile *t = ARENA_NEW(&m->pool, struct tile);
 	t->ti = ti;
 	t->tj = tj;
 	m->tiles[m->ntiles++] = t;
-	m->bytes += sizeof *t;
 	if (2 * m->ntiles >= m->nslots) {
 		long ns = m->nslots ? 2 * m->nslots : 16;
 		free(m->slots);
@@ -282,6 +282,7 @@ struct illum_map *illum_new(const struct object *o, const struct illum_spec *spe
 	struct illum_map *m = mem_calloc(1, sizeof *m);
 	m->obj = o;
 	m->last = -1;
+	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	if (!r.bounded) {
 		struct vec3 p, pu, pv;
@@ -326,6 +327,7 @@ struct illum_map *illum_new_like(const struct illum_map *src)
 	m->ax[0] = src->ax[0];
 	m->ax[1] = src->ax[1];
 	m->last = -1;
+	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	return m;
 }
@@ -334,10 +336,7 @@ void illum_free(struct illum_map *m)
 {
 	if (!m)
 		return;
-	for (long k = 0; k < m->ntiles; k++) {
-		free(m->tiles[k]->fin);
-		free(m->tiles[k]);
-	}
+	arena_free(&m->pool);
 	free(m->tiles);
 	free(m->slots);
 	free(m);
@@ -495,10 +494,8 @@ void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
 	double rem[3] = {0, 0, 0};
 	for (long k = 0; k < m->ntiles; k++) {
 		struct tile *t = m->tiles[k];
-		if (!t->fin) {
-			t->fin = mem_calloc(TN, sizeof *t->fin);
-			m->bytes += TN * sizeof *t->fin;
-		}
+		if (!t->fin)
+			t->fin = ARENA_ARRAY(&m->pool, struct fin, TN);
 		for (int q = 0; q < TN; q++) {
 			struct fin *f = &t->fin[q];
 			memset(f, 0, sizeof *f);
@@ -557,7 +554,7 @@ void illum_total(const struct illum_map *m, double out[3])
 }
 
 long illum_dropped(const struct illum_map *m) { return m->dropped; }
-size_t illum_memory(const struct illum_map *m) { return m->bytes; }
+size_t illum_memory(const struct illum_map *m) { return m->bytes + arena_bytes(&m->pool); }
 long illum_tiles(const struct illum_map *m) { return m->ntiles; }
 
 static int tile_cmp(const void *pa, const void *pb)

@@ -45,7 +45,8 @@
 
 #include "scene.h"
 
-#define ILLUM_TILE 8            /* nodes per tile side (tiles are 8×8 nodes) */
+#define ILLUM_TILE 2            /* nodes per tile side: small, since most tiles of a
+                                   sparse caustic hold one ray's splat */
 #define ILLUM_RAYS_PER_NODE 16  /* illum_auto_cell's default ray density */
 
 struct illum_map;

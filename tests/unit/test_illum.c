@@ -292,8 +292,11 @@ static void t_plane_sparse(void)
 		illum_deposit(m, 1000 + r * cos(a), -500 + r * sin(a), e);
 	}
 	illum_finish(m, true, NULL);
-	CHECK(illum_tiles(m) >= 1 && illum_tiles(m) <= 4);
-	CHECK(illum_memory(m) - empty <= 4 * 16 * 16 * 128 + 4096);
+	/* the deposits span at most 12 nodes a side: the tiles those touch, and
+	 * memory for about that many nodes, never for the plane */
+	long side = 12 / ILLUM_TILE + 2;
+	CHECK(illum_tiles(m) >= 1 && illum_tiles(m) <= side * side);
+	CHECK(illum_memory(m) - empty <= (size_t)(side * side * ILLUM_TILE * ILLUM_TILE) * 160 + 16384);
 	illum_lookup(m, 0, 0, out);
 	CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0);
 	illum_lookup(m, 1000.5, -500, out);
