@@ -876,16 +876,20 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_METHOD:
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;
-		else if (strcmp(n->str, "shaft") == 0)
+		else if (strcmp(n->str, "shaft") == 0) {
 			il->method = ILLUM_SHAFT;
+			diag_warning(E->diag, n->loc, "method shaft is not supported yet; light rays deposit at points");
+		}
 		else
 			eval_fail(E, n->loc, "method must be 'point' or 'shaft', found '%s'", n->str);
 		return;
 	case TK_PASSES:
 		if (strcmp(n->str, "rgb") == 0)
 			il->passes = PASSES_RGB;
-		else if (strcmp(n->str, "spectral") == 0)
+		else if (strcmp(n->str, "spectral") == 0) {
 			il->passes = PASSES_SPECTRAL;
+			diag_warning(E->diag, n->loc, "passes spectral is not supported yet; using one pass per channel");
+		}
 		else
 			eval_fail(E, n->loc, "passes must be 'rgb' or 'spectral', found '%s'", n->str);
 		return;
@@ -903,7 +907,8 @@ static void illum_map_keyword(struct eval *E, struct sink *s, const struct node 
 	}
 }
 
-static void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags);
+static void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
+                      const struct object *parent);
 
 /* ==== value blocks ======================================================== */
 
@@ -1015,7 +1020,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		/* the #default in force now is the one this object gets */
 		if (!E->default_shared)
 			E->default_shared = texture_copy(E, &E->default_tex);
-		propagate(o, E->default_shared, NULL, 0);
+		propagate(o, E->default_shared, NULL, 0, NULL);
 		scene_add_object(sc, o);
 		return;
 	}
@@ -1182,9 +1187,10 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 
 /* ==== the end of the scene ================================================ */
 
-/* Children without their own texture or interior take the parent's; the
- * visibility flags pass down too. */
-static void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags)
+/* Children without their own texture, interior or photons { } take the
+ * parent's; the visibility flags pass down too. */
+static void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
+                      const struct object *parent)
 {
 	const unsigned inherit = OF_NO_SHADOW | OF_NO_IMAGE | OF_NO_REFLECTION | OF_DOUBLE_ILLUM;
 	if (!o->tex)
@@ -1192,9 +1198,13 @@ static void propagate(struct object *o, struct texture *tex, struct interior *in
 	if (!o->interior)
 		o->interior = in;
 	o->flags |= flags & inherit;
+	if (parent && parent->has_photons && !o->has_photons) {
+		o->photons = parent->photons;
+		o->has_photons = true;
+	}
 	if (o->kind >= OBJ_UNION)
 		for (int i = 0; i < o->g.csg.n; i++)
-			propagate(o->g.csg.kids[i], o->tex, o->interior, o->flags);
+			propagate(o->g.csg.kids[i], o->tex, o->interior, o->flags, o);
 }
 
 void objects_finish(struct eval *E)

@@ -37,12 +37,16 @@ struct recbuf {
 	long n, cap;
 };
 
-/* The cone of directions toward one specular object from one light. */
+/* What one light aims at one specular object: from a point or spot light,
+ * the cone of directions that holds the object's bounds; from a parallel
+ * light, the beam of parallel rays whose cross-section (a disc) covers them. */
 struct target {
-	struct vec3 axis;  /* unit direction to the bounds' centre */
+	struct vec3 axis;  /* unit direction to the bounds' centre; parallel: of travel */
 	struct vec3 t1, t2;/* frame around axis */
 	double cosmax;     /* cosine of the half-angle (-1: every direction) */
-	double omega;      /* solid angle, sr */
+	double omega;      /* solid angle, sr; parallel: the disc's area, m² */
+	struct vec3 origin;/* parallel: the disc's centre, upstream of the scene */
+	double radius;     /* parallel: the disc's radius */
 	long side;         /* rays per side of the stratified grid (side² rays) */
 };
 
@@ -75,6 +79,7 @@ struct job {
 
 struct worker {
 	struct job *job;
+	bool refract, reflect;      /* the current light's photons { } switches */
 	struct recbuf recs;
 	long long segments;
 	double emitted[3];
@@ -124,6 +129,13 @@ bool lp_dispersive(const struct scene *s)
 	return false;
 }
 
+/* Is bounds bb finite on every axis? */
+static bool finite_box(struct bbox bb)
+{
+	return isfinite(bb.lo.x) && isfinite(bb.hi.x) && isfinite(bb.lo.y) && isfinite(bb.hi.y) &&
+	       isfinite(bb.lo.z) && isfinite(bb.hi.z);
+}
+
 /* The cone from light position L that holds bounds bb. */
 static struct target cone_to(struct vec3 L, struct bbox bb)
 {
@@ -131,8 +143,7 @@ static struct target cone_to(struct vec3 L, struct bbox bb)
 	memset(&t, 0, sizeof t);
 	t.cosmax = -1;
 	t.axis = v3(0, -1, 0);
-	if (isfinite(bb.lo.x) && isfinite(bb.hi.x) && isfinite(bb.lo.y) && isfinite(bb.hi.y) &&
-	    isfinite(bb.lo.z) && isfinite(bb.hi.z)) {
+	if (finite_box(bb)) {
 		struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
 		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9), d = v_len(v_sub(c, L));
 		if (d > r) {
@@ -148,6 +159,49 @@ static struct target cone_to(struct vec3 L, struct bbox bb)
 }
 
 static bool in_cone(const struct target *t, struct vec3 d) { return v_dot(d, t->axis) >= t->cosmax; }
+
+/* The beam of parallel light travelling along unit D that covers bounds bb
+ * (finite), its disc placed upstream of everything in the scene: past the
+ * finite objects' bounds and past any unbounded object (a plane) that the
+ * beam crosses before it reaches bb, so what shadows the object in the eye
+ * pass (whose shadow rays toward a parallel light never end) shadows the
+ * beam too. */
+static struct target beam_to(const struct scene *s, struct vec3 D, struct bbox bb)
+{
+	struct target t;
+	memset(&t, 0, sizeof t);
+	struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
+	t.axis = D;
+	t.cosmax = 1;
+	t.radius = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9);
+	t.omega = M_PI * t.radius * t.radius;
+	double back = t.radius;
+	for (int i = 0; i < s->nobjects; i++) {
+		struct bbox ob = shape_bounds(s->objects[i]);
+		struct hit h;
+		if (finite_box(ob)) {
+			struct vec3 oc = v_scale(v_add(ob.lo, ob.hi), 0.5);
+			back = fmax(back, v_len(v_sub(oc, c)) + 0.5 * v_len(v_sub(ob.hi, ob.lo)));
+		} else if (shape_intersect(s->objects[i], &(struct ray){c, v_neg(D)}, 0, INFINITY, &h)) {
+			back = fmax(back, h.t);
+		}
+	}
+	back = 2 * back + 1;
+	t.origin = v_madd(c, D, -back);
+	struct vec3 a = fabs(D.x) < 0.9 ? v3(1, 0, 0) : v3(0, 1, 0);
+	t.t1 = v_norm(v_cross(a, D));
+	t.t2 = v_cross(D, t.t1);
+	return t;
+}
+
+/* Does the line through p along the beam's direction pass through the
+ * beam's disc? */
+static bool in_beam(const struct target *t, struct vec3 p)
+{
+	struct vec3 q = v_sub(p, t->origin);
+	struct vec3 r = v_madd(q, t->axis, -v_dot(q, t->axis));
+	return v_dot(r, r) <= t->radius * t->radius;
+}
 
 /* ==== tracing ============================================================ */
 
@@ -179,6 +233,15 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	w->segments++;
 	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h))
 		return;
+	/* POV-Ray's photons { } on the object: pass_through lets light by
+	 * untouched, collect off keeps it off the maps, and a target with
+	 * refraction or reflection off does not bend light that way */
+	const struct photon_spec *ph = h.obj->has_photons ? &h.obj->photons : NULL;
+	if (ph && ph->pass_through) {
+		if (depth < J->o->max_depth)
+			trace(w, (struct ray){v_madd(h.p, r.d, eps_at(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec);
+		return;
+	}
 	double ea[3] = {e[0], e[1], e[2]};
 	if (!h.entering) { /* leaving a medium: its absorption over the path inside */
 		struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
@@ -190,14 +253,17 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	struct vec3 d = v_norm(r.d);
 	struct vec3 nf = v_dot(h.n, d) < 0 ? h.n : v_neg(h.n);
 	double opacity = 1 - pc.f - pc.t;
-	if (tex->finish.diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct))
+	if (tex->finish.diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct) &&
+	    (!ph || ph->collect))
 		record(w, &h, e);
 	if (depth >= J->o->max_depth)
 		return;
+	bool refract = w->refract && (!ph || !ph->target || ph->refraction);
+	bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only;
 	double ior = pass_ior(J->o, mat_interior(h.obj));
 	double n1 = h.entering ? 1 : ior, n2 = h.entering ? ior : 1, ci = -v_dot(d, nf), eps = eps_at(h.p);
 	struct vec3 R = opt_reflection(&tex->finish, pc, ci, n1, n2), T = opt_transmission(pc), td;
-	if (maxc(T) > 0) {
+	if (maxc(T) > 0 && refract) {
 		if (!opt_refract(d, nf, n1 / n2, &td)) {
 			R = v_add(R, T); /* total internal reflection */
 		} else {
@@ -208,7 +274,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 				trace(w, (struct ray){v_madd(h.p, nf, -eps), td}, te, cutoff, depth + 1, nspec + 1);
 		}
 	}
-	if (maxc(R) > 0 && !J->o->transmit_only) {
+	if (maxc(R) > 0 && reflect) {
 		double re[3] = {e[0] * R.x, e[1] * R.y, e[2] * R.z};
 		if (fmax(re[0], fmax(re[1], re[2])) > cutoff)
 			trace(w, (struct ray){v_madd(h.p, nf, eps), opt_reflect(d, nf)}, re, cutoff, depth + 1, nspec + 1);
@@ -231,15 +297,25 @@ static void run_item(struct worker *w, const struct item *it)
 				e0[c] = 0;
 	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
 	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
+	bool beam = l->kind == LIGHT_PARALLEL;
+	w->refract = l->photons_refraction;
+	w->reflect = l->photons_reflection;
 	for (long i = it->first; i < it->first + it->count; i++) {
-		/* stratified in (cos θ, φ) over the cone */
+		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
 		double sx = ((double)(i % t->side) + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
 		double sy = ((double)(i / t->side) + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
-		double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct)), ph = 2 * M_PI * sy;
-		struct vec3 d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+		double ph = 2 * M_PI * sy;
+		struct vec3 o = l->pos, d = t->axis;
+		if (beam) {
+			double rr = t->radius * sqrt(sx);
+			o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
+		} else {
+			double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct));
+			d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+		}
 		bool covered = false;
 		for (int k = 0; k < it->target && !covered; k++)
-			covered = in_cone(&tg[k], d);
+			covered = beam ? in_beam(&tg[k], o) : in_cone(&tg[k], d);
 		if (covered)
 			continue;
 		double e[3] = {e0[0], e0[1], e0[2]};
@@ -251,7 +327,7 @@ static void run_item(struct worker *w, const struct item *it)
 		}
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
-		trace(w, (struct ray){l->pos, d}, e, cutoff, 0, 0);
+		trace(w, (struct ray){o, d}, e, cutoff, 0, 0);
 	}
 }
 
@@ -431,13 +507,19 @@ static long plan(struct job *J)
 		struct target *tg = mem_calloc((size_t)(s->nobjects ? s->nobjects : 1), sizeof *tg);
 		int nt = 0;
 		double total = 0;
-		if (l->kind != LIGHT_PARALLEL) {
-			for (int i = 0; i < s->nobjects; i++) {
-				if (!J->o->aim_all && !is_specular(s->objects[i]))
-					continue;
-				tg[nt] = cone_to(l->pos, shape_bounds(s->objects[i]));
-				total += tg[nt++].omega;
-			}
+		struct vec3 D = v_sub(l->point_at, l->pos);
+		D = v_len(D) > 0 ? v_norm(D) : v3(0, -1, 0);
+		for (int i = 0; i < s->nobjects; i++) {
+			if (!J->o->aim_all && !is_specular(s->objects[i]))
+				continue;
+			struct bbox bb = shape_bounds(s->objects[i]);
+			if (l->kind != LIGHT_PARALLEL)
+				tg[nt] = cone_to(l->pos, bb);
+			else if (finite_box(bb)) /* an unbounded mirror under the sun: not yet */
+				tg[nt] = beam_to(s, D, bb);
+			else
+				continue;
+			total += tg[nt++].omega;
 		}
 		J->targets[li] = tg;
 		J->ntargets[li] = nt;

@@ -197,6 +197,97 @@ static void t_absorption(void)
 	CHECK_NEAR(centre[1] / centre[0], exp(-1), 0.01);
 }
 
+/* Refracts unit (dx, dy) at a surface of unit normal (nx, ny) facing against
+ * it, with relative index eta; false on total internal reflection. */
+static bool snell2(double *dx, double *dy, double nx, double ny, double eta)
+{
+	double ci = -(*dx * nx + *dy * ny), k = 1 - eta * eta * (1 - ci * ci);
+	if (k < 0)
+		return false;
+	double f = eta * ci - sqrt(k);
+	*dx = eta * *dx + f * nx;
+	*dy = eta * *dy + f * ny;
+	return true;
+}
+
+/* Under a parallel light of irradiance E straight down, a ray at distance b
+ * from the axis crosses the sphere (centre height h, radius 1, index n) in
+ * its meridional plane: refraction at entry and exit, then on to the floor.
+ * Integrating E·2πb·db over b (midpoint rule, 2·10⁶ steps) into annuli of
+ * width w gives the exact binned flux of the twice-transmitted light. */
+static void sun_profile(double E, double h, double n, double w, double *ref, int nbins)
+{
+	enum { STEPS = 2000000 };
+	for (int k = 0; k < nbins; k++)
+		ref[k] = 0;
+	for (int i = 0; i < STEPS; i++) {
+		double b = (i + 0.5) / STEPS, db = 1.0 / STEPS;
+		double px = b, py = sqrt(1 - b * b), dx = 0, dy = -1, ox, oy; /* entry, relative to the centre */
+		if (!snell2(&dx, &dy, px, py, 1 / n))
+			continue;
+		double t = -2 * (px * dx + py * dy); /* the second hit of the unit circle */
+		px += t * dx, py += t * dy;
+		ox = dx, oy = dy;
+		if (!snell2(&ox, &oy, -px, -py, n))
+			continue; /* (never: a sphere has no internal reflection for these) */
+		if (oy >= 0)
+			continue; /* leaves upward: never reaches the floor */
+		double x = px + (-(h + py) / oy) * ox;
+		int bin = (int)(fabs(x) / w);
+		if (bin < nbins)
+			ref[bin] += E * 2 * M_PI * b * db;
+	}
+}
+
+/* Parallel lights: the beam covers the sphere's bounds, each ray carries
+ * E·A/N, and the floor's binned flux matches sun_profile like the
+ * point-light references. An opaque plane upstream casts the beam's shadow. */
+static void t_parallel(void)
+{
+	struct run R;
+	CHECK(start(&R, "tests/accuracy/sun.scn", "Roof=0", -1, true));
+	if (!R.r)
+		return;
+	double flux[60] = {0}, ref[60];
+	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1};
+	illum_each(lp_map(R.r, R.floor), bin_node, &B);
+	sun_profile(1, 3, 1.5, 0.05, ref, 60);
+	double l1, noise, g, t;
+	compare(flux, ref, 60, R.st.emitted[1] / (double)R.st.rays, &l1, &noise, &g, &t);
+	printf("# parallel light: L1 %.5f (noise %.5f), flux r<=3 %.6g (ref %.6g), emitted %.7g (3π = %.7g)\n",
+	       l1, noise, g, t, R.st.emitted[1], 3 * M_PI);
+	CHECK(l1 <= 1.5 * noise + 0.005);
+	CHECK_NEAR(g / t, 1, 0.005);
+	CHECK_NEAR(R.st.emitted[1] / (3 * M_PI), 1, 1e-6); /* the disc of radius √3 around the box */
+	stop(&R);
+
+	struct run Q;
+	CHECK(start(&Q, "tests/accuracy/sun.scn", "Roof=1", -1, true) == 0); /* no map at all */
+	CHECK(Q.st.rays > 0 && Q.st.deposited[1] == 0);
+	stop(&Q);
+}
+
+/* POV-Ray's photons { } switches (tests/accuracy/photons.scn): each case
+ * either leaves the caustic as it is, bit for bit, or removes it. */
+static void t_photons_switches(void)
+{
+	static const bool lit[] = {true, false, false, true, false, false, false};
+	double base = 0;
+	for (int c = 0; c < 7; c++) {
+		char def[16];
+		snprintf(def, sizeof def, "Case=%d", c);
+		struct run R;
+		bool map = start(&R, "tests/accuracy/photons.scn", def, -1, false);
+		printf("# photons case %d: deposited %.7g\n", c, R.st.deposited[1]);
+		CHECK(map == lit[c]);
+		CHECK(R.st.rays > 0);
+		if (c == 0)
+			base = R.st.deposited[1];
+		CHECK(lit[c] ? R.st.deposited[1] == base && base > 0 : R.st.deposited[1] == 0);
+		stop(&R);
+	}
+}
+
 /* A spotlight weights the light rays by its cone, as the eye pass does. */
 static void t_spotlight(void)
 {
@@ -443,6 +534,8 @@ int main(void)
 	RUN(t_slab_fresnel);
 	RUN(t_energy_lossless);
 	RUN(t_spotlight);
+	RUN(t_parallel);
+	RUN(t_photons_switches);
 	RUN(t_absorption);
 	RUN(t_mirror);
 	RUN(t_mirror_fresnel);
