@@ -31,18 +31,18 @@ struct fx {
 static struct fx fx_from(double d)
 {
 	struct fx r = {0, 0};
-	double m = rint(ldexp(d, 96));
+	double m = rint(d * 0x1p96); /* scaling by powers of two is exact here */
 	if (!(m > 0))
 		return r;
 	if (!(m < 0x1p128))
 		return (struct fx){UINT64_MAX, UINT64_MAX};
-	double h = floor(ldexp(m, -64));
+	double h = floor(m * 0x1p-64);
 	r.hi = (uint64_t)h;
-	r.lo = (uint64_t)(m - ldexp(h, 64));
+	r.lo = (uint64_t)(m - h * 0x1p64);
 	return r;
 }
 
-static double fx_to_double(struct fx a) { return ldexp((double)a.hi, -32) + ldexp((double)a.lo, -96); }
+static double fx_to_double(struct fx a) { return (double)a.hi * 0x1p-32 + (double)a.lo * 0x1p-96; }
 
 /* *a += b, saturating. */
 static void fx_add(struct fx *a, struct fx b)
@@ -463,6 +463,26 @@ static double node_area(const struct illum_map *m, long i, long j)
 	return a;
 }
 
+/* The tiles around tile (ti,tj), tile coordinates ±1 (NULL where absent):
+ * the 5×5 neighbourhoods of its nodes mostly fall in them. */
+_Static_assert(ILLUM_TILE >= 2 && ILLUM_TILE <= 3, "near and the tile-level test in illum_finish assume 2 or 3");
+
+struct near {
+	long ti, tj;
+	const struct tile *t[3][3];
+};
+
+static void near_fill(const struct illum_map *m, struct near *nb, long ti, long tj)
+{
+	nb->ti = ti;
+	nb->tj = tj;
+	for (int b = 0; b < 3; b++)
+		for (int a = 0; a < 3; a++) {
+			long k = tile_find(m, (int32_t)(ti + a - 1), (int32_t)(tj + b - 1));
+			nb->t[b][a] = k < 0 ? NULL : m->tiles[k];
+		}
+}
+
 /* Pitfall 2, the isolated-sample rule: a node is ISOLATED when the deposit
  * counts of the 5×5 nodes around it (itself and everything within two
  * spacings, wrapping and clipping as the axes do) add up to at most 4, i.e.
@@ -470,7 +490,7 @@ static double node_area(const struct illum_map *m, long i, long j)
  * then left out of the irradiance (and reported). At the density pitfall 1
  * asks for (≥ 16 rays per node, so ~1600 touches per 5×5 block) a converged
  * map has no such node, and the rule removes exactly nothing. */
-static bool node_isolated(const struct illum_map *m, long i, long j, uint64_t own)
+static bool node_isolated(const struct illum_map *m, const struct near *nb, long i, long j, uint64_t own)
 {
 	if (own > 4)
 		return false;
@@ -481,8 +501,12 @@ static bool node_isolated(const struct illum_map *m, long i, long j, uint64_t ow
 	for (long dj = -rv; dj <= rv; dj++)
 		for (long di = -ru; di <= ru; di++) {
 			long a = axis_step(&m->ax[0], i, di), b = axis_step(&m->ax[1], j, dj);
-			int slot;
-			const struct tile *t = a < 0 || b < 0 ? NULL : node_tile(m, a, b, &slot);
+			if (a < 0 || b < 0)
+				continue;
+			long ta = floordiv(a) - nb->ti + 1, tb = floordiv(b) - nb->tj + 1;
+			int slot = (int)((b - floordiv(b) * ILLUM_TILE) * ILLUM_TILE + (a - floordiv(a) * ILLUM_TILE));
+			const struct tile *t = ta >= 0 && ta < 3 && tb >= 0 && tb < 3 ? nb->t[tb][ta]
+			                                                              : node_tile(m, a, b, &slot);
 			if (t && (sum += t->n[slot].count) > 4)
 				return false;
 		}
@@ -496,6 +520,15 @@ void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
 		struct tile *t = m->tiles[k];
 		if (!t->fin)
 			t->fin = ARENA_ARRAY(&m->pool, struct fin, TN);
+		uint64_t tile_count = 0;
+		for (int q = 0; q < TN; q++)
+			tile_count += t->n[q].count;
+		/* the nodes of a tile are neighbours: more than one ray's splat in
+		 * it and none of them is isolated */
+		bool check = discard_isolated && tile_count <= 4;
+		struct near nb = {.ti = 0};
+		if (check)
+			near_fill(m, &nb, t->ti, t->tj);
 		for (int q = 0; q < TN; q++) {
 			struct fin *f = &t->fin[q];
 			memset(f, 0, sizeof *f);
@@ -504,7 +537,7 @@ void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
 			long i = (long)t->ti * ILLUM_TILE + q % ILLUM_TILE;
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			f->area = node_area(m, i, j);
-			f->isolated = discard_isolated && node_isolated(m, i, j, t->n[q].count);
+			f->isolated = check && node_isolated(m, &nb, i, j, t->n[q].count);
 			for (int c = 0; c < 3; c++) {
 				double e = fx_to_double(t->n[q].e[c]);
 				if (f->isolated)
