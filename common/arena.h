@@ -34,6 +34,9 @@ size_t arena_bytes(const struct arena *a);
 /* Zeroed, 16-byte aligned memory that lives until arena_free/arena_reset. */
 void *arena_alloc(struct arena *a, size_t n);
 char *arena_strndup(struct arena *a, const char *s, size_t n);
+/* Moves everything src holds into dst (same lifetime from now on); src is
+ * left empty. */
+void arena_adopt(struct arena *dst, struct arena *src);
 /* Drops everything but keeps the first block for reuse. */
 void arena_reset(struct arena *a);
 void arena_free(struct arena *a);

@@ -9,6 +9,7 @@
 
 #include <limits.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -133,8 +134,8 @@ static void slot_insert(struct illum_map *m, long idx)
 	m->slots[h & (uint64_t)(m->nslots - 1)] = idx + 1;
 }
 
-/* Appends a zeroed tile (ti,tj), growing the table; returns its index. */
-static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
+/* Appends tile t (not yet in the map), growing the table; returns its index. */
+static long tile_insert(struct illum_map *m, struct tile *t)
 {
 	if (m->ntiles == m->cap) {
 		long cap = m->cap ? 2 * m->cap : 8;
@@ -142,9 +143,6 @@ static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
 		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
 		m->cap = cap;
 	}
-	struct tile *t = ARENA_NEW(&m->pool, struct tile);
-	t->ti = ti;
-	t->tj = tj;
 	m->tiles[m->ntiles++] = t;
 	if (2 * m->ntiles >= m->nslots) {
 		long ns = m->nslots ? 2 * m->nslots : 16;
@@ -159,6 +157,15 @@ static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
 		slot_insert(m, m->ntiles - 1);
 	}
 	return m->ntiles - 1;
+}
+
+/* Appends a zeroed tile (ti,tj); returns its index. */
+static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
+{
+	struct tile *t = ARENA_NEW(&m->pool, struct tile);
+	t->ti = ti;
+	t->tj = tj;
+	return tile_insert(m, t);
 }
 
 /* The accumulator of node (i,j), or NULL when its tile is absent and create
@@ -372,10 +379,20 @@ static void acc_add(struct acc *n, double w, const double e[3])
 	n->count++;
 }
 
-void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
+/* The band of node row j when the deposits are split among nb threads:
+ * stripes of 16 tile rows, dealt round-robin. */
+static int band_of(long j, int nb)
+{
+	long t = floordiv(j), s = t >= 0 ? t / 16 : -((-t + 15) / 16);
+	return (int)(((s % nb) + nb) % nb);
+}
+
+/* illum_deposit, restricted to the nodes of band `band` of nb. */
+static void deposit_band(struct illum_map *m, double u, double v, const double energy[3], int band, int nb)
 {
 	if (!isfinite(u) || !isfinite(v)) {
-		m->dropped++;
+		if (band == 0)
+			m->dropped++;
 		return;
 	}
 	double e[3];
@@ -388,13 +405,95 @@ void illum_deposit(struct illum_map *m, double u, double v, const double energy[
 	axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
 	axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
 	double wu[2] = {1 - fu, fu}, wv[2] = {1 - fv, fv};
-	for (int b = 0; b < 2; b++)
+	for (int b = 0; b < 2; b++) {
+		if (nb > 1 && band_of(iv[b], nb) != band)
+			continue;
 		for (int a = 0; a < 2; a++) {
 			double w = wu[a] * wv[b];
 			if (w > 0)
 				acc_add(node_acc(m, iu[a], iv[b], true), w, e);
 		}
+	}
 	m->finished = false;
+}
+
+void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
+{
+	deposit_band(m, u, v, energy, 0, 1);
+}
+
+/* Adds tile s's accumulators into tile d. */
+static void tile_accumulate(struct tile *d, const struct tile *s)
+{
+	for (int q = 0; q < TN; q++) {
+		for (int c = 0; c < 3; c++) {
+			fx_add(&d->n[q].e[c], s->n[q].e[c]);
+			d->n[q].sq[c] += s->n[q].sq[c];
+		}
+		d->n[q].count += s->n[q].count;
+	}
+}
+
+/* Moves src's tiles into dst (same grid), adding where dst has the tile
+ * already, and frees src. */
+static void adopt(struct illum_map *dst, struct illum_map *src)
+{
+	for (long k = 0; k < src->ntiles; k++) {
+		struct tile *t = src->tiles[k];
+		long d = tile_find(dst, t->ti, t->tj);
+		if (d >= 0) {
+			tile_accumulate(dst->tiles[d], t);
+		} else {
+			t->fin = NULL;
+			tile_insert(dst, t);
+		}
+	}
+	arena_adopt(&dst->pool, &src->pool);
+	dst->dropped += src->dropped;
+	dst->finished = false;
+	illum_free(src);
+}
+
+struct band_job {
+	struct illum_map *part;
+	const struct illum_splat *s;
+	long n;
+	int band, nb;
+};
+
+static void *band_work(void *arg)
+{
+	struct band_job *b = arg;
+	for (long i = 0; i < b->n; i++)
+		deposit_band(b->part, b->s[i].u, b->s[i].v, b->s[i].e, b->band, b->nb);
+	return NULL;
+}
+
+void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
+{
+	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+	if (nb == 1 || n < 8192) {
+		for (long i = 0; i < n; i++)
+			deposit_band(m, s[i].u, s[i].v, s[i].e, 0, 1);
+		return;
+	}
+	struct band_job jobs[64];
+	pthread_t tids[64];
+	bool started[64] = {false};
+	for (int b = 0; b < nb; b++) {
+		jobs[b] = (struct band_job){illum_new_like(m), s, n, b, nb};
+		if (b > 0)
+			started[b] = pthread_create(&tids[b], NULL, band_work, &jobs[b]) == 0;
+	}
+	band_work(&jobs[0]);
+	for (int b = 1; b < nb; b++) {
+		if (started[b])
+			pthread_join(tids[b], NULL);
+		else
+			band_work(&jobs[b]); /* no thread: do its share here */
+	}
+	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
+		adopt(m, jobs[b].part);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)
@@ -413,14 +512,7 @@ bool illum_merge(struct illum_map *dst, const struct illum_map *src)
 		long di = tile_find(dst, s->ti, s->tj);
 		if (di < 0)
 			di = tile_add(dst, s->ti, s->tj);
-		struct tile *d = dst->tiles[di];
-		for (int q = 0; q < TN; q++) {
-			for (int c = 0; c < 3; c++) {
-				fx_add(&d->n[q].e[c], s->n[q].e[c]);
-				d->n[q].sq[c] += s->n[q].sq[c];
-			}
-			d->n[q].count += s->n[q].count;
-		}
+		tile_accumulate(dst->tiles[di], s);
 	}
 	dst->dropped += src->dropped;
 	dst->finished = false;
@@ -513,19 +605,25 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 	return true;
 }
 
-void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
+struct finish_job {
+	struct illum_map *m;
+	long k0, k1;      /* tiles [k0, k1) */
+	bool discard;
+	struct fx rem[3]; /* energy the isolated rule removed (exact) */
+};
+
+static void *finish_work(void *arg)
 {
-	double rem[3] = {0, 0, 0};
-	for (long k = 0; k < m->ntiles; k++) {
+	struct finish_job *J = arg;
+	const struct illum_map *m = J->m;
+	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
-		if (!t->fin)
-			t->fin = ARENA_ARRAY(&m->pool, struct fin, TN);
 		uint64_t tile_count = 0;
 		for (int q = 0; q < TN; q++)
 			tile_count += t->n[q].count;
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = discard_isolated && tile_count <= 4;
+		bool check = J->discard && tile_count <= 4;
 		struct near nb = {.ti = 0};
 		if (check)
 			near_fill(m, &nb, t->ti, t->tj);
@@ -539,17 +637,54 @@ void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
 			f->area = node_area(m, i, j);
 			f->isolated = check && node_isolated(m, &nb, i, j, t->n[q].count);
 			for (int c = 0; c < 3; c++) {
-				double e = fx_to_double(t->n[q].e[c]);
 				if (f->isolated)
-					rem[c] += e;
+					fx_add(&J->rem[c], t->n[q].e[c]);
 				else if (f->area > 0)
-					f->irr[c] = e / f->area;
+					f->irr[c] = fx_to_double(t->n[q].e[c]) / f->area;
 			}
 		}
 	}
+	return NULL;
+}
+
+void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
+{
+	for (long k = 0; k < m->ntiles; k++)
+		if (!m->tiles[k]->fin)
+			m->tiles[k]->fin = ARENA_ARRAY(&m->pool, struct fin, TN);
+	if (m->obj->kind == OBJ_PLANE && m->ntiles) /* its cached area, before threads read it */
+		node_area(m, 0, 0);
+	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+	if (m->ntiles < 4096)
+		nb = 1;
+	struct finish_job jobs[64];
+	pthread_t tids[64];
+	bool started[64] = {false};
+	for (int b = 0; b < nb; b++) {
+		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
+		                              {{0, 0}, {0, 0}, {0, 0}}};
+		if (b > 0)
+			started[b] = pthread_create(&tids[b], NULL, finish_work, &jobs[b]) == 0;
+	}
+	finish_work(&jobs[0]);
+	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
+	for (int b = 0; b < nb; b++) {
+		if (b > 0 && started[b])
+			pthread_join(tids[b], NULL);
+		else if (b > 0)
+			finish_work(&jobs[b]);
+		for (int c = 0; c < 3; c++)
+			fx_add(&rem[c], jobs[b].rem[c]);
+	}
 	if (removed)
-		memcpy(removed, rem, sizeof rem);
+		for (int c = 0; c < 3; c++)
+			removed[c] = fx_to_double(rem[c]);
 	m->finished = true;
+}
+
+void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
+{
+	illum_finish_mt(m, discard_isolated, removed, 1);
 }
 
 void illum_lookup(const struct illum_map *m, double u, double v, double out[3])

@@ -80,6 +80,17 @@ void illum_node_uv(const struct illum_map *m, long i, long j, double *u, double 
  * (u,v) are dropped (counted, see illum_dropped). Not thread-safe. */
 void illum_deposit(struct illum_map *m, double u, double v, const double energy[3]);
 
+/* One deposit for illum_deposit_all. */
+struct illum_splat {
+	double u, v;
+	double e[3];
+};
+
+/* illum_deposit for s[0..n), on up to `threads` threads (each takes the
+ * nodes of its own stripes of rows). The result is the same as depositing
+ * them one by one, for any thread count. */
+void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads);
+
 /* Adds src's energies, Σw² and counts into dst (same object and grid, else
  * false and dst untouched). dst must not be finished afterwards until
  * illum_finish is called again. */
@@ -90,6 +101,8 @@ bool illum_merge(struct illum_map *dst, const struct illum_map *src);
  * rule). Energies are kept, so finishing again (e.g. after a merge) is fine.
  * removed (may be NULL) receives the energy the rule discarded. */
 void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3]);
+/* illum_finish on up to `threads` threads; the same result. */
+void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads);
 
 /* Bilinearly interpolated irradiance (W/m²) at (u,v); 0 where no tile is
  * allocated and before illum_finish. Thread-safe after illum_finish. */

@@ -431,39 +431,52 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 	return sp;
 }
 
-static int by_address(const void *a, const void *b)
-{
-	uintptr_t x = (uintptr_t)*(const struct object *const *)a, y = (uintptr_t)*(const struct object *const *)b;
-	return x < y ? -1 : x > y;
-}
-
 /* Gives every surface reached a map and deposits the records into it: the
- * distinct surfaces by sorting, then the records grouped per surface, so the
- * work is O(records · log records) whatever the number of surfaces. */
+ * distinct surfaces through a hash, then the records grouped per surface
+ * (a counting sort, keeping their order), so the work is O(records) whatever
+ * the number of surfaces. Deposits and finishing run on o->threads threads. */
 static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const struct lp_opts *o)
 {
 	struct lp_result *r = mem_calloc(1, sizeof *r);
 	long total = 0, t = 0;
 	for (int b = 0; b < nbuf; b++)
 		total += bufs[b].n;
-	const struct object **objs = mem_alloc(sizeof *objs * (size_t)(total ? total : 1));
+	/* the distinct surfaces (through the hash as it grows), then in source order */
+	r->objs = mem_alloc(sizeof *r->objs * 16);
+	int cap = 16;
+	const struct object *prev = NULL;
 	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n; i++)
-			objs[t++] = bufs[b].r[i].obj;
-	qsort(objs, (size_t)total, sizeof *objs, by_address);
-	int n = 0;
-	for (long i = 0; i < total; i++)
-		if (i == 0 || objs[i] != objs[n - 1])
-			objs[n++] = objs[i];
+		for (long i = 0; i < bufs[b].n; i++) {
+			const struct object *ob = bufs[b].r[i].obj;
+			if (ob == prev || find_map(r, ob) >= 0) {
+				prev = ob;
+				continue;
+			}
+			prev = ob;
+			if (r->n == cap)
+				r->objs = mem_realloc(r->objs, sizeof *r->objs * (size_t)(cap *= 2));
+			r->objs[r->n++] = ob;
+			if (2 * r->n >= r->nslots) {
+				free(r->slots);
+				index_maps(r);
+			} else {
+				unsigned h = ptr_hash(ob) & (unsigned)(r->nslots - 1);
+				while (r->slots[h])
+					h = (h + 1) & (unsigned)(r->nslots - 1);
+				r->slots[h] = r->n;
+			}
+		}
+	const struct object **objs = r->objs;
+	int n = r->n;
 	if (n > 1)
 		qsort(objs, (size_t)n, sizeof *objs, by_source);
-	r->objs = objs;
-	r->n = n;
+	free(r->slots);
 	index_maps(r);
-	/* group the landing points per surface (counting sort by map index) */
+	/* group the records per surface (counting sort by map index) */
 	int *ki = mem_alloc(sizeof *ki * (size_t)(total ? total : 1));
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
 	struct vec3 *pts = mem_alloc(sizeof *pts * (size_t)(total ? total : 1));
+	struct illum_splat *sp = mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
 	t = 0;
 	for (int b = 0; b < nbuf; b++)
 		for (long i = 0; i < bufs[b].n; i++, t++)
@@ -472,26 +485,23 @@ static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const s
 		start[k + 1] += start[k];
 	t = 0;
 	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n; i++, t++)
-			pts[start[ki[t]] + fill[ki[t]]++] = bufs[b].r[i].p;
+		for (long i = 0; i < bufs[b].n; i++, t++) {
+			const struct rec *rc = &bufs[b].r[i];
+			long at = start[ki[t]] + fill[ki[t]]++;
+			pts[at] = rc->p;
+			sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
+		}
 	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
 	r->specs = mem_calloc((size_t)(n ? n : 1), sizeof *r->specs);
 	for (int k = 0; k < n; k++) {
 		r->specs[k] = choose_spec(objs[k], pts + start[k], start[k + 1] - start[k]);
 		r->maps[k] = illum_new(objs[k], &r->specs[k]);
-	}
-	t = 0;
-	for (int b = 0; b < nbuf; b++) {
-		for (long i = 0; i < bufs[b].n; i++, t++) {
-			const struct rec *rc = &bufs[b].r[i];
-			if (r->maps[ki[t]])
-				illum_deposit(r->maps[ki[t]], rc->u, rc->v, rc->e);
+		if (r->maps[k]) {
+			illum_deposit_all(r->maps[k], sp + start[k], start[k + 1] - start[k], o->threads);
+			illum_finish_mt(r->maps[k], o->discard_isolated, NULL, o->threads);
 		}
 	}
-	for (int k = 0; k < n; k++)
-		if (r->maps[k])
-			illum_finish(r->maps[k], o->discard_isolated, NULL);
-	free(ki), free(start), free(fill), free(pts);
+	free(ki), free(start), free(fill), free(pts), free(sp);
 	return r;
 }
 

@@ -53,7 +53,7 @@ static struct illum_map *map_cell(const struct object *o, double c)
 
 /* ==== collecting nodes ==================================================== */
 
-#define MAXN 4096
+#define MAXN (1 << 17)
 struct nodes {
 	int n;
 	struct illum_node a[MAXN];
@@ -308,6 +308,56 @@ static void t_plane_sparse(void)
 
 /* ==== merge =============================================================== */
 
+/* illum_deposit_all and illum_finish_mt give the same map, bit for bit
+ * (energies, counts, Σw², irradiance, isolated flags, removed energy), for
+ * any thread count as one by one: on a plane with a dense core and sparse
+ * far-flung splats (so the isolated rule bites) and on a wrapping torus. */
+static void t_threads(void)
+{
+	enum { N = 60000 };
+	static struct illum_splat sp[N];
+	for (int shape = 0; shape < 2; shape++) {
+		rng_seed(5 + shape);
+		struct object o = prim(shape ? OBJ_TORUS : OBJ_PLANE);
+		for (int k = 0; k < N; k++) {
+			double r = k % 10 ? 0.3 * rnd() : 40 * rnd(), a = rndr(0, 2 * M_PI);
+			sp[k] = shape ? (struct illum_splat){rnd(), rnd(), {rnd(), 1e-9 * rnd(), 0}}
+			              : (struct illum_splat){r * cos(a), r * sin(a), {rnd(), 1e-9 * rnd(), 0}};
+		}
+		sp[17].u = NAN; /* dropped once, whatever the thread count */
+		struct illum_map *one = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
+		for (int k = 0; k < N; k++)
+			illum_deposit(one, sp[k].u, sp[k].v, sp[k].e);
+		double rem1[3], rem[3];
+		illum_finish(one, true, rem1);
+		struct nodes *s1 = nodes_of(one);
+		CHECK(s1->n > 1000 && s1->n < MAXN && (rem1[0] > 0) == !shape);
+		printf("# %s: %d nodes, %ld tiles\n", shape ? "torus" : "plane", s1->n, illum_tiles(one));
+		static const int threads[] = {1, 2, 3, 7};
+		for (int t = 0; t < 4; t++) {
+			struct illum_map *m = illum_new_like(one);
+			illum_deposit_all(m, sp, N, threads[t]);
+			illum_finish_mt(m, true, rem, threads[t]);
+			struct nodes *s2 = nodes_of(m);
+			int diff = s1->n != s2->n;
+			for (int q = 0; q < s1->n && q < s2->n; q++) {
+				const struct illum_node *a = &s1->a[q], *b = &s2->a[q];
+				diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
+				diff += memcmp(a->sumsq, b->sumsq, sizeof a->sumsq) != 0;
+				diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
+				diff += a->count != b->count || a->i != b->i || a->j != b->j || a->isolated != b->isolated;
+			}
+			CHECK(diff == 0);
+			CHECK(memcmp(rem, rem1, sizeof rem) == 0);
+			CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
+			free(s2);
+			illum_free(m);
+		}
+		free(s1);
+		illum_free(one);
+	}
+}
+
 static void t_merge(void)
 {
 	rng_seed(99);
@@ -440,6 +490,7 @@ int main(void)
 	RUN(t_uniform);
 	RUN(t_uniform_plane);
 	RUN(t_plane_sparse);
+	RUN(t_threads);
 	RUN(t_merge);
 	RUN(t_isolated);
 	RUN(t_auto_cell);
