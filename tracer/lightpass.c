@@ -75,6 +75,7 @@ struct job {
 	struct item *items;
 	long nitems;
 	atomic_long next;           /* next item to take */
+	const struct object *clipped; /* see lp_stats */
 };
 
 struct worker {
@@ -192,6 +193,25 @@ static struct target beam_to(const struct scene *s, struct vec3 D, struct bbox b
 	t.t1 = v_norm(v_cross(a, D));
 	t.t2 = v_cross(D, t.t1);
 	return t;
+}
+
+/* Where light under a parallel source matters when a specular object is
+ * unbounded (a mirror or glass plane under the sun): the bounds of every
+ * finite object and the camera, at least 1 across. Receivers outside get no
+ * caustic from that object. */
+static struct bbox scene_extent(const struct scene *s)
+{
+	struct bbox e = {s->camera.location, s->camera.location};
+	for (int i = 0; i < s->nobjects; i++) {
+		struct bbox b = shape_bounds(s->objects[i]);
+		if (finite_box(b)) {
+			e.lo = v3(fmin(e.lo.x, b.lo.x), fmin(e.lo.y, b.lo.y), fmin(e.lo.z, b.lo.z));
+			e.hi = v3(fmax(e.hi.x, b.hi.x), fmax(e.hi.y, b.hi.y), fmax(e.hi.z, b.hi.z));
+		}
+	}
+	e.lo = v_sub(e.lo, v3(0.5, 0.5, 0.5));
+	e.hi = v_add(e.hi, v3(0.5, 0.5, 0.5));
+	return e;
 }
 
 /* Does the line through p along the beam's direction pass through the
@@ -525,10 +545,13 @@ static long plan(struct job *J)
 			struct bbox bb = shape_bounds(s->objects[i]);
 			if (l->kind != LIGHT_PARALLEL)
 				tg[nt] = cone_to(l->pos, bb);
-			else if (finite_box(bb)) /* an unbounded mirror under the sun: not yet */
+			else if (finite_box(bb))
 				tg[nt] = beam_to(s, D, bb);
-			else
-				continue;
+			else {
+				tg[nt] = beam_to(s, D, scene_extent(s));
+				if (!J->clipped)
+					J->clipped = s->objects[i];
+			}
 			total += tg[nt++].omega;
 		}
 		J->targets[li] = tg;
@@ -591,6 +614,7 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 		acc.maps++;
 		acc.map_bytes += illum_memory(r->maps[k]);
 	}
+	acc.clipped = J.clipped;
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)

@@ -37,6 +37,8 @@ struct lp_stats {
 	double removed[3];    /* energy the isolated-sample rule discarded (W) */
 	long maps;            /* surfaces that received a map */
 	size_t map_bytes;     /* memory held by the maps */
+	const struct object *clipped; /* an unbounded specular object under a parallel
+	                         light, whose beam covers only the scene's extent */
 };
 
 struct lp_result;

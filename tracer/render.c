@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "../common/arena.h"
+#include "../common/diag.h"
 #include "bvh.h"
 #include "eyepass.h"
 #include "lightpass.h"
@@ -156,6 +157,13 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		st->light_rays += ls.rays;
 		st->maps += ls.maps;
 		st->map_bytes += ls.map_bytes;
+		if (ls.clipped && c == 0) {
+			struct diag dg;
+			diag_init(&dg, stderr);
+			diag_warning(&dg, ls.clipped->loc,
+			             "under a parallel light this unbounded %s casts caustics only around the "
+			             "finite objects and the camera", scene_object_kind_name(ls.clipped->kind));
+		}
 	}
 	return n;
 }

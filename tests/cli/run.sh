@@ -178,7 +178,7 @@ run --quiet --width 8 --height 6 -o "$tmp/probe.exr" $D/hello.scn
 if [ "$rc" -ne 0 ] || [ ! -s "$tmp/probe.exr" ]; then
 	for c in "-o out.exr writes the image" "-o out.png writes a PNG" "+Oout.png (POV-Ray switch)" \
 		"default output: the scene name with .exr" "output in a missing directory: exit 73/74, no file" \
-		"a failed render leaves no output file"; do
+		"a failed render leaves no output file" "an unbounded mirror under a parallel light warns where it is"; do
 		skip "$c" "rendering not available yet"
 	done
 	why=
@@ -210,5 +210,12 @@ else
 	run --quiet --width 8 --height 6 -o "$tmp/bad.exr" $D/bad.scn
 	want_rc 65; [ ! -e "$tmp/bad.exr" ] || why="${why:+$why; }bad.exr was written"
 	report "a failed render leaves no output file"
+
+	run --quiet --width 8 --height 6 --rays 20000 -o "$tmp/sun.exr" $D/sun_mirror.scn
+	want_rc 0; [ -s "$tmp/sun.exr" ] || why="${why:+$why; }no sun.exr"
+	is err "$D/sun_mirror.scn:5:1: warning: under a parallel light this unbounded plane casts caustics only around the finite objects and the camera
+plane { x, 3 pigment { rgb 0 } finish { reflection 1 } }
+^"
+	report "an unbounded mirror under a parallel light warns where it is"
 fi
 exit 0
