@@ -62,20 +62,18 @@ static void fx_add(struct fx *a, struct fx b)
 
 struct acc {
 	struct fx e[3];  /* energy per channel */
-	double sq[3];    /* Σ (w·e)² per channel */
-	uint64_t count;  /* deposits with nonzero weight here */
+	float sq[3];     /* Σ (w·e)² per channel (a variance estimate: float is plenty) */
+	uint32_t count;  /* deposits with nonzero weight here (saturating) */
 };
 
-struct fin {
-	double irr[3];  /* irradiance (W/m²) */
-	double area;    /* A_node (m²) */
-	bool isolated;  /* discarded by the isolated-sample rule */
-};
-
+/* Irradiance is not stored: illum_finish records each node's area (planes:
+ * one area for all, m->flat_area) and the isolated ones, and readers divide
+ * energy by area, which gives the same numbers for less memory. */
 struct tile {
 	int32_t ti, tj;    /* tile coordinates (node i = ti·ILLUM_TILE + k) */
+	uint32_t iso;      /* bit q: node q is isolated (illum_finish) */
+	double *area;      /* TN node areas after illum_finish; NULL on planes */
 	struct acc n[TN];  /* accumulators, row-major (j then i inside the tile) */
-	struct fin *fin;   /* TN finished values, allocated by illum_finish */
 };
 
 struct axis {
@@ -374,9 +372,9 @@ static void acc_add(struct acc *n, double w, const double e[3])
 	for (int c = 0; c < 3; c++) {
 		double x = w * e[c];
 		fx_add(&n->e[c], fx_from(x));
-		n->sq[c] += x * x;
+		n->sq[c] += (float)(x * x);
 	}
-	n->count++;
+	n->count += n->count < UINT32_MAX;
 }
 
 /* The band of node row j when the deposits are split among nb threads:
@@ -430,7 +428,8 @@ static void tile_accumulate(struct tile *d, const struct tile *s)
 			fx_add(&d->n[q].e[c], s->n[q].e[c]);
 			d->n[q].sq[c] += s->n[q].sq[c];
 		}
-		d->n[q].count += s->n[q].count;
+		uint32_t c = d->n[q].count + s->n[q].count;
+		d->n[q].count = c < d->n[q].count ? UINT32_MAX : c;
 	}
 }
 
@@ -444,7 +443,8 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 		if (d >= 0) {
 			tile_accumulate(dst->tiles[d], t);
 		} else {
-			t->fin = NULL;
+			t->area = NULL;
+			t->iso = 0;
 			tile_insert(dst, t);
 		}
 	}
@@ -627,20 +627,20 @@ static void *finish_work(void *arg)
 		struct near nb = {.ti = 0};
 		if (check)
 			near_fill(m, &nb, t->ti, t->tj);
+		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
-			struct fin *f = &t->fin[q];
-			memset(f, 0, sizeof *f);
+			if (t->area)
+				t->area[q] = 0;
 			if (!t->n[q].count)
 				continue;
 			long i = (long)t->ti * ILLUM_TILE + q % ILLUM_TILE;
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
-			f->area = node_area(m, i, j);
-			f->isolated = check && node_isolated(m, &nb, i, j, t->n[q].count);
-			for (int c = 0; c < 3; c++) {
-				if (f->isolated)
+			if (t->area)
+				t->area[q] = node_area(m, i, j);
+			if (check && node_isolated(m, &nb, i, j, t->n[q].count)) {
+				t->iso |= 1u << q;
+				for (int c = 0; c < 3; c++)
 					fx_add(&J->rem[c], t->n[q].e[c]);
-				else if (f->area > 0)
-					f->irr[c] = fx_to_double(t->n[q].e[c]) / f->area;
 			}
 		}
 	}
@@ -649,10 +649,11 @@ static void *finish_work(void *arg)
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
 {
+	bool plane = m->obj->kind == OBJ_PLANE;
 	for (long k = 0; k < m->ntiles; k++)
-		if (!m->tiles[k]->fin)
-			m->tiles[k]->fin = ARENA_ARRAY(&m->pool, struct fin, TN);
-	if (m->obj->kind == OBJ_PLANE && m->ntiles) /* its cached area, before threads read it */
+		if (!plane && !m->tiles[k]->area)
+			m->tiles[k]->area = ARENA_ARRAY(&m->pool, double, TN);
+	if (plane && m->ntiles) /* its one area, before threads read it */
 		node_area(m, 0, 0);
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
 	if (m->ntiles < 4096)
@@ -687,6 +688,16 @@ void illum_finish(struct illum_map *m, bool discard_isolated, double removed[3])
 	illum_finish_mt(m, discard_isolated, removed, 1);
 }
 
+/* Irradiance of node q of tile t after illum_finish: 0 when isolated or
+ * without area. */
+static double node_irr(const struct illum_map *m, const struct tile *t, int q, int c)
+{
+	double a = t->area ? t->area[q] : m->flat_area;
+	if ((t->iso >> q) & 1 || !(a > 0))
+		return 0;
+	return fx_to_double(t->n[q].e[c]) / a;
+}
+
 void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 {
 	out[0] = out[1] = out[2] = 0;
@@ -704,7 +715,7 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 			const struct tile *t = w > 0 ? node_tile(m, iu[a], iv[b], &slot) : NULL;
 			if (t)
 				for (int c = 0; c < 3; c++)
-					out[c] += w * t->fin[slot].irr[c];
+					out[c] += w * node_irr(m, t, slot, c);
 		}
 }
 
@@ -762,10 +773,11 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 				n.sumsq[c] = a->sq[c];
 			}
 			n.count = a->count;
-			if (m->finished && s[k]->fin) {
-				n.area = s[k]->fin[q].area;
-				n.isolated = s[k]->fin[q].isolated;
-				memcpy(n.irr, s[k]->fin[q].irr, sizeof n.irr);
+			if (m->finished) {
+				n.area = s[k]->area ? s[k]->area[q] : m->flat_area;
+				n.isolated = (s[k]->iso >> q) & 1;
+				for (int c = 0; c < 3; c++)
+					n.irr[c] = node_irr(m, s[k], q, c);
 			}
 			fn(ctx, &n);
 		}
@@ -812,7 +824,7 @@ const char *illum_write_exr(const struct illum_map *m, const char *path)
 			if (i > i1 || j > j1)
 				continue;
 			for (int c = 0; c < 3; c++)
-				pl[c][(j1 - j) * w + (i - i0)] = (float)t->fin[q].irr[c];
+				pl[c][(j1 - j) * w + (i - i0)] = (float)node_irr(m, t, q, c);
 		}
 	}
 	const char *err = out_exr_write(fb, path, NULL);

@@ -387,7 +387,7 @@ static void t_merge(void)
 		diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
 		diff += memcmp(a->irr, c->irr, sizeof a->irr) != 0;
 		diff += a->count != b->count || a->count != c->count || a->i != b->i || a->j != c->j;
-		CHECK_NEAR(a->sumsq[2], b->sumsq[2], 1e-12 * a->sumsq[2]);
+		CHECK_NEAR(a->sumsq[2], b->sumsq[2], 1e-5 * a->sumsq[2]); /* float sums, merged in another order */
 	}
 	CHECK(diff == 0);
 	free(s1);
