@@ -4,6 +4,7 @@
 #define ARVO_VEC_H
 
 #include <math.h>
+#include <stdbool.h>
 
 struct vec3 {
 	double x, y, z;
@@ -53,5 +54,10 @@ struct bbox {
 static inline struct bbox bbox_empty(void) { return (struct bbox){v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)}; }
 static inline struct bbox bbox_union(struct bbox a, struct bbox b) { return (struct bbox){v_min(a.lo, b.lo), v_max(a.hi, b.hi)}; }
 static inline struct bbox bbox_add(struct bbox a, struct vec3 p) { return (struct bbox){v_min(a.lo, p), v_max(a.hi, p)}; }
+static inline bool bbox_finite(struct bbox b)
+{
+	return isfinite(b.lo.x) && isfinite(b.lo.y) && isfinite(b.lo.z) && isfinite(b.hi.x) &&
+	       isfinite(b.hi.y) && isfinite(b.hi.z);
+}
 
 #endif

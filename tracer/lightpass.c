@@ -130,13 +130,6 @@ bool lp_dispersive(const struct scene *s)
 	return false;
 }
 
-/* Is bounds bb finite on every axis? */
-static bool finite_box(struct bbox bb)
-{
-	return isfinite(bb.lo.x) && isfinite(bb.hi.x) && isfinite(bb.lo.y) && isfinite(bb.hi.y) &&
-	       isfinite(bb.lo.z) && isfinite(bb.hi.z);
-}
-
 /* The cone from light position L that holds bounds bb. */
 static struct target cone_to(struct vec3 L, struct bbox bb)
 {
@@ -144,7 +137,7 @@ static struct target cone_to(struct vec3 L, struct bbox bb)
 	memset(&t, 0, sizeof t);
 	t.cosmax = -1;
 	t.axis = v3(0, -1, 0);
-	if (finite_box(bb)) {
+	if (bbox_finite(bb)) {
 		struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
 		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9), d = v_len(v_sub(c, L));
 		if (d > r) {
@@ -180,7 +173,7 @@ static struct target beam_to(const struct scene *s, struct vec3 D, struct bbox b
 	for (int i = 0; i < s->nobjects; i++) {
 		struct bbox ob = shape_bounds(s->objects[i]);
 		struct hit h;
-		if (finite_box(ob)) {
+		if (bbox_finite(ob)) {
 			struct vec3 oc = v_scale(v_add(ob.lo, ob.hi), 0.5);
 			back = fmax(back, v_len(v_sub(oc, c)) + 0.5 * v_len(v_sub(ob.hi, ob.lo)));
 		} else if (shape_intersect(s->objects[i], &(struct ray){c, v_neg(D)}, 0, INFINITY, &h)) {
@@ -201,14 +194,10 @@ static struct target beam_to(const struct scene *s, struct vec3 D, struct bbox b
  * caustic from that object. */
 static struct bbox scene_extent(const struct scene *s)
 {
-	struct bbox e = {s->camera.location, s->camera.location};
-	for (int i = 0; i < s->nobjects; i++) {
-		struct bbox b = shape_bounds(s->objects[i]);
-		if (finite_box(b)) {
-			e.lo = v3(fmin(e.lo.x, b.lo.x), fmin(e.lo.y, b.lo.y), fmin(e.lo.z, b.lo.z));
-			e.hi = v3(fmax(e.hi.x, b.hi.x), fmax(e.hi.y, b.hi.y), fmax(e.hi.z, b.hi.z));
-		}
-	}
+	struct bbox e = bbox_add(bbox_empty(), s->camera.location);
+	for (int i = 0; i < s->nobjects; i++)
+		if (shape_bounded(s->objects[i]))
+			e = bbox_union(e, shape_bounds(s->objects[i]));
 	e.lo = v_sub(e.lo, v3(0.5, 0.5, 0.5));
 	e.hi = v_add(e.hi, v3(0.5, 0.5, 0.5));
 	return e;
@@ -400,19 +389,25 @@ static int find_map(const struct lp_result *r, const struct object *o)
 	}
 }
 
-/* Builds the hash over r->objs[0..n). */
+/* Enters r->objs[k] into the hash (which has a free slot). */
+static void slot_put(struct lp_result *r, int k)
+{
+	unsigned h = ptr_hash(r->objs[k]) & (unsigned)(r->nslots - 1);
+	while (r->slots[h])
+		h = (h + 1) & (unsigned)(r->nslots - 1);
+	r->slots[h] = k + 1;
+}
+
+/* Builds the hash over r->objs[0..n) (freeing any older one). */
 static void index_maps(struct lp_result *r)
 {
+	free(r->slots);
 	r->nslots = 8;
 	while (r->nslots <= 2 * r->n)
 		r->nslots *= 2;
 	r->slots = mem_calloc((size_t)r->nslots, sizeof *r->slots);
-	for (int k = 0; k < r->n; k++) {
-		unsigned h = ptr_hash(r->objs[k]) & (unsigned)(r->nslots - 1);
-		while (r->slots[h])
-			h = (h + 1) & (unsigned)(r->nslots - 1);
-		r->slots[h] = k + 1;
-	}
+	for (int k = 0; k < r->n; k++)
+		slot_put(r, k);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -468,29 +463,22 @@ static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const s
 	for (int b = 0; b < nbuf; b++)
 		for (long i = 0; i < bufs[b].n; i++) {
 			const struct object *ob = bufs[b].r[i].obj;
-			if (ob == prev || find_map(r, ob) >= 0) {
-				prev = ob;
-				continue;
-			}
+			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
+			if (seen)
+				continue;
 			if (r->n == cap)
 				r->objs = mem_realloc(r->objs, sizeof *r->objs * (size_t)(cap *= 2));
 			r->objs[r->n++] = ob;
-			if (2 * r->n >= r->nslots) {
-				free(r->slots);
+			if (2 * r->n >= r->nslots)
 				index_maps(r);
-			} else {
-				unsigned h = ptr_hash(ob) & (unsigned)(r->nslots - 1);
-				while (r->slots[h])
-					h = (h + 1) & (unsigned)(r->nslots - 1);
-				r->slots[h] = r->n;
-			}
+			else
+				slot_put(r, r->n - 1);
 		}
 	const struct object **objs = r->objs;
 	int n = r->n;
 	if (n > 1)
 		qsort(objs, (size_t)n, sizeof *objs, by_source);
-	free(r->slots);
 	index_maps(r);
 	/* group the records per surface (counting sort by map index) */
 	int *ki = mem_alloc(sizeof *ki * (size_t)(total ? total : 1));
@@ -545,7 +533,7 @@ static long plan(struct job *J)
 			struct bbox bb = shape_bounds(s->objects[i]);
 			if (l->kind != LIGHT_PARALLEL)
 				tg[nt] = cone_to(l->pos, bb);
-			else if (finite_box(bb))
+			else if (bbox_finite(bb))
 				tg[nt] = beam_to(s, D, bb);
 			else {
 				tg[nt] = beam_to(s, D, scene_extent(s));

@@ -82,19 +82,13 @@ bool shape_inside(const struct object *o, struct vec3 world_p)
 
 /* ==== bounds ============================================================= */
 
-static bool box_finite(struct bbox b)
-{
-	return isfinite(b.lo.x) && isfinite(b.lo.y) && isfinite(b.lo.z) && isfinite(b.hi.x) &&
-	       isfinite(b.hi.y) && isfinite(b.hi.z);
-}
-
 struct bbox shape_bounds(const struct object *o)
 {
 	const struct prim_ops *p = ops(o);
 	if (!p)
 		return csg_is_csg(o) ? csg_bounds(o) : bbox_empty();
 	struct bbox b = p->bounds(o);
-	return box_finite(b) ? xf_bbox(&o->xf, b) : prim_infinite_box();
+	return bbox_finite(b) ? xf_bbox(&o->xf, b) : prim_infinite_box();
 }
 
 struct bbox shape_solid_bounds(const struct object *o)
@@ -106,7 +100,7 @@ struct bbox shape_solid_bounds(const struct object *o)
 	return shape_bounds(o);
 }
 
-bool shape_bounded(const struct object *o) { return box_finite(shape_bounds(o)); }
+bool shape_bounded(const struct object *o) { return bbox_finite(shape_bounds(o)); }
 
 /* ==== parametrisation ===================================================== */
 
