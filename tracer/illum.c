@@ -454,6 +454,24 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 	illum_free(src);
 }
 
+/* Runs fn on each of the n (≤ 64) jobs at jobs, `size` bytes apart: the
+ * first on this thread, the others on threads of their own (or here, when a
+ * thread cannot be made); returns when all are done. */
+static void run_jobs(void *(*fn)(void *), void *jobs, size_t size, int n)
+{
+	pthread_t tids[64];
+	bool started[64] = {false};
+	for (int b = 1; b < n; b++)
+		started[b] = pthread_create(&tids[b], NULL, fn, (char *)jobs + (size_t)b * size) == 0;
+	fn(jobs);
+	for (int b = 1; b < n; b++) {
+		if (started[b])
+			pthread_join(tids[b], NULL);
+		else
+			fn((char *)jobs + (size_t)b * size);
+	}
+}
+
 struct band_job {
 	struct illum_map *part;
 	const struct illum_splat *s;
@@ -478,20 +496,9 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 		return;
 	}
 	struct band_job jobs[64];
-	pthread_t tids[64];
-	bool started[64] = {false};
-	for (int b = 0; b < nb; b++) {
+	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct band_job){illum_new_like(m), s, n, b, nb};
-		if (b > 0)
-			started[b] = pthread_create(&tids[b], NULL, band_work, &jobs[b]) == 0;
-	}
-	band_work(&jobs[0]);
-	for (int b = 1; b < nb; b++) {
-		if (started[b])
-			pthread_join(tids[b], NULL);
-		else
-			band_work(&jobs[b]); /* no thread: do its share here */
-	}
+	run_jobs(band_work, jobs, sizeof *jobs, nb);
 	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
 		adopt(m, jobs[b].part);
 }
@@ -659,21 +666,12 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	if (m->ntiles < 4096)
 		nb = 1;
 	struct finish_job jobs[64];
-	pthread_t tids[64];
-	bool started[64] = {false};
-	for (int b = 0; b < nb; b++) {
+	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
 		                              {{0, 0}, {0, 0}, {0, 0}}};
-		if (b > 0)
-			started[b] = pthread_create(&tids[b], NULL, finish_work, &jobs[b]) == 0;
-	}
-	finish_work(&jobs[0]);
+	run_jobs(finish_work, jobs, sizeof *jobs, nb);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
 	for (int b = 0; b < nb; b++) {
-		if (b > 0 && started[b])
-			pthread_join(tids[b], NULL);
-		else if (b > 0)
-			finish_work(&jobs[b]);
 		for (int c = 0; c < 3; c++)
 			fx_add(&rem[c], jobs[b].rem[c]);
 	}
