@@ -87,7 +87,7 @@ unit: $(UNIT_BIN)
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes hyperfine
+           povray povray-includes povray-examples hyperfine
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \

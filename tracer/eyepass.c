@@ -7,6 +7,7 @@
 
 #include "optics.h"
 #include "sampler.h"
+#include "surface.h"
 
 /* The state of one camera sample's tree of rays. */
 struct path {
@@ -90,15 +91,42 @@ static struct vec3 arriving(const struct scene *s, const struct light *l, double
 	return I;
 }
 
-/* Is the segment from p (on the side of nf) to the light blocked? */
-static bool shadowed(struct path *pa, const struct light *l, struct vec3 p, struct vec3 nf,
-                     struct vec3 L, double dist)
+/* The share of light from the light that reaches p (on the side of nf)
+ * along unit L over dist: 0 behind an opaque object or one whose
+ * transmitted light the light pass carries (a caustic), else the product of
+ * what each straight transmitter passes (surface.h) and of the absorption
+ * inside it. */
+static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p, struct vec3 nf,
+                          struct vec3 L, double dist)
 {
+	struct vec3 pass = v3(1, 1, 1);
 	if (l->shadowless)
-		return false;
+		return pass;
+	const struct eye_ctx *ctx = pa->ctx;
 	struct ray r = {v_madd(p, nf, eps_at(p)), L};
+	double tmax = dist * (1 - 1e-9), t0 = 0;
 	pa->rays++;
-	return bvh_occluded_skip(pa->ctx->bvh, &r, 0, dist * (1 - 1e-9), OF_NO_SHADOW);
+	if (!ctx->see_through)
+		return bvh_occluded_skip(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW) ? v3(0, 0, 0) : pass;
+	for (int n = 0; n < 64; n++) {
+		struct hit h;
+		if (!bvh_intersect_skip(ctx->bvh, &r, t0, tmax, OF_NO_SHADOW, &h))
+			return pass;
+		struct surf_in si;
+		struct surf_out so;
+		surf_prepare(ctx->scene, ctx->mats, &h, L, &si);
+		if (!si.straight)
+			return v3(0, 0, 0);
+		surf_scatter(&si, (struct band){pa->channel, 0}, &so);
+		pass = v_mul(pass, so.T);
+		if (!h.entering)
+			pass = v_mul(pass, opt_fade(si.in, h.t - t0));
+		if (v_maxc(pass) <= 0)
+			return pass;
+		t0 = h.t + eps_at(h.p);
+		pa->rays++;
+	}
+	return v3(0, 0, 0);
 }
 
 /* Phong and Blinn highlights for light direction L (unit), per unit of
@@ -151,7 +179,9 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
 	struct vec3 Li = v_scale(arriving(s, l, dist), w);
 	if (l->kind == LIGHT_SPOT)
 		Li = v_scale(Li, opt_spot(l, v_neg(L)));
-	if (v_maxc(Li) <= 0 || (test && shadowed(pa, l, sf->h->p, sf->nf, L, dist)))
+	if (test && v_maxc(Li) > 0)
+		Li = v_mul(Li, shadow(pa, l, sf->h->p, sf->nf, L, dist));
+	if (v_maxc(Li) <= 0)
 		return v3(0, 0, 0);
 	*E = v_madd(*E, Li, c);
 	double k = s->legacy_lights ? 1 : 1 / M_PI;
@@ -184,8 +214,10 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 				continue;
 			}
 			double dist = towards(l, sf->h->p, q, &L);
-			if (v_dot(sf->nf, L) > 0 && !shadowed(pa, l, sf->h->p, sf->nf, L, dist))
-				seen += w;
+			if (v_dot(sf->nf, L) > 0) { /* the mean share passed, as a scalar */
+				struct vec3 k = shadow(pa, l, sf->h->p, sf->nf, L, dist);
+				seen += w * (k.x + k.y + k.z) / 3;
+			}
 		}
 	return legacy && seen > 0 ? from_point(pa, l, sf, l->pos, seen, false, E) : out;
 }
@@ -195,55 +227,35 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
                          struct aov *aov);
 
-/* The reflected and transmitted light at a hit: mirror reflection R by the
- * finish, transmission T by the pigment's filter/transmit, refracted by the
- * interior's ior. With fresnel or conserve_energy, T keeps only 1 - R.
- * Under total internal reflection the transmitted share is reflected (all
- * the light, in the legacy model, as POV-Ray does: see pov_glass.scn). */
+/* The reflected and transmitted light at a hit, as the surface step
+ * (surface.h) splits it. At dispersive glass a full-colour path splits into
+ * one path per channel, each refracting with its own index (chromatic
+ * aberration). */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
                             double weight, unsigned skip)
 {
 	const struct interior *in = mat_interior(sf->h->obj);
-	const struct finish *f = &sf->tex->finish;
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
 	if (disperses && clear && pa->channel < 0) {
-		/* chromatic aberration: one path per channel from here on, each
-		 * refracting with its own index (red ior/√D, green ior, blue ior·√D) */
 		double o[3];
 		for (int c = 0; c < 3; c++) {
 			pa->channel = c;
 			struct vec3 r = specular(pa, sf, d, depth, weight, skip);
-			o[c] = c == 0 ? r.x : c == 1 ? r.y : r.z;
+			o[c] = v_comp(r, c);
 		}
 		pa->channel = -1;
 		return v3(o[0], o[1], o[2]);
 	}
-	double ior = in->ior > 0 ? in->ior : 1;
-	if (disperses && pa->channel >= 0)
-		ior *= pow(in->dispersion, (pa->channel - 1) / 2.0);
-	double n1 = sf->h->entering ? 1 : ior, n2 = sf->h->entering ? ior : 1;
-	double ci = v_dot(sf->nf, sf->v), e = eps_at(sf->h->p);
-	struct vec3 R = opt_reflection(f, sf->pc, ci, n1, n2), out = v3(0, 0, 0);
-	struct vec3 T = v_add(v_scale(col3(sf->pc), sf->pc.f), v3(sf->pc.t, sf->pc.t, sf->pc.t));
-	if (v_maxc(T) > 0) {
-		struct vec3 td;
-		if (f->refl_fresnel || f->conserve_energy)
-			T = v_mul(T, v_sub(v3(1, 1, 1), R));
-		if (!opt_refract(d, sf->nf, n1 / n2, &td)) {
-			/* total internal reflection: POV-Ray (legacy) reflects all of
-			 * it; the physical model reflects the share that would pass */
-			R = pa->ctx->scene->legacy_lights ? v3(1, 1, 1) : v_add(R, T);
-		} else {
-			struct ray tr = {v_madd(sf->h->p, sf->nf, -e), td};
-			out = v_mul(T, trace(pa, tr, depth + 1, weight * v_maxc(T), skip, NULL));
-		}
-	}
-	if (v_maxc(R) > 0) {
-		struct vec3 rd = v_sub(d, v_scale(sf->nf, 2 * v_dot(d, sf->nf)));
-		struct ray rr = {v_madd(sf->h->p, sf->nf, e), rd};
-		out = v_add(out, v_mul(R, trace(pa, rr, depth + 1, weight * v_maxc(R), OF_NO_REFLECTION, NULL)));
-	}
+	struct surf_in si = {sf->h, &sf->tex->finish, sf->pc, in, d, sf->nf,
+	                     pa->ctx->scene->legacy_lights, false};
+	struct surf_out so;
+	surf_scatter(&si, (struct band){pa->channel, 0}, &so);
+	struct vec3 out = v3(0, 0, 0);
+	if (v_maxc(so.T) > 0)
+		out = v_mul(so.T, trace(pa, so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
+	if (v_maxc(so.R) > 0)
+		out = v_add(out, v_mul(so.R, trace(pa, so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
 	return out;
 }
 
@@ -324,6 +336,7 @@ void eye_setup(struct eye_ctx *ctx, const struct scene *s, const struct bvh *b,
 	ctx->w = w;
 	ctx->h = h;
 	cam_setup(&ctx->cam, &s->camera);
+	ctx->see_through = surf_any_straight(s);
 	ctx->spp = spp > 0 ? spp : 1;
 	if (cam_has_dof(&ctx->cam) && ctx->cam.blur_samples > ctx->spp)
 		ctx->spp = ctx->cam.blur_samples;

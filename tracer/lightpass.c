@@ -21,6 +21,7 @@
 #include "optics.h"
 #include "sampler.h"
 #include "shape.h"
+#include "surface.h"
 
 #define CHUNK 4096 /* rays per work item */
 
@@ -76,6 +77,7 @@ struct job {
 	long nitems;
 	atomic_long next;           /* next item to take */
 	const struct object *clipped; /* see lp_stats */
+	struct band band;           /* the light this pass carries */
 };
 
 struct worker {
@@ -84,23 +86,20 @@ struct worker {
 	struct recbuf recs;
 	long long segments;
 	double emitted[3];
+	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
 };
 
 static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
 
-static double eps_at(struct vec3 p)
-{
-	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
-}
-
 /* ==== which objects can form caustics ==================================== */
 
-/* True when o (or a part of it) reflects or transmits light specularly. */
-static bool is_specular(const struct object *o)
+/* True when o (or a part of it) reflects light specularly or transmits it
+ * bent (a straight transmitter's light is the shadow rays', surface.h). */
+static bool is_specular(const struct scene *s, const struct object *o)
 {
 	if (o->kind >= OBJ_UNION) {
 		for (int i = 0; i < o->g.csg.n; i++)
-			if (is_specular(o->g.csg.kids[i]))
+			if (is_specular(s, o->g.csg.kids[i]))
 				return true;
 		return false;
 	}
@@ -109,7 +108,7 @@ static bool is_specular(const struct object *o)
 	const struct pigment *p = &t->pigment;
 	bool refl = maxc(opt_rgb(f->refl_min)) > 0 || maxc(opt_rgb(f->refl_max)) > 0;
 	bool trans = p->kind == PIG_SOLID ? p->c[0].f + p->c[0].t > 0 : true;
-	return refl || trans;
+	return refl || (trans && !surf_straight(s, o));
 }
 
 bool lp_dispersive(const struct scene *s)
@@ -224,69 +223,78 @@ static void record(struct worker *w, const struct hit *h, const double e[3])
 	rb->r[rb->n++] = (struct rec){h->obj, h->u, h->v, {e[0], e[1], e[2]}, h->p};
 }
 
-/* The index of refraction of an interior for this pass's channel. */
-static double pass_ior(const struct lp_opts *o, const struct interior *in)
+static void add3(double acc[3], const double e[3], double k)
 {
-	double ior = in->ior > 0 ? in->ior : 1;
-	if (o->channel < 0 || in->dispersion == 1)
-		return ior;
-	double k = sqrt(in->dispersion);
-	return o->channel == 0 ? ior / k : o->channel == 2 ? ior * k : ior;
+	for (int c = 0; c < 3; c++)
+		acc[c] += e[c] * k;
 }
 
-/* Follows one light ray; nspec counts its specular bounces so far. */
+/* Follows one light ray; nspec counts its specular bounces so far (a
+ * straight transmitter, whose light the eye pass's shadow rays carry, is no
+ * bounce). Every joule that arrives is accounted for once (lp_stats):
+ * followed on, deposited, direct, absorbed, escaped or cut. */
 static void trace(struct worker *w, struct ray r, const double e[3], double cutoff, int depth, int nspec)
 {
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h))
+	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h)) {
+		add3(w->escaped, e, 1);
 		return;
+	}
 	/* POV-Ray's photons { } on the object: pass_through lets light by
 	 * untouched, collect off keeps it off the maps, and a target with
 	 * refraction or reflection off does not bend light that way */
 	const struct photon_spec *ph = h.obj->has_photons ? &h.obj->photons : NULL;
 	if (ph && ph->pass_through) {
 		if (depth < J->o->max_depth)
-			trace(w, (struct ray){v_madd(h.p, r.d, eps_at(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec);
+			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec);
+		else
+			add3(w->cut, e, 1);
 		return;
 	}
 	double ea[3] = {e[0], e[1], e[2]};
 	if (!h.entering) { /* leaving a medium: its absorption over the path inside */
 		struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
 		ea[0] *= k.x, ea[1] *= k.y, ea[2] *= k.z;
+		for (int c = 0; c < 3; c++)
+			w->absorbed[c] += e[c] - ea[c];
 		e = ea;
 	}
-	const struct texture *tex = mat_texture(h.obj);
-	struct colour pc = mat_pigment(J->mc, &tex->pigment, h.p);
-	struct vec3 d = v_norm(r.d);
-	struct vec3 nf = v_dot(h.n, d) < 0 ? h.n : v_neg(h.n);
-	double opacity = 1 - pc.f - pc.t;
-	if (tex->finish.diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct) &&
-	    (!ph || ph->collect))
+	struct surf_in si;
+	struct surf_out so;
+	surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
+	surf_scatter(&si, J->band, &so);
+	double opacity = 1 - si.pc.f - si.pc.t;
+	/* what neither reflects nor transmits stays at the surface: a diffuse
+	 * surface reached after a specular bounce keeps it in its map */
+	double rest[3];
+	for (int c = 0; c < 3; c++)
+		rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
+	if (si.f->diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 		record(w, &h, e);
-	if (depth >= J->o->max_depth)
-		return;
-	bool refract = w->refract && (!ph || !ph->target || ph->refraction);
-	bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only;
-	double ior = pass_ior(J->o, mat_interior(h.obj));
-	double n1 = h.entering ? 1 : ior, n2 = h.entering ? ior : 1, ci = -v_dot(d, nf), eps = eps_at(h.p);
-	struct vec3 R = opt_reflection(&tex->finish, pc, ci, n1, n2), T = opt_transmission(pc), td;
-	if (maxc(T) > 0 && refract) {
-		if (!opt_refract(d, nf, n1 / n2, &td)) {
-			R = v_add(R, T); /* total internal reflection */
-		} else {
-			if (tex->finish.refl_fresnel || tex->finish.conserve_energy)
-				T = v_mul(T, v_sub(v3(1, 1, 1), R));
-			double te[3] = {e[0] * T.x, e[1] * T.y, e[2] * T.z};
-			if (fmax(te[0], fmax(te[1], te[2])) > cutoff)
-				trace(w, (struct ray){v_madd(h.p, nf, -eps), td}, te, cutoff, depth + 1, nspec + 1);
-		}
+		add3(w->deposited, rest, 1);
+	} else if (si.f->diffuse > 0 && opacity > 0 && nspec == 0) {
+		add3(w->direct, rest, 1);
+	} else {
+		add3(w->absorbed, rest, 1);
 	}
-	if (maxc(R) > 0 && reflect) {
-		double re[3] = {e[0] * R.x, e[1] * R.y, e[2] * R.z};
-		if (fmax(re[0], fmax(re[1], re[2])) > cutoff)
-			trace(w, (struct ray){v_madd(h.p, nf, eps), opt_reflect(d, nf)}, re, cutoff, depth + 1, nspec + 1);
+	bool more = depth < J->o->max_depth;
+	bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
+	bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
+	double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
+	double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
+	if (maxc(so.T) > 0) {
+		if (refract && fmax(te[0], fmax(te[1], te[2])) > cutoff)
+			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1);
+		else
+			add3(w->cut, te, 1);
+	}
+	if (maxc(so.R) > 0) {
+		if (reflect && fmax(re[0], fmax(re[1], re[2])) > cutoff)
+			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1);
+		else
+			add3(w->cut, re, 1);
 	}
 }
 
@@ -528,7 +536,7 @@ static long plan(struct job *J)
 		struct vec3 D = v_sub(l->point_at, l->pos);
 		D = v_len(D) > 0 ? v_norm(D) : v3(0, -1, 0);
 		for (int i = 0; i < s->nobjects; i++) {
-			if (!J->o->aim_all && !is_specular(s->objects[i]))
+			if (!J->o->aim_all && !is_specular(s, s->objects[i]))
 				continue;
 			struct bbox bb = shape_bounds(s->objects[i]);
 			if (l->kind != LIGHT_PARALLEL)
@@ -564,6 +572,7 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 	struct job J;
 	memset(&J, 0, sizeof J);
 	J.s = s, J.b = b, J.mc = mc, J.o = o;
+	J.band = (struct band){o->channel, 0};
 	J.targets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.targets);
 	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
 	J.nitems = plan(&J);
@@ -586,8 +595,14 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 	for (int i = 0; i < nt; i++) {
 		bufs[i] = ws[i].recs;
 		acc.segments += ws[i].segments;
-		for (int c = 0; c < 3; c++)
+		for (int c = 0; c < 3; c++) {
 			acc.emitted[c] += ws[i].emitted[c];
+			acc.landed[c] += ws[i].deposited[c];
+			acc.direct[c] += ws[i].direct[c];
+			acc.absorbed[c] += ws[i].absorbed[c];
+			acc.escaped[c] += ws[i].escaped[c];
+			acc.cut[c] += ws[i].cut[c];
+		}
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(bufs, nt, o) : NULL;
 	for (long k = 0; k < J.nitems; k++)

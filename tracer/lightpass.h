@@ -33,7 +33,16 @@ struct lp_stats {
 	long long rays;       /* light rays shot (primary) */
 	long long segments;   /* ray segments traced (primary and secondary) */
 	double emitted[3];    /* energy sent toward the specular objects (W) */
-	double deposited[3];  /* energy held by the maps (W) */
+	double deposited[3];  /* energy held by the maps (W): the irradiance of light that
+	                         landed, including what a partly specular surface sent on */
+	/* Where the emitted energy went; the five add up to emitted: */
+	double landed[3];     /* ended on a diffuse surface with a map (neither
+	                         reflected nor transmitted there) */
+	double direct[3];     /* ended on a diffuse surface before any specular bounce
+	                         (direct light: the eye pass's shadow rays carry it) */
+	double absorbed[3];   /* ended in a medium or on a surface that keeps no map */
+	double escaped[3];    /* left the scene */
+	double cut[3];        /* stopped by the depth and weight limits or photons { } */
 	double removed[3];    /* energy the isolated-sample rule discarded (W) */
 	long maps;            /* surfaces that received a map */
 	size_t map_bytes;     /* memory held by the maps */

@@ -157,6 +157,15 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		st->light_rays += ls.rays;
 		st->maps += ls.maps;
 		st->map_bytes += ls.map_bytes;
+		for (int k = 0; k < 3; k++) {
+			st->e_emitted += ls.emitted[k];
+			st->e_deposited += ls.landed[k];
+			st->e_direct += ls.direct[k];
+			st->e_absorbed += ls.absorbed[k];
+			st->e_escaped += ls.escaped[k];
+			st->e_cut += ls.cut[k];
+			st->e_held += ls.deposited[k];
+		}
 		if (ls.clipped && c == 0) {
 			struct diag dg;
 			diag_init(&dg, stderr);
@@ -276,6 +285,13 @@ void render_print_stats(FILE *f, const struct render_stats *st)
 	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
 	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %ld maps, %.1f MiB)\n", st->t_light,
 	        st->light_rays, st->maps, st->map_bytes / 1048576.0);
+	if (st->e_emitted > 0) {
+		fprintf(f, "arvo: light energy     emitted %.6g W = deposited %.6g + direct %.6g + absorbed %.6g"
+		        " + escaped %.6g + cut %.6g\n", st->e_emitted, st->e_deposited, st->e_direct,
+		        st->e_absorbed, st->e_escaped, st->e_cut);
+		fprintf(f, "arvo: maps hold        %.6g W (irradiance × area of the light that landed)\n",
+		        st->e_held);
+	}
 	fprintf(f, "arvo: eye pass         %.3f s (%.3g rays/s)\n", st->t_eye,
 	        st->t_eye > 0 ? (double)st->rays / st->t_eye : 0.0);
 	fprintf(f, "arvo: total            %.3f s\n", total);

@@ -34,6 +34,10 @@ struct render_stats {
 	long long light_rays; /* light rays shot (all passes) */
 	long maps;          /* surfaces with an illumination map */
 	size_t map_bytes;   /* memory held by the maps */
+	/* light-pass energy (W, summed over channels and passes): emitted toward
+	 * the specular objects = deposited + direct + absorbed + escaped + cut
+	 * (lightpass.h); held is what the maps hold */
+	double e_emitted, e_deposited, e_direct, e_absorbed, e_escaped, e_cut, e_held;
 	double t_eye;       /* seconds in the eye pass */
 	long peak_rss_kb;   /* peak resident memory (getrusage) */
 	int threads;        /* threads used */

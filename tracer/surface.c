@@ -1,0 +1,100 @@
+/* SPDX-License-Identifier: MIT */
+/* surface.c: the one surface-interaction step (see surface.h). */
+#include "surface.h"
+
+#include "optics.h"
+
+#define SPEC_RED 700.0   /* nm: the red end of the dispersion ratio */
+#define SPEC_BLUE 400.0  /* nm: the violet end */
+#define SPEC_MID 550.0   /* nm: where the index is ior */
+
+double surf_ior(const struct interior *in, struct band b)
+{
+	double ior = in->ior > 0 ? in->ior : 1, D = in->dispersion > 0 ? in->dispersion : 1;
+	if (D == 1)
+		return ior;
+	if (b.lambda > 0) { /* Cauchy: n = A + B/λ², n(550) = ior, n(blue)/n(red) = D */
+		double q = (D / (SPEC_RED * SPEC_RED) - 1 / (SPEC_BLUE * SPEC_BLUE)) / (1 - D);
+		double B = ior / (q + 1 / (SPEC_MID * SPEC_MID));
+		return B * q + B / (b.lambda * b.lambda);
+	}
+	if (b.channel < 0)
+		return ior;
+	return ior * pow(D, (b.channel - 1) / 2.0);
+}
+
+static double clamp01(double x) { return x > 0 ? (x < 1 ? x : 1) : 0; }
+
+static struct vec3 clamp3(struct vec3 a) { return v3(clamp01(a.x), clamp01(a.y), clamp01(a.z)); }
+
+static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+
+void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
+{
+	const struct hit *h = si->h;
+	double ior = surf_ior(si->in, b);
+	double n1 = h->entering ? 1 : ior, n2 = h->entering ? ior : 1;
+	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p);
+	struct vec3 R = clamp3(opt_reflection(si->f, si->pc, ci, n1, n2));
+	struct vec3 T = clamp3(opt_transmission(si->pc)), one = v3(1, 1, 1);
+	if (si->f->refl_fresnel || si->f->conserve_energy)
+		T = v_mul(T, v_sub(one, R));
+	T = v3(fmin(T.x, 1 - R.x), fmin(T.y, 1 - R.y), fmin(T.z, 1 - R.z)); /* never more out than in */
+	out->tir = false;
+	out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
+	if (maxc(T) > 0 && !si->straight && !opt_refract(si->d, si->nf, n1 / n2, &out->trans.d)) {
+		/* total internal reflection: the share that would pass is reflected
+		 * (POV-Ray's legacy model reflects everything, as POV-Ray does) */
+		out->tir = true;
+		R = si->legacy ? one : v_add(R, T);
+		T = v3(0, 0, 0);
+	}
+	out->R = R;
+	out->T = T;
+	out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
+}
+
+bool surf_straight(const struct scene *s, const struct object *o)
+{
+	if (!s->legacy_lights) {
+		const struct interior *in = mat_interior(o);
+		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
+	}
+	return !(o->has_photons && o->photons.target && o->photons.refraction);
+}
+
+void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
+                  struct surf_in *si)
+{
+	const struct texture *t = mat_texture(h->obj);
+	si->h = h;
+	si->f = &t->finish;
+	si->pc = mat_pigment(mc, &t->pigment, h->p);
+	si->in = mat_interior(h->obj);
+	si->d = d;
+	si->nf = v_dot(h->n, d) < 0 ? h->n : v_neg(h->n);
+	si->legacy = s->legacy_lights;
+	si->straight = surf_straight(s, h->obj);
+}
+
+/* Can o, or a part of it, pass light straight through? */
+static bool straight_in(const struct scene *s, const struct object *o)
+{
+	if (o->kind >= OBJ_UNION) {
+		for (int i = 0; i < o->g.csg.n; i++)
+			if (straight_in(s, o->g.csg.kids[i]))
+				return true;
+		return false;
+	}
+	const struct pigment *p = &mat_texture(o)->pigment;
+	bool clear = p->kind != PIG_SOLID || p->c[0].f + p->c[0].t > 0;
+	return clear && surf_straight(s, o);
+}
+
+bool surf_any_straight(const struct scene *s)
+{
+	for (int i = 0; i < s->nobjects; i++)
+		if (straight_in(s, s->objects[i]))
+			return true;
+	return false;
+}
