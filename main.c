@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* main.c: the command line. Reads like the pipeline:
  *   lex → parse (AST) → eval (scene) → render (light pass, eye pass) → output
- * and maps each stage's result to an exit code (DESIGN.md §8). */
+ * and maps each stage's result to an exit code (docs/design.md §8). */
 #include <errno.h>
 #include <limits.h>
 #include <stdarg.h>

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* illum.h: the illumination map of one surface (Arvo 1986; DESIGN.md §4).
+/* illum.h: the illumination map of one surface (Arvo 1986; docs/design.md §4).
  *
  * A map is a grid of NODES (map points) over a primitive's (u,v) domain
  * (tracer/shape.h). The light pass deposits ray energy at (u,v) hits, split

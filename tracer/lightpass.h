@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* lightpass.h: Arvo's light pass (DESIGN.md §4). Rays leave every light
+/* lightpass.h: Arvo's light pass (docs/design.md §4). Rays leave every light
  * toward the bounds of the objects that reflect or refract (only where a
  * caustic can form), carry Φ = I·Ω/N each, recurse through Fresnel-weighted
  * reflection and refraction, and deposit their energy into the illumination

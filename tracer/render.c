@@ -130,7 +130,7 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
-/* The light pass (DESIGN.md §4): one pass, or one per colour channel when a
+/* The light pass (docs/design.md §4): one pass, or one per colour channel when a
  * material disperses (chromatic aberration). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct lp_result *out[3],

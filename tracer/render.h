@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* render.h: the render driver (STYLE.md item 16): builds the BVH, loads the
+/* render.h: the render driver (docs/design.md §1): builds the BVH, loads the
  * images, runs the passes over a thread pool and fills the framebuffer.
  *
  * Layers written: R G B (beauty), direct.R/G/B (irradiance from shadow rays
