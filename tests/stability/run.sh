@@ -79,9 +79,15 @@ finite() {
 
 # energy_read TAG: reads the light energy line from $tmp/TAG.err into
 # e_emitted, e_deposited, e_direct, e_absorbed, e_escaped, e_cut; returns
-# non-zero (with why set) when the line is missing or malformed.
+# non-zero (with why set) when the line is missing or malformed. A light
+# pass that shot no ray (nothing to aim at, e.g. glass of ior 1 that bends
+# nothing) prints no energy line: all terms are then 0.
 energy_read() {
 	cnt=$(grep -c '^arvo: light energy ' "$tmp/$1.err")
+	if [ "$cnt" -eq 0 ] && grep -q '^arvo: light pass .*(0 light rays' "$tmp/$1.err"; then
+		e_emitted=0 e_deposited=0 e_direct=0 e_absorbed=0 e_escaped=0 e_cut=0
+		return 0
+	fi
 	if [ "$cnt" -eq 0 ]; then
 		fail "no light energy line ('arvo: light energy     emitted E W = deposited D + direct R + absorbed A + escaped X + cut C') in the --stats output"
 		return 1
