@@ -151,7 +151,7 @@ same() {
 		fail "channels $3 differ from the reference: $(grep -E 'Mean error|Max error' "$tmp/idiff.log" | tr -s ' ' | tr '\n' ';')"
 }
 
-# case TAG SCENE ARGS...: renders and reports the three common checks.
+# case_checks TAG SCENE ARGS...: renders and reports the three common checks.
 case_checks() {
 	tag=$1
 	render "$@"
