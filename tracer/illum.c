@@ -45,6 +45,18 @@ static struct fx fx_from(double d)
 
 static double fx_to_double(struct fx a) { return (double)a.hi * 0x1p-32 + (double)a.lo * 0x1p-96; }
 
+/* a >> k (k ≥ 0), the bits shifted out dropped. */
+static struct fx fx_shr(struct fx a, int k)
+{
+	if (k <= 0)
+		return a;
+	if (k >= 128)
+		return (struct fx){0, 0};
+	if (k >= 64)
+		return (struct fx){a.hi >> (k - 64), 0};
+	return (struct fx){(a.lo >> k) | (a.hi << (64 - k)), a.hi >> k};
+}
+
 /* *a += b, saturating. */
 static void fx_add(struct fx *a, struct fx b)
 {
@@ -97,6 +109,9 @@ struct illum_map {
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
 	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
+	int shift;                /* accumulators count units of 2^(shift−96) W (see map_reserve) */
+	double unit, inv_unit;    /* 2^shift and 2^−shift */
+	double bound;             /* energy deposited so far (per channel, at most): bounds every node's sum */
 };
 
 static long floordiv(long a) { return a >= 0 ? a / ILLUM_TILE : -((-a + ILLUM_TILE - 1) / ILLUM_TILE); }
@@ -287,6 +302,7 @@ struct illum_map *illum_new(const struct object *o, const struct illum_spec *spe
 	struct illum_map *m = mem_calloc(1, sizeof *m);
 	m->obj = o;
 	m->last = -1;
+	m->unit = m->inv_unit = 1;
 	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	if (!r.bounded) {
@@ -332,6 +348,9 @@ struct illum_map *illum_new_like(const struct illum_map *src)
 	m->ax[0] = src->ax[0];
 	m->ax[1] = src->ax[1];
 	m->last = -1;
+	m->shift = src->shift;
+	m->unit = src->unit;
+	m->inv_unit = src->inv_unit;
 	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	return m;
@@ -367,11 +386,54 @@ void illum_node_uv(const struct illum_map *m, long i, long j, double *u, double 
 
 /* ==== deposit and merge =================================================== */
 
-static void acc_add(struct acc *n, double w, const double e[3])
+/* Makes the accumulators count units of 2^(shift−96) W, shift > m->shift,
+ * dropping the bits that fall below the new unit. */
+static void map_rescale(struct illum_map *m, int shift)
+{
+	int k = shift - m->shift;
+	for (long t = 0; t < m->ntiles; t++)
+		for (int q = 0; q < TN; q++)
+			for (int c = 0; c < 3; c++)
+				m->tiles[t]->n[q].e[c] = fx_shr(m->tiles[t]->n[q].e[c], k);
+	m->shift = shift;
+	m->unit = ldexp(1, shift);
+	m->inv_unit = ldexp(1, -shift);
+	m->finished = false;
+}
+
+/* Range: no node's sum can exceed the energy deposited into the whole map
+ * (per channel), so keeping that bound under 2^31 units (a bit of headroom
+ * below the 2^32 capacity) means no accumulator ever saturates. Before
+ * `more` W more arrive, raises the unit when the bound needs it. Scenes in
+ * everyday units keep shift 0 (the plain 2^−96 W quantum); a scene at 1e6
+ * scale, whose rays carry ~1e9 W, does not. An infinite bound is left to
+ * saturate. */
+static void map_reserve(struct illum_map *m, double more)
+{
+	double b = m->bound + more;
+	int e;
+	if (!isfinite(b))
+		return;
+	m->bound = b;
+	frexp(b, &e); /* b < 2^e */
+	if (e - 31 > m->shift)
+		map_rescale(m, e - 31);
+}
+
+/* The largest channel of a deposit's energy, as deposit_band counts it. */
+static double energy_max(const double e[3])
+{
+	double x = 0;
+	for (int c = 0; c < 3; c++)
+		x = e[c] > x ? e[c] : x; /* NaN and negatives → 0 */
+	return x;
+}
+
+static void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
 {
 	for (int c = 0; c < 3; c++) {
 		double x = w * e[c];
-		fx_add(&n->e[c], fx_from(x));
+		fx_add(&n->e[c], fx_from(x * inv_unit));
 		n->sq[c] += (float)(x * x);
 	}
 	n->count += n->count < UINT32_MAX;
@@ -409,7 +471,7 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 		for (int a = 0; a < 2; a++) {
 			double w = wu[a] * wv[b];
 			if (w > 0)
-				acc_add(node_acc(m, iu[a], iv[b], true), w, e);
+				acc_add(node_acc(m, iu[a], iv[b], true), w, e, m->inv_unit);
 		}
 	}
 	m->finished = false;
@@ -417,15 +479,17 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 
 void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
 {
+	map_reserve(m, energy_max(energy));
 	deposit_band(m, u, v, energy, 0, 1);
 }
 
-/* Adds tile s's accumulators into tile d. */
-static void tile_accumulate(struct tile *d, const struct tile *s)
+/* Adds tile s's accumulators, shifted right by k bits (its map's unit is
+ * 2^k times finer), into tile d. */
+static void tile_accumulate(struct tile *d, const struct tile *s, int k)
 {
 	for (int q = 0; q < TN; q++) {
 		for (int c = 0; c < 3; c++) {
-			fx_add(&d->n[q].e[c], s->n[q].e[c]);
+			fx_add(&d->n[q].e[c], fx_shr(s->n[q].e[c], k));
 			d->n[q].sq[c] += s->n[q].sq[c];
 		}
 		uint32_t c = d->n[q].count + s->n[q].count;
@@ -441,7 +505,7 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 		struct tile *t = src->tiles[k];
 		long d = tile_find(dst, t->ti, t->tj);
 		if (d >= 0) {
-			tile_accumulate(dst->tiles[d], t);
+			tile_accumulate(dst->tiles[d], t, 0);
 		} else {
 			t->area = NULL;
 			t->iso = 0;
@@ -490,6 +554,10 @@ static void *band_work(void *arg)
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
+	for (long i = 0; i < n; i++)
+		emax = fmax(emax, energy_max(s[i].e));
+	map_reserve(m, (double)n * emax);
 	if (nb == 1 || n < 8192) {
 		for (long i = 0; i < n; i++)
 			deposit_band(m, s[i].u, s[i].v, s[i].e, 0, 1);
@@ -514,12 +582,15 @@ bool illum_merge(struct illum_map *dst, const struct illum_map *src)
 	if (dst->obj != src->obj || !same_axis(&dst->ax[0], &src->ax[0]) ||
 	    !same_axis(&dst->ax[1], &src->ax[1]))
 		return false;
+	map_reserve(dst, src->bound);
+	if (src->shift > dst->shift)
+		map_rescale(dst, src->shift);
 	for (long k = 0; k < src->ntiles; k++) {
 		const struct tile *s = src->tiles[k];
 		long di = tile_find(dst, s->ti, s->tj);
 		if (di < 0)
 			di = tile_add(dst, s->ti, s->tj);
-		tile_accumulate(dst->tiles[di], s);
+		tile_accumulate(dst->tiles[di], s, dst->shift - src->shift);
 	}
 	dst->dropped += src->dropped;
 	dst->finished = false;
@@ -677,7 +748,7 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	}
 	if (removed)
 		for (int c = 0; c < 3; c++)
-			removed[c] = fx_to_double(rem[c]);
+			removed[c] = fx_to_double(rem[c]) * m->unit;
 	m->finished = true;
 }
 
@@ -693,7 +764,7 @@ static double node_irr(const struct illum_map *m, const struct tile *t, int q, i
 	double a = t->area ? t->area[q] : m->flat_area;
 	if ((t->iso >> q) & 1 || !(a > 0))
 		return 0;
-	return fx_to_double(t->n[q].e[c]) / a;
+	return fx_to_double(t->n[q].e[c]) * m->unit / a;
 }
 
 void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
@@ -727,7 +798,7 @@ void illum_total(const struct illum_map *m, double out[3])
 			for (int c = 0; c < 3; c++)
 				fx_add(&s[c], m->tiles[k]->n[q].e[c]);
 	for (int c = 0; c < 3; c++)
-		out[c] = fx_to_double(s[c]);
+		out[c] = fx_to_double(s[c]) * m->unit;
 }
 
 long illum_dropped(const struct illum_map *m) { return m->dropped; }
@@ -767,7 +838,7 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 			n.j = (long)s[k]->tj * ILLUM_TILE + q / ILLUM_TILE;
 			illum_node_uv(m, n.i, n.j, &n.u, &n.v);
 			for (int c = 0; c < 3; c++) {
-				n.energy[c] = fx_to_double(a->e[c]);
+				n.energy[c] = fx_to_double(a->e[c]) * m->unit;
 				n.sumsq[c] = a->sq[c];
 			}
 			n.count = a->count;

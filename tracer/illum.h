@@ -30,9 +30,12 @@
  * splats reach a full spacing from the pole but the box only half of it).
  *
  * Accumulation is in 128-bit fixed point (quantum 2^-96 W, capacity 2^32 W
- * per node and channel, saturating), so sums are exact and independent of
- * order: partial maps merged in any order, or deposits made in any order,
- * give bit-identical energies and irradiances. Σw² (for σ²) is a double.
+ * per node and channel), so sums are exact and independent of order:
+ * partial maps merged in any order, or deposits made in any order, give
+ * bit-identical energies and irradiances. When the energy deposited into a
+ * map could exceed 2^31 W (a scene at 1e6 scale), the map's quantum and
+ * capacity grow by a power of two first, so nothing saturates. Σw² (for
+ * σ²) is a float.
  *
  * Threads: one map per thread while depositing (illum_new_like), merged with
  * illum_merge; after illum_finish, illum_lookup may be called concurrently. */
