@@ -881,10 +881,8 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_METHOD:
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;
-		else if (strcmp(n->str, "shaft") == 0) {
+		else if (strcmp(n->str, "shaft") == 0)
 			il->method = ILLUM_SHAFT;
-			diag_warning(E->diag, n->loc, "method shaft is not supported yet; light rays deposit at points");
-		}
 		else
 			eval_fail(E, n->loc, "method must be 'point' or 'shaft', found '%s'", n->str);
 		return;

@@ -25,6 +25,7 @@ struct render_opts {
 	const char *dump_maps;   /* write every illumination map as an EXR here, or NULL */
 	const char *save_maps;   /* save the light pass's maps to this file, or NULL */
 	const char *load_maps;   /* load the maps from this file instead of the light pass */
+	int method;              /* 0: the scene's method, else enum illum_method + 1 */
 };
 
 struct render_stats {
