@@ -878,6 +878,13 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	case TK_MAX_DEPTH: il->max_depth = arg_int(E, n, 1, 256); return;
+	case TK_TOLERANCE: {
+		double t = arg_float(E, n);
+		if (!(t >= 1e-5 && t <= 0.5))
+			eval_fail(E, n->kids[0]->loc, "tolerance must be 1e-5 to 0.5, found %g", t);
+		il->tolerance = t;
+		return;
+	}
 	case TK_METHOD:
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;

@@ -1100,8 +1100,8 @@ static long plan(struct job *J)
 	return nitems;
 }
 
-struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
-                         const struct lp_opts *o, struct lp_stats *st)
+static struct lp_result *run_once(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                                  const struct lp_opts *o, struct lp_stats *st)
 {
 	struct job J;
 	memset(&J, 0, sizeof J);
@@ -1168,6 +1168,47 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 	return r;
 }
 
+#define TOL_START 16384L    /* rays per light of a tolerance's first round */
+#define TOL_MAX 67108864L   /* and the most it goes to */
+
+struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                         const struct lp_opts *o, struct lp_stats *st)
+{
+	if (!(o->tolerance > 0))
+		return run_once(s, b, mc, o, st);
+	/* progressive: rounds of 4× more rays until this round's error,
+	 * estimated from the difference between its maps and the previous
+	 * round's, is at most the tolerance */
+	struct lp_opts oo = *o;
+	struct lp_stats ls;
+	oo.rays = TOL_START;
+	struct lp_result *prev = run_once(s, b, mc, &oo, &ls), *r = NULL;
+	long long shot = ls.rays;
+	int rounds = 1;
+	double d = 1;
+	for (;;) {
+		oo.rays *= 4;
+		r = run_once(s, b, mc, &oo, &ls);
+		shot += ls.rays;
+		rounds++;
+		/* if a round cuts the error r-fold, the difference d ≥ (r − 1)·error:
+		 * shafts' error falls at least 2.5-fold a round (refs A, B, C and the
+		 * fold ring, docs/methods.md), point deposits' noise 2-fold */
+		d = lp_difference(r, prev) / (o->shafts ? 1.5 : 1);
+		lp_free(prev);
+		if (d <= o->tolerance || oo.rays >= TOL_MAX)
+			break;
+		prev = r;
+	}
+	ls.rays = shot;
+	ls.tol_estimate = d;
+	ls.tol_rounds = rounds;
+	ls.tol_rays = oo.rays;
+	if (st)
+		*st = ls;
+	return r;
+}
+
 void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_isolated)
 {
 	for (int k = 0; k < src->n; k++) {
@@ -1177,6 +1218,177 @@ void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_i
 			illum_finish(dst->maps[i], discard_isolated, NULL);
 		}
 	}
+}
+
+/* ==== the error estimate (tolerance) ====================================== */
+
+/* Sums of energy over bins of bu × bv in (u,v): a hash of (i, j) → sum. */
+struct binsum {
+	int64_t *key;
+	double *val;
+	long n, cap;     /* used, allocated (power of two) */
+	double bu, bv;   /* bin size */
+	double u0, u1, v0, v1; /* the region compared */
+	double du, dv;   /* the current level's node spacing */
+	double sign;     /* +1 for the first result, −1 for the second */
+};
+
+static void bin_add(struct binsum *B, double u, double v, double e)
+{
+	if (!(u >= B->u0 && u < B->u1 && v >= B->v0 && v < B->v1))
+		return; /* the faint far field is left out, as the references leave it */
+	double fi = floor(u / B->bu), fj = floor(v / B->bv);
+	if (!(fabs(fi) < 1e9 && fabs(fj) < 1e9))
+		return;
+	if (2 * (B->n + 1) > B->cap) {
+		struct binsum old = *B;
+		B->cap = B->cap ? B->cap * 2 : 1024;
+		B->key = mem_alloc(sizeof *B->key * (size_t)B->cap);
+		B->val = mem_calloc((size_t)B->cap, sizeof *B->val);
+		for (long i = 0; i < B->cap; i++)
+			B->key[i] = INT64_MIN;
+		B->n = 0;
+		for (long i = 0; i < old.cap; i++)
+			if (old.key[i] != INT64_MIN) {
+				uint64_t h = (uint64_t)old.key[i] * 0x9E3779B97F4A7C15ull;
+				long k = (long)(h >> 20) & (B->cap - 1);
+				while (B->key[k] != INT64_MIN)
+					k = (k + 1) & (B->cap - 1);
+				B->key[k] = old.key[i], B->val[k] = old.val[i], B->n++;
+			}
+		free(old.key), free(old.val);
+	}
+	int64_t key = (int64_t)fi * 2000000000LL + (int64_t)fj;
+	uint64_t h = (uint64_t)key * 0x9E3779B97F4A7C15ull;
+	long k = (long)(h >> 20) & (B->cap - 1);
+	while (B->key[k] != INT64_MIN && B->key[k] != key)
+		k = (k + 1) & (B->cap - 1);
+	if (B->key[k] == INT64_MIN)
+		B->key[k] = key, B->n++;
+	B->val[k] += B->sign * e;
+}
+
+/* A node's energy (all channels) spread over its bilinear tent, 4×4
+ * points, into the bins. */
+static void bin_node(void *ctx, const struct illum_node *n)
+{
+	struct binsum *B = ctx;
+	double e = (n->irr[0] + n->irr[1] + n->irr[2]) * n->area;
+	static const double at[4] = {-0.75, -0.25, 0.25, 0.75}, w[4] = {0.25, 0.75, 0.75, 0.25};
+	for (int i = 0; i < 4; i++)
+		for (int j = 0; j < 4; j++)
+			bin_add(B, n->u + at[i] * B->du, n->v + at[j] * B->dv, e * w[i] * w[j] / 4);
+}
+
+struct wpt {
+	double x, w;
+};
+
+static int cmp_wpt(const void *a, const void *b)
+{
+	double x = ((const struct wpt *)a)->x, y = ((const struct wpt *)b)->x;
+	return x < y ? -1 : x > y;
+}
+
+struct extent {
+	struct wpt *p[2];
+	long n, cap;
+};
+
+static void extent_node(void *ctx, const struct illum_node *n)
+{
+	struct extent *X = ctx;
+	if (X->n == X->cap) {
+		X->cap = X->cap ? X->cap * 2 : 1024;
+		for (int a = 0; a < 2; a++)
+			X->p[a] = mem_realloc(X->p[a], sizeof *X->p[a] * (size_t)X->cap);
+	}
+	double e = n->energy[0] + n->energy[1] + n->energy[2];
+	X->p[0][X->n] = (struct wpt){n->u, e};
+	X->p[1][X->n++] = (struct wpt){n->v, e};
+}
+
+/* The energy-weighted 2 %–98 % range [*lo, *hi] of p[0..n). */
+static void wrange(struct wpt *p, long n, double *lo, double *hi)
+{
+	double tot = 0, acc = 0;
+	qsort(p, (size_t)n, sizeof *p, cmp_wpt);
+	for (long i = 0; i < n; i++)
+		tot += p[i].w;
+	*lo = *hi = n ? p[0].x : 0;
+	bool have_lo = false;
+	for (long i = 0; i < n; i++) {
+		acc += p[i].w;
+		if (!have_lo && acc >= 0.05 * tot)
+			*lo = p[i].x, have_lo = true;
+		if (acc <= 0.95 * tot)
+			*hi = p[i].x;
+	}
+}
+
+/* Adds every level of o in r into B with sign. */
+static void bin_levels(struct binsum *B, const struct lp_result *r, const struct object *o, double sign)
+{
+	int k = find_map(r, o);
+	B->sign = sign;
+	for (; k >= 0 && k < r->n && r->objs[k] == o; k++) {
+		if (!r->maps[k])
+			continue;
+		long nu, nv;
+		illum_grid(r->maps[k], &nu, &nv, &B->du, &B->dv);
+		illum_each(r->maps[k], bin_node, B);
+	}
+}
+
+double lp_finest_cell(const struct lp_result *r)
+{
+	double c = 0;
+	for (int k = 0; r && k < r->n; k++)
+		if (r->maps[k] && r->specs[k].cell > 0 && (c == 0 || r->specs[k].cell < c))
+			c = r->specs[k].cell;
+	return c;
+}
+
+double lp_difference(const struct lp_result *a, const struct lp_result *b)
+{
+	double num = 0, den = 0;
+	for (int k = 0; a && k < a->n; k++) {
+		if (k > 0 && a->objs[k - 1] == a->objs[k])
+			continue; /* one object at a time, all its levels */
+		const struct object *o = a->objs[k];
+		struct extent X = {{NULL, NULL}, 0, 0};
+		for (int j = k; j < a->n && a->objs[j] == o; j++)
+			if (a->maps[j])
+				illum_each(a->maps[j], extent_node, &X);
+		struct binsum B;
+		memset(&B, 0, sizeof B);
+		wrange(X.p[0], X.n, &B.u0, &B.u1);
+		wrange(X.p[1], X.n, &B.v0, &B.v1);
+		free(X.p[0]), free(X.p[1]);
+		double eu = B.u1 - B.u0, ev = B.v1 - B.v0;
+		B.u0 -= 0.02 * eu, B.u1 += 0.02 * eu, B.v0 -= 0.02 * ev, B.v1 += 0.02 * ev;
+		long nu, nv;
+		double du = 1, dv = 1;
+		if (a->maps[k])
+			illum_grid(a->maps[k], &nu, &nv, &du, &dv);
+		B.bu = fmax(eu / 48, du), B.bv = fmax(ev / 48, dv);
+		bin_levels(&B, a, o, 1);
+		for (long i = 0; i < B.cap; i++)
+			if (B.key[i] != INT64_MIN)
+				den += B.val[i];
+		bin_levels(&B, b, o, -1);
+		for (long i = 0; i < B.cap; i++)
+			if (B.key[i] != INT64_MIN)
+				num += fabs(B.val[i]);
+		free(B.key), free(B.val);
+	}
+	for (int k = 0; b && k < b->n; k++) /* what b lit and a did not */
+		if (b->maps[k] && (!a || find_map(a, b->objs[k]) < 0)) {
+			double t[3];
+			illum_total(b->maps[k], t);
+			num += t[0] + t[1] + t[2];
+		}
+	return den > 0 ? num / den : num > 0 ? 1 : 0;
 }
 
 const struct illum_map *lp_map(const struct lp_result *r, const struct object *o)

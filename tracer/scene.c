@@ -280,6 +280,8 @@ void scene_dump(FILE *o, const struct scene *s)
 	fprintf(o, "\n  illumination rays %ld method %s passes %s max_depth %d photon_spacing %.6g photon_count %ld\n",
 	        g->illum.rays, g->illum.method == ILLUM_SHAFT ? "shaft" : "point",
 	        g->illum.passes == PASSES_SPECTRAL ? "spectral" : "rgb", g->illum.max_depth, g->illum.spacing, g->illum.count);
+	if (g->illum.tolerance > 0)
+		fprintf(o, "  illumination tolerance %.6g\n", g->illum.tolerance);
 	fputs("background ", o);
 	pc(o, s->background);
 	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",

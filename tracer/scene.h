@@ -183,6 +183,7 @@ struct illum_settings {
 	double spacing;            /* POV photons spacing (0: none) */
 	long count;                /* POV photons count (0: none) */
 	int max_depth;             /* light ray recursion limit (0: max_trace_level) */
+	double tolerance;          /* accuracy target: relative L1 of the maps (0: none) */
 };
 
 struct global_settings {
