@@ -21,6 +21,7 @@
 #include "optics.h"
 #include "sampler.h"
 #include "shape.h"
+#include "spectrum.h"
 #include "surface.h"
 
 #define CHUNK 4096 /* rays per work item */
@@ -83,6 +84,7 @@ struct job {
 struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
+	struct band band;           /* the light the current ray carries */
 	struct recbuf recs;
 	long long segments;
 	double emitted[3];
@@ -264,7 +266,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	struct surf_in si;
 	struct surf_out so;
 	surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-	surf_scatter(&si, J->band, &so);
+	surf_scatter(&si, w->band, &so);
 	double opacity = 1 - si.pc.f - si.pc.t;
 	/* what neither reflects nor transmits stays at the surface: a diffuse
 	 * surface reached after a specular bounce keeps it in its map */
@@ -298,6 +300,22 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	}
 }
 
+/* The wavelength of ray i of a side×side grid (spectral passes), and its
+ * energy per channel: e_c times f_c(λ) (spectrum.h). Stratified: the ray's
+ * stratum of the spectrum is a permutation of the grid (smp_grid_stratum),
+ * jittered inside, so the spectrum is covered evenly overall and within
+ * every small patch of the beam, and the ray's wavelength depends only on
+ * its index (the same for any thread count). */
+static double ray_wavelength(const struct smp_grid *g, uint64_t key, uint64_t i, double e[3])
+{
+	double n = (double)g->side * (double)g->side, f[3];
+	double u = ((double)smp_grid_stratum(g, i) + smp_get(key, (uint32_t)i, 2)) / n;
+	double lambda = spec_sample(u, f);
+	for (int c = 0; c < 3; c++)
+		e[c] *= f[c];
+	return lambda;
+}
+
 /* Shoots the rays of one work item. */
 static void run_item(struct worker *w, const struct item *it)
 {
@@ -315,6 +333,7 @@ static void run_item(struct worker *w, const struct item *it)
 	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
 	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
 	bool beam = l->kind == LIGHT_PARALLEL;
+	struct smp_grid grid = smp_grid_make((uint64_t)t->side);
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
 	for (long i = it->first; i < it->first + it->count; i++) {
@@ -342,6 +361,9 @@ static void run_item(struct worker *w, const struct item *it)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
+		w->band = J->band;
+		if (J->o->spectral)
+			w->band.lambda = ray_wavelength(&grid, key, (uint64_t)i, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0);
@@ -425,11 +447,11 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* The grid for a surface: its illum_map { }, else a cell size chosen from
- * the rays that reached it (pitfall 1): ILLUM_RAYS_PER_NODE rays per node
- * over the region where most of them landed. The region is the 5th to 95th
+ * the rays that reached it (pitfall 1): per_node rays per node (0: the
+ * default ILLUM_RAYS_PER_NODE) over the region where most of them landed. The region is the 5th to 95th
  * percentile of the landing points on each axis, so a few grazing rays that
  * land far away do not inflate it. */
-static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k)
+static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k, double per_node)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
@@ -449,7 +471,7 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 				ex[j] = t;
 			}
 	double area = ex[0] * fmax(ex[1], ex[0] * 1e-3);
-	double cell = illum_auto_cell(0.9 * (double)k, area, 0);
+	double cell = illum_auto_cell(0.9 * (double)k, area, per_node);
 	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
 	return sp;
 }
@@ -510,7 +532,8 @@ static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const s
 	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
 	r->specs = mem_calloc((size_t)(n ? n : 1), sizeof *r->specs);
 	for (int k = 0; k < n; k++) {
-		r->specs[k] = choose_spec(objs[k], pts + start[k], start[k + 1] - start[k]);
+		r->specs[k] = choose_spec(objs[k], pts + start[k], start[k + 1] - start[k],
+		                          o->spectral ? 3 * ILLUM_RAYS_PER_NODE : 0);
 		r->maps[k] = illum_new(objs[k], &r->specs[k]);
 		if (r->maps[k]) {
 			illum_deposit_all(r->maps[k], sp + start[k], start[k + 1] - start[k], o->threads);

@@ -130,8 +130,10 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
-/* The light pass (DESIGN.md §4): one pass, or one per colour channel when a
- * material disperses (chromatic aberration). Returns the number of results. */
+/* The light pass (DESIGN.md §4): one pass, or, when a material disperses,
+ * one per colour channel (passes rgb: chromatic aberration) or one spectral
+ * pass whose rays each carry a wavelength (passes spectral), shooting as
+ * many rays as the three channel passes. Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct lp_result *out[3],
                       struct render_stats *st)
@@ -146,7 +148,11 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
 	};
-	int passes = lp_dispersive(s) ? 3 : 1, n = 0;
+	bool dispersive = lp_dispersive(s);
+	lo.spectral = dispersive && s->gs.illum.passes == PASSES_SPECTRAL;
+	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
+	if (lo.spectral)
+		lo.rays *= 3;
 	for (int c = 0; c < passes; c++) {
 		struct lp_stats ls;
 		lo.channel = passes == 3 ? c : -1;
