@@ -262,6 +262,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
+	ctx.spectral = s->gs.illum.passes == PASSES_SPECTRAL;
 	if (!err)
 		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;
