@@ -53,6 +53,7 @@ struct options {
 	const char *dump_maps;       /* --dump-maps DIR */
 	const char *save_maps;       /* --save-maps FILE */
 	const char *load_maps;       /* --load-maps FILE */
+	int passes;                  /* --passes: -1 the scene's, else an enum illum_passes */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -70,6 +71,7 @@ static void usage(FILE *out)
 	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000; 0: off)\n"
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  --save-maps FILE, --load-maps FILE   keep a light pass for later renders\n"
+	      "  --passes rgb|spectral   dispersion by colour channel or by wavelength\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
@@ -243,6 +245,12 @@ static int parse_args(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "--save-maps") || !strcmp(a, "--load-maps")) {
 			NEED_ARG();
 			*(a[2] == 's' ? &o->save_maps : &o->load_maps) = next;
+		} else if (!strcmp(a, "--passes")) {
+			NEED_ARG();
+			if (!strcmp(next, "rgb") || !strcmp(next, "spectral"))
+				o->passes = next[0] == 'r' ? PASSES_RGB : PASSES_SPECTRAL;
+			else
+				return usage_error("unknown passes '%s' (expected rgb or spectral)", next);
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -464,6 +472,7 @@ int main(int argc, char **argv)
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000, o.rays = -1;
+	o.passes = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
@@ -499,6 +508,8 @@ int main(int argc, char **argv)
 	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
 	if (rc == EX_OK && o.depfile)
 		rc = write_depfile(&o, &deps, output);
+	if (rc == EX_OK && o.passes >= 0) /* --passes overrides illumination { passes } */
+		scene.gs.illum.passes = (enum illum_passes)o.passes;
 	if (rc == EX_OK) {
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);
