@@ -301,15 +301,16 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 }
 
 /* The wavelength of ray i of a side×side grid (spectral passes), and its
- * energy per channel: e_c times f_c(λ) (spectrum.h). Stratified: the ray's
- * stratum of the spectrum is a permutation of the grid (smp_grid_stratum),
- * jittered inside, so the spectrum is covered evenly overall and within
- * every small patch of the beam, and the ray's wavelength depends only on
- * its index (the same for any thread count). */
-static double ray_wavelength(const struct smp_grid *g, uint64_t key, uint64_t i, double e[3])
+ * energy per channel: e_c times f_c(λ) (spectrum.h). Stratified with the
+ * grid (smp_latin): each row and each column of the grid, a ring or a
+ * spoke of the cone, takes one wavelength from each 1/side of the
+ * spectrum, in a scrambled order (a regular lattice aliases into stripes on
+ * the maps, and a nesting in squares fails a narrow spotlight's strip).
+ * It depends only on the ray's index: the same for any thread count. */
+static double ray_wavelength(uint64_t key, uint64_t i, uint64_t side, double e[3])
 {
-	double n = (double)g->side * (double)g->side, f[3];
-	double u = ((double)smp_grid_stratum(g, i) + smp_get(key, (uint32_t)i, 2)) / n;
+	double f[3];
+	double u = smp_latin(i % side, i / side, side, key, smp_get(key, (uint32_t)i, 2));
 	double lambda = spec_sample(u, f);
 	for (int c = 0; c < 3; c++)
 		e[c] *= f[c];
@@ -333,7 +334,6 @@ static void run_item(struct worker *w, const struct item *it)
 	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
 	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
 	bool beam = l->kind == LIGHT_PARALLEL;
-	struct smp_grid grid = smp_grid_make((uint64_t)t->side);
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
 	for (long i = it->first; i < it->first + it->count; i++) {
@@ -363,7 +363,7 @@ static void run_item(struct worker *w, const struct item *it)
 		}
 		w->band = J->band;
 		if (J->o->spectral)
-			w->band.lambda = ray_wavelength(&grid, key, (uint64_t)i, e);
+			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0);

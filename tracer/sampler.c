@@ -37,41 +37,28 @@ double smp_next(struct smp_stream *s)
 	return to_unit(smp_mix(s->key + d * 0x9e3779b97f4a7c15ull));
 }
 
-static uint64_t gcd(uint64_t a, uint64_t b)
+uint64_t smp_permute(uint64_t i, uint64_t n, uint64_t key)
 {
-	while (b) {
-		uint64_t t = a % b;
-		a = b;
-		b = t;
-	}
-	return a;
-}
-
-/* The stratum is i·m mod n with m = side·p + q, n = side²: a permutation
- * when gcd(q, side) = 1, with steps m/n ≈ p/side along x and q/side along y
- * (p ≈ side/ρ, q the integer coprime to side nearest side/ρ²). */
-struct smp_grid smp_grid_make(uint64_t side)
-{
-	const double rho = 1.32471795724474602596; /* the real root of x³ = x + 1 */
-	struct smp_grid g = {side, 0, 0};
-	if (side <= 1)
-		return g;
-	uint64_t p = (uint64_t)((double)side / rho + 0.5) % side;
-	uint64_t q0 = (uint64_t)((double)side / (rho * rho) + 0.5), q = q0;
-	for (uint64_t k = 1; gcd(q % side, side) != 1; k++) /* nearest first: q0+1, q0-1, q0+2 ... */
-		q = k % 2 ? q0 + (k + 1) / 2 : (q0 > k / 2 ? q0 - k / 2 : 1);
-	g.q = q % side;
-	g.m = side * p + g.q;
-	return g;
-}
-
-/* i·m mod side², without overflow for side < 2^21: x·m < side³ and the
- * y part is side·(q·y mod side). */
-uint64_t smp_grid_stratum(const struct smp_grid *g, uint64_t i)
-{
-	uint64_t side = g->side, n = side * side;
-	if (side <= 1)
+	if (n <= 1)
 		return 0;
-	uint64_t x = i % side, y = i / side % side;
-	return (x * g->m % n + side * (g->q * y % side)) % n;
+	int h = 1; /* half the bit width: 4^h >= n */
+	while (h < 31 && (1ull << (2 * h)) < n)
+		h++;
+	uint64_t mask = (1ull << h) - 1;
+	do { /* a bijection of [0, 4^h), applied again until it lands below n */
+		uint64_t l = i >> h, r = i & mask;
+		for (uint64_t round = 0; round < 4; round++) {
+			uint64_t t = l ^ (smp_mix(r ^ key ^ round * 0x9e3779b97f4a7c15ull) & mask);
+			l = r;
+			r = t;
+		}
+		i = l << h | r;
+	} while (i >= n);
+	return i;
+}
+
+double smp_latin(uint64_t x, uint64_t y, uint64_t side, uint64_t key, double jitter)
+{
+	uint64_t a = smp_permute(x, side, smp_mix(key)), b = smp_permute(y, side, smp_mix(~key));
+	return ((double)((a + b) % side) + jitter) / (double)side;
 }
