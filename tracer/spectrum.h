@@ -38,7 +38,7 @@
  *    channels' centroids λ̄_c = ⟨1/λ²⟩_c^(−1/2) (spec_centroid: about 583,
  *    532 and 467 nm). A prism then puts each RGB pass's band where that
  *    channel's share of the spectral pass's rainbow is centred, and the
- *    rainbow runs on past them: n(400 nm)/n(700 nm) ≈ 1 + 2.5·(D − 1).
+ *    rainbow runs on past them: n(400 nm)/n(700 nm) ≈ 1 + 2.6·(D − 1).
  *
  * All functions are pure and thread-safe (the tables are built once, on
  * first use, under pthread_once). */
