@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* main.c: the command line. Reads like the pipeline:
  *   lex → parse (AST) → eval (scene) → render (light pass, eye pass) → output
- * and maps each stage's result to an exit code (DESIGN.md §8). */
+ * and maps each stage's result to an exit code (docs/design.md §8). */
 #include <errno.h>
 #include <limits.h>
 #include <stdarg.h>
@@ -50,6 +50,7 @@ struct options {
 	int half;                    /* --half: 16-bit EXR */
 	enum out_exr_compression compression; /* --compression */
 	long rays;                   /* --rays: light-pass rays per light (-1: not given, 0: off) */
+	int method;                  /* --method: 0 not given, else enum illum_method + 1 */
 	const char *dump_maps;       /* --dump-maps DIR */
 	const char *save_maps;       /* --save-maps FILE */
 	const char *load_maps;       /* --load-maps FILE */
@@ -69,6 +70,7 @@ static void usage(FILE *out)
 	      "  --display NAME, --view NAME   OCIO display and view for PNG output\n"
 	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
 	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000; 0: off)\n"
+	      "  --method M         light pass: point (deposits) or shaft (light shafts)\n"
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  --save-maps FILE, --load-maps FILE   keep a light pass for later renders\n"
 	      "  --passes rgb|spectral   dispersion by colour channel or by wavelength\n"
@@ -239,6 +241,11 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (!parse_int(next, 0, 1000000000000L, &v))
 				return usage_error("bad value for --rays: '%s' (expected 0 to 1e12)", next);
 			o->rays = v;
+		} else if (!strcmp(a, "--method")) {
+			NEED_ARG();
+			if (strcmp(next, "point") && strcmp(next, "shaft"))
+				return usage_error("bad value for --method: '%s' (expected point or shaft)", next);
+			o->method = (strcmp(next, "point") ? ILLUM_SHAFT : ILLUM_POINT) + 1;
 		} else if (!strcmp(a, "--dump-maps")) {
 			NEED_ARG();
 			o->dump_maps = next;
@@ -442,7 +449,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps};
+	                         o->save_maps, o->load_maps, o->method};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);

@@ -627,6 +627,11 @@ static void object_geometry(struct eval *E, struct sink *s, struct object *o)
 		want_params(E, s, "two corners: box { <x1,y1,z1>, <x2,y2,z2> }", 2, 2);
 		o->g.box.lo = v_min(PV(0), PV(1));
 		o->g.box.hi = v_max(PV(0), PV(1));
+		/* a flat box has no inside and faces of no area (its map's nodes) */
+		for (int k = 0; k < 3; k++)
+			if (!(v_comp(o->g.box.hi, k) > v_comp(o->g.box.lo, k)))
+				eval_fail(E, s->ploc[1], "box has zero volume (both corners have %c = %g)", "xyz"[k],
+				          v_comp(o->g.box.lo, k));
 		break;
 	case OBJ_DISC:
 		want_params(E, s, "a centre, a normal and a radius: disc { <c>, <n>, r [, hole] }", 3, 4);
@@ -876,10 +881,8 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_METHOD:
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;
-		else if (strcmp(n->str, "shaft") == 0) {
+		else if (strcmp(n->str, "shaft") == 0)
 			il->method = ILLUM_SHAFT;
-			diag_warning(E->diag, n->loc, "method shaft is not supported yet; light rays deposit at points");
-		}
 		else
 			eval_fail(E, n->loc, "method must be 'point' or 'shaft', found '%s'", n->str);
 		return;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* eyepass.h: the eye pass (DESIGN.md §5): Whitted recursion from the camera.
+/* eyepass.h: the eye pass (docs/design.md §5): Whitted recursion from the camera.
  *
  * One call shades one pixel: its camera samples are traced to the visible
  * surface, lit by shadow rays to every light (point, spot, parallel, area),
@@ -8,7 +8,7 @@
  * the beauty, the first visible point gives the pixel's AOVs: irradiance
  * from shadow rays (before albedo), albedo, normal and distance.
  *
- * Light models (DESIGN.md §3): by default a point light's colour is its
+ * Light models (docs/design.md §3): by default a point light's colour is its
  * intensity I (W/sr) and a diffuse surface of albedo ρ = pigment × diffuse
  * has radiance ρ·E/π with E = I·cosθ/d². A parallel light's colour is the
  * irradiance it gives a surface facing it (W/m²). When the scene declared

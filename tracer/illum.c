@@ -16,11 +16,13 @@
 #include "../common/arena.h"
 #include "output/exrout.h"
 #include "output/framebuffer.h"
+#include "polygon.h"
 #include "shape.h"
 
 #define TN (ILLUM_TILE * ILLUM_TILE) /* nodes per tile */
 #define PLANE_LIMIT 1073741824.0     /* |node index| bound on the plane (2^30) */
 #define MAX_NODES (1L << 26)         /* node count bound per bounded axis */
+#define SNAP 1e-9                    /* points this close to a node (in spacings) are on it */
 
 /* ==== 128-bit fixed point: value = (hi·2^64 + lo)·2^-96 =================== */
 
@@ -37,13 +39,24 @@ static struct fx fx_from(double d)
 		return r;
 	if (!(m < 0x1p128))
 		return (struct fx){UINT64_MAX, UINT64_MAX};
-	double h = floor(m * 0x1p-64);
-	r.hi = (uint64_t)h;
-	r.lo = (uint64_t)(m - h * 0x1p64);
+	r.hi = (uint64_t)(m * 0x1p-64); /* truncation is floor here (m ≥ 0), and no libm call */
+	r.lo = (uint64_t)(m - (double)r.hi * 0x1p64);
 	return r;
 }
 
 static double fx_to_double(struct fx a) { return (double)a.hi * 0x1p-32 + (double)a.lo * 0x1p-96; }
+
+/* a >> k (k ≥ 0), the bits shifted out dropped. */
+static struct fx fx_shr(struct fx a, int k)
+{
+	if (k <= 0)
+		return a;
+	if (k >= 128)
+		return (struct fx){0, 0};
+	if (k >= 64)
+		return (struct fx){a.hi >> (k - 64), 0};
+	return (struct fx){(a.lo >> k) | (a.hi << (64 - k)), a.hi >> k};
+}
 
 /* *a += b, saturating. */
 static void fx_add(struct fx *a, struct fx b)
@@ -56,6 +69,12 @@ static void fx_add(struct fx *a, struct fx b)
 	}
 	a->lo = lo;
 	a->hi = hi2;
+}
+
+/* a − b, given a ≥ b. */
+static struct fx fx_sub(struct fx a, struct fx b)
+{
+	return (struct fx){a.lo - b.lo, a.hi - b.hi - (a.lo < b.lo)};
 }
 
 /* ==== the map ============================================================= */
@@ -97,6 +116,13 @@ struct illum_map {
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
 	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
+	int shift;                /* accumulators count units of 2^(shift−96) W (see map_reserve) */
+	double unit, inv_unit;    /* 2^shift and 2^−shift */
+	double bound;             /* energy deposited so far (per channel, at most): bounds every node's sum */
+	struct loops loops;       /* polygon deposits: the current polygon's simple loops */
+	struct pt2 *pts;          /* polygon deposits: corners and clip buffers (scratch) */
+	double *rows;             /* polygon deposits: row shares and node weights (scratch) */
+	size_t cap_pts, cap_rows; /* allocated lengths of pts and rows */
 };
 
 static long floordiv(long a) { return a >= 0 ? a / ILLUM_TILE : -((-a + ILLUM_TILE - 1) / ILLUM_TILE); }
@@ -195,14 +221,19 @@ static const struct tile *node_tile(const struct illum_map *m, long i, long j, i
 
 /* ==== axes: parameter ↔ node indices ====================================== */
 
+/* t (in node spacings) snapped onto the nearest node when within SNAP. */
+static double snap(double t)
+{
+	double r = nearbyint(t);
+	return fabs(t - r) < SNAP ? r : t;
+}
+
 /* Splits parameter x between nodes *i0 (weight 1 − *f) and *i1 (weight *f):
  * wrapped on periodic axes, clamped to the edges of bounded ones. A point
- * within 1e-9 spacings of a node is snapped onto it (then *f = 0). */
+ * within SNAP spacings of a node is snapped onto it (then *f = 0). */
 static void axis_split(const struct axis *a, double x, long *i0, long *i1, double *f)
 {
-	double t = (x - a->lo) / a->step, r = nearbyint(t);
-	if (fabs(t - r) < 1e-9)
-		t = r;
+	double t = snap((x - a->lo) / a->step);
 	if (a->wraps) {
 		t = fmod(t, (double)a->n);
 		if (t < 0)
@@ -287,6 +318,7 @@ struct illum_map *illum_new(const struct object *o, const struct illum_spec *spe
 	struct illum_map *m = mem_calloc(1, sizeof *m);
 	m->obj = o;
 	m->last = -1;
+	m->unit = m->inv_unit = 1;
 	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	if (!r.bounded) {
@@ -332,6 +364,9 @@ struct illum_map *illum_new_like(const struct illum_map *src)
 	m->ax[0] = src->ax[0];
 	m->ax[1] = src->ax[1];
 	m->last = -1;
+	m->shift = src->shift;
+	m->unit = src->unit;
+	m->inv_unit = src->inv_unit;
 	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
 	return m;
@@ -344,6 +379,9 @@ void illum_free(struct illum_map *m)
 	arena_free(&m->pool);
 	free(m->tiles);
 	free(m->slots);
+	loops_free(&m->loops);
+	free(m->pts);
+	free(m->rows);
 	free(m);
 }
 
@@ -367,14 +405,65 @@ void illum_node_uv(const struct illum_map *m, long i, long j, double *u, double 
 
 /* ==== deposit and merge =================================================== */
 
-static void acc_add(struct acc *n, double w, const double e[3])
+/* Makes the accumulators count units of 2^(shift−96) W, shift > m->shift,
+ * dropping the bits that fall below the new unit. */
+static void map_rescale(struct illum_map *m, int shift)
+{
+	int k = shift - m->shift;
+	for (long t = 0; t < m->ntiles; t++)
+		for (int q = 0; q < TN; q++)
+			for (int c = 0; c < 3; c++)
+				m->tiles[t]->n[q].e[c] = fx_shr(m->tiles[t]->n[q].e[c], k);
+	m->shift = shift;
+	m->unit = ldexp(1, shift);
+	m->inv_unit = ldexp(1, -shift);
+	m->finished = false;
+}
+
+/* Range: no node's sum can exceed the energy deposited into the whole map
+ * (per channel), so keeping that bound under 2^31 units (a bit of headroom
+ * below the 2^32 capacity) means no accumulator ever saturates. Before
+ * `more` W more arrive, raises the unit when the bound needs it. Scenes in
+ * everyday units keep shift 0 (the plain 2^−96 W quantum); a scene at 1e6
+ * scale, whose rays carry ~1e9 W, does not. An infinite bound is left to
+ * saturate. */
+static void map_reserve(struct illum_map *m, double more)
+{
+	double b = m->bound + more;
+	int e;
+	if (!isfinite(b))
+		return;
+	m->bound = b;
+	frexp(b, &e); /* b < 2^e */
+	if (e - 31 > m->shift)
+		map_rescale(m, e - 31);
+}
+
+/* The largest channel of a deposit's energy, as deposit_band counts it. */
+static double energy_max(const double e[3])
+{
+	double x = 0;
+	for (int c = 0; c < 3; c++)
+		x = e[c] > x ? e[c] : x; /* NaN and negatives → 0 */
+	return x;
+}
+
+static void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
 {
 	for (int c = 0; c < 3; c++) {
 		double x = w * e[c];
-		fx_add(&n->e[c], fx_from(x));
+		fx_add(&n->e[c], fx_from(x * inv_unit));
 		n->sq[c] += (float)(x * x);
 	}
 	n->count += n->count < UINT32_MAX;
+}
+
+/* e = energy with NaN and negative components set to 0; false when all are. */
+static bool energy_clean(const double energy[3], double e[3])
+{
+	for (int c = 0; c < 3; c++)
+		e[c] = energy[c] > 0 ? energy[c] : 0;
+	return e[0] > 0 || e[1] > 0 || e[2] > 0;
 }
 
 /* The band of node row j when the deposits are split among nb threads:
@@ -394,9 +483,7 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 		return;
 	}
 	double e[3];
-	for (int c = 0; c < 3; c++)
-		e[c] = energy[c] > 0 ? energy[c] : 0; /* NaN and negatives → 0 */
-	if (e[0] == 0 && e[1] == 0 && e[2] == 0)
+	if (!energy_clean(energy, e))
 		return;
 	long iu[2], iv[2];
 	double fu, fv;
@@ -409,7 +496,7 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 		for (int a = 0; a < 2; a++) {
 			double w = wu[a] * wv[b];
 			if (w > 0)
-				acc_add(node_acc(m, iu[a], iv[b], true), w, e);
+				acc_add(node_acc(m, iu[a], iv[b], true), w, e, m->inv_unit);
 		}
 	}
 	m->finished = false;
@@ -417,15 +504,17 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 
 void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
 {
+	map_reserve(m, energy_max(energy));
 	deposit_band(m, u, v, energy, 0, 1);
 }
 
-/* Adds tile s's accumulators into tile d. */
-static void tile_accumulate(struct tile *d, const struct tile *s)
+/* Adds tile s's accumulators, shifted right by k bits (its map's unit is
+ * 2^k times finer), into tile d. */
+static void tile_accumulate(struct tile *d, const struct tile *s, int k)
 {
 	for (int q = 0; q < TN; q++) {
 		for (int c = 0; c < 3; c++) {
-			fx_add(&d->n[q].e[c], s->n[q].e[c]);
+			fx_add(&d->n[q].e[c], fx_shr(s->n[q].e[c], k));
 			d->n[q].sq[c] += s->n[q].sq[c];
 		}
 		uint32_t c = d->n[q].count + s->n[q].count;
@@ -441,7 +530,7 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 		struct tile *t = src->tiles[k];
 		long d = tile_find(dst, t->ti, t->tj);
 		if (d >= 0) {
-			tile_accumulate(dst->tiles[d], t);
+			tile_accumulate(dst->tiles[d], t, 0);
 		} else {
 			t->area = NULL;
 			t->iso = 0;
@@ -490,6 +579,10 @@ static void *band_work(void *arg)
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
+	for (long i = 0; i < n; i++)
+		emax = fmax(emax, energy_max(s[i].e));
+	map_reserve(m, (double)n * emax);
 	if (nb == 1 || n < 8192) {
 		for (long i = 0; i < n; i++)
 			deposit_band(m, s[i].u, s[i].v, s[i].e, 0, 1);
@@ -514,16 +607,490 @@ bool illum_merge(struct illum_map *dst, const struct illum_map *src)
 	if (dst->obj != src->obj || !same_axis(&dst->ax[0], &src->ax[0]) ||
 	    !same_axis(&dst->ax[1], &src->ax[1]))
 		return false;
+	map_reserve(dst, src->bound);
+	if (src->shift > dst->shift)
+		map_rescale(dst, src->shift);
 	for (long k = 0; k < src->ntiles; k++) {
 		const struct tile *s = src->tiles[k];
 		long di = tile_find(dst, s->ti, s->tj);
 		if (di < 0)
 			di = tile_add(dst, s->ti, s->tj);
-		tile_accumulate(dst->tiles[di], s);
+		tile_accumulate(dst->tiles[di], s, dst->shift - src->shift);
 	}
 	dst->dropped += src->dropped;
 	dst->finished = false;
 	return true;
+}
+
+/* ==== polygon deposits (light-shaft footprints) ============================ */
+
+/* illum_deposit_poly integrates the point deposit over the polygon: node k
+ * gets ∫ φ_k / area, φ_k the weight axis_split gives k at each point (tents,
+ * wrapped and clamped as for points). Inside one grid cell the four weights
+ * are bilinear, so a cell needs only the moments ∫1, x, y, xy of the
+ * polygon's part in it: the polygon is clipped to each row of cells (a
+ * slab), the slab to each cell of that row, and Green's theorem integrates
+ * the pieces (polygon.c). The node weights go to a dense array over the
+ * bounding box, whose size the cap below bounds.
+ *
+ * Work is in NODE UNITS (node i at coordinate i, cells are unit squares) and
+ * relative to the first corner, for precision. A polygon whose bounding box
+ * spans more than ILLUM_POLY_MAX_CELLS cells is rasterised on a VIRTUAL grid
+ * of every s-th node (s a power of two), which bounds time and memory.
+ *
+ * Fixed point: the shares are quantised by CUMULATIVE rounding, node rows in
+ * order and nodes left to right inside a row: node k gets
+ * fx(e·C_k) − fx(e·C_k−1), C_k the running sum of the weights up to and
+ * including it, over their total. The sum telescopes to fx(e·1) = fx(e),
+ * whatever the rounding of the C's, each share is ≥ 0 (C never decreases),
+ * and each is off by at most a quantum plus ~e·2^-53. The weights are all
+ * computed before any is written, so a thread writing only some rows
+ * (illum_deposit_poly_all) rounds them exactly as one writing all. */
+
+#define POLY_FAR 2147483648.0 /* corners are pulled in to 2^31 nodes beyond a clamped edge */
+#define POLY_FLAT 1e-13       /* area < POLY_FLAT·diameter²: zero area */
+#define NODE_EPS 1e-14        /* a node share (of 1) below this is rounding noise */
+
+/* min and max of finite numbers, inline (fmin and fmax are libm calls). */
+static double dmin(double a, double b) { return a < b ? a : b; }
+static double dmax(double a, double b) { return a > b ? a : b; }
+
+/* One axis of the grid a polygon is rasterised on. Virtual node I is the
+ * map's node I·s, cell c is [c, c+1]. On a clamped axis cell L−1 stands for
+ * everything below node L and cell H for everything above node H. */
+struct vaxis {
+	const struct axis *a; /* the map's axis */
+	long s;               /* map nodes per virtual node (1 unless huge) */
+	bool clamped;         /* bounded and not wrapping, or the plane (±2^30) */
+	long L, H;            /* first and last virtual node of a clamped axis */
+	long c0, c1;          /* the cells the polygon's bounding box touches */
+	long n0, n1;          /* the nodes those cells weight */
+};
+
+/* Axis A of the virtual grid with s map nodes per node, for a polygon
+ * spanning [lo, hi] virtual units. */
+static void vaxis_init(struct vaxis *A, const struct axis *a, long s, double lo, double hi)
+{
+	A->a = a;
+	A->s = s;
+	A->clamped = !a->wraps;
+	A->L = a->bounded ? 0 : -(long)(PLANE_LIMIT / (double)s);
+	A->H = a->bounded ? (a->n - 1 + s - 1) / s : (long)(PLANE_LIMIT / (double)s);
+	double c0 = floor(lo), c1 = fmax(c0, ceil(hi) - 1);
+	if (A->clamped) {
+		c0 = fmin(fmax(c0, (double)A->L - 1), (double)A->H);
+		c1 = fmin(fmax(c1, (double)A->L - 1), (double)A->H);
+	}
+	A->c0 = (long)c0;
+	A->c1 = (long)c1;
+	A->n0 = A->clamped && A->c0 < A->L ? A->L : A->c0;
+	A->n1 = A->clamped && A->c1 >= A->H ? A->H : A->c1 + 1;
+}
+
+/* The map node of virtual node I. */
+static long vnode(const struct vaxis *A, long I)
+{
+	long i = I * A->s, n = A->a->n;
+	if (A->a->wraps)
+		return (i % n + n) % n;
+	return A->a->bounded && i > n - 1 ? n - 1 : i;
+}
+
+/* Cell c of an axis as a clip interval [lo, hi] and the weights it gives its
+ * nodes c ([0]) and c+1 ([1]): al + be·x, x measured from org. Coordinates
+ * are relative to r, the first corner's. */
+struct cellw {
+	double lo, hi, org;
+	double al[2], be[2];
+	bool has[2];
+};
+
+static struct cellw vcell(const struct vaxis *A, long c, double r)
+{
+	double o = (double)c - r, o1 = (double)(c + 1) - r; /* as the neighbours compute them */
+	if (A->clamped && c < A->L) /* all below node L lands on it */
+		return (struct cellw){-INFINITY, (double)A->L - r, o, {0, 1}, {0, 0}, {false, true}};
+	if (A->clamped && c >= A->H)
+		return (struct cellw){(double)A->H - r, INFINITY, o, {1, 0}, {0, 0}, {true, false}};
+	return (struct cellw){o, o1, o, {1, 0}, {-1, 1}, {true, true}};
+}
+
+/* One polygon deposit in progress. */
+struct fp {
+	struct illum_map *m;
+	double e[3];                   /* energy per channel (W, ≥ 0) */
+	int band, nb;                  /* write only the node rows of band `band` of nb */
+	struct vaxis ax[2];            /* u and v */
+	struct pt2 r;                  /* virtual (u,v) of the first corner (or of the point) */
+	bool point;                    /* zero area: a point deposit at r instead */
+	int n;                         /* corners */
+	const struct loops *l;         /* the polygon as simple loops, relative to r */
+	struct pt2 *slab, *cell, *tmp; /* clip buffers */
+	double *sc;                    /* per loop: ±1/(total area), the sign of its winding */
+	double *ylo, *yhi;             /* per loop: its v range */
+	double *w;                     /* node weights, row-major over nodes n0..n1 of both axes */
+	long cols;                     /* nodes per row of w */
+	double *pre;                   /* per node row: the running sum of the weights before it */
+	double total;                  /* the area, then the sum of all weights (1 to rounding) */
+};
+
+/* Corner coordinate x (node units) on axis a: unwrapped to within half a
+ * period of the previous corner's *prev (the first corner, prev NULL, is
+ * reduced to [0, n)), or pulled in to POLY_FAR beyond a clamped edge (only
+ * absurd input moves). */
+static double corner_coord(const struct axis *a, double x, const double *prev)
+{
+	double per = (double)a->n;
+	if (a->wraps && !prev) {
+		x = fmod(x, per);
+		return x < 0 ? x + per : x;
+	}
+	if (a->wraps)
+		return *prev + remainder(x - *prev, per);
+	double lo = a->bounded ? 0 : -PLANE_LIMIT, hi = a->bounded ? per - 1 : PLANE_LIMIT;
+	return fmin(fmax(x, lo - POLY_FAR), hi + POLY_FAR);
+}
+
+/* The corners in map node units (node i at i), snapped as axis_split snaps
+ * points: a polygon across a seam comes out continuous. */
+static void corner_nodes(const struct illum_map *m, const double (*uv)[2], int n, struct pt2 *out)
+{
+	for (int k = 0; k < n; k++) {
+		double x = snap((uv[k][0] - m->ax[0].lo) / m->ax[0].step);
+		double y = snap((uv[k][1] - m->ax[1].lo) / m->ax[1].step);
+		out[k].x = corner_coord(&m->ax[0], x, k ? &out[k - 1].x : NULL);
+		out[k].y = corner_coord(&m->ax[1], y, k ? &out[k - 1].y : NULL);
+	}
+}
+
+/* Sets up the polygon c[0..n) (map node units): the least coarsening s that
+ * keeps the bounding box within ILLUM_POLY_MAX_CELLS cells, the corners in
+ * virtual units relative to the first (into v), and the simple loops. False
+ * when the area is zero to rounding. */
+static bool fp_polygon(struct fp *F, const struct pt2 *c, struct pt2 *v)
+{
+	double lo[2] = {c[0].x, c[0].y}, hi[2] = {c[0].x, c[0].y};
+	for (int k = 1; k < F->n; k++) {
+		lo[0] = dmin(lo[0], c[k].x), hi[0] = dmax(hi[0], c[k].x);
+		lo[1] = dmin(lo[1], c[k].y), hi[1] = dmax(hi[1], c[k].y);
+	}
+	long s = 1;
+	for (;; s *= 2) {
+		for (int d = 0; d < 2; d++)
+			vaxis_init(&F->ax[d], &F->m->ax[d], s, lo[d] / (double)s, hi[d] / (double)s);
+		double cells = (double)(F->ax[0].c1 - F->ax[0].c0 + 1) * (double)(F->ax[1].c1 - F->ax[1].c0 + 1);
+		if (cells <= ILLUM_POLY_MAX_CELLS || s > LONG_MAX / 4)
+			break;
+	}
+	F->r = (struct pt2){c[0].x / (double)s, c[0].y / (double)s}; /* s is a power of two: exact */
+	for (int k = 0; k < F->n; k++)
+		v[k] = (struct pt2){c[k].x / (double)s - F->r.x, c[k].y / (double)s - F->r.y};
+	poly_split(&F->m->loops, v, F->n);
+	F->l = &F->m->loops;
+	double area = 0, du = (hi[0] - lo[0]) / (double)s, dv = (hi[1] - lo[1]) / (double)s;
+	for (int k = 0; k < F->l->n; k++)
+		area += fabs(poly_area(F->l->pt + F->l->start[k], F->l->len[k]));
+	F->total = area; /* until fp_run: the area, for the loop weights */
+	return area > POLY_FLAT * (du * du + dv * dv);
+}
+
+/* Sets up a point deposit at the mean of c[0..n): the one cell axis_split
+ * would use, with the same snapping and clamping. */
+static void fp_point(struct fp *F, const struct pt2 *c)
+{
+	double x = 0, y = 0;
+	for (int k = 0; k < F->n; k++) {
+		x += c[k].x;
+		y += c[k].y;
+	}
+	x = snap(x / F->n);
+	y = snap(y / F->n);
+	vaxis_init(&F->ax[0], &F->m->ax[0], 1, x, x);
+	vaxis_init(&F->ax[1], &F->m->ax[1], 1, y, y);
+	F->r = (struct pt2){x, y};
+	F->point = true;
+}
+
+/* Grows buf (cap elements of sz bytes) to at least n; kept between deposits. */
+static void *grow(void *buf, size_t *cap, size_t n, size_t sz)
+{
+	if (n <= *cap)
+		return buf;
+	size_t c = *cap ? *cap : 64;
+	while (c < n)
+		c *= 2;
+	*cap = c;
+	return mem_realloc(buf, c * sz);
+}
+
+/* The loop weights and ranges and the zeroed node weights, from the map's
+ * scratch. */
+static void fp_alloc(struct fp *F)
+{
+	struct illum_map *m = F->m;
+	size_t loops = F->point ? 0 : (size_t)F->l->n;
+	size_t rows = (size_t)(F->ax[1].n1 - F->ax[1].n0 + 1), cols = (size_t)(F->ax[0].n1 - F->ax[0].n0 + 1);
+	size_t need = 3 * loops + rows * cols + rows + 1;
+	m->rows = grow(m->rows, &m->cap_rows, need, sizeof *m->rows);
+	F->sc = m->rows;
+	F->ylo = F->sc + loops;
+	F->yhi = F->ylo + loops;
+	F->pre = F->yhi + loops;
+	F->w = F->pre + rows + 1;
+	F->cols = (long)cols;
+	memset(F->w, 0, rows * cols * sizeof *F->w);
+	for (size_t k = 0; k < loops; k++) {
+		const struct pt2 *p = F->l->pt + F->l->start[k];
+		F->sc[k] = copysign(1 / F->total, poly_area(p, F->l->len[k]));
+		F->ylo[k] = F->yhi[k] = p[0].y;
+		for (int q = 1; q < F->l->len[k]; q++)
+			F->ylo[k] = dmin(F->ylo[k], p[q].y), F->yhi[k] = dmax(F->yhi[k], p[q].y);
+	}
+}
+
+/* Loop l's part in the slab of a cell row (wv), *k corners: the loop itself
+ * when it lies inside (most small polygons: clipping would copy it
+ * unchanged), else clipped into F->slab. */
+static const struct pt2 *fp_slab(struct fp *F, int l, const struct cellw *wv, int *k)
+{
+	const struct pt2 *p = F->l->pt + F->l->start[l];
+	if (F->ylo[l] >= wv->lo && F->yhi[l] <= wv->hi) {
+		*k = F->l->len[l];
+		return p;
+	}
+	*k = poly_clip_slab(p, F->l->len[l], 1, wv->lo, wv->hi, F->slab, F->tmp);
+	return F->slab;
+}
+
+/* Adds sc × the weights the moments mo of cell (cu, cv) give its nodes. */
+static void fp_add(struct fp *F, long cu, long cv, const struct cellw *wu, const struct cellw *wv,
+                   struct moments mo, double sc)
+{
+	for (int b = 0; b < 2; b++)
+		for (int a = 0; a < 2; a++) {
+			if (!wu->has[a] || !wv->has[b])
+				continue;
+			double w = wu->al[a] * wv->al[b] * mo.a + wu->al[a] * wv->be[b] * mo.y +
+			           wu->be[a] * wv->al[b] * mo.x + wu->be[a] * wv->be[b] * mo.xy;
+			F->w[(cv + b - F->ax[1].n0) * F->cols + cu + a - F->ax[0].n0] += sc * w;
+		}
+}
+
+/* The cell of axis A holding virtual coordinate c (within the box's cells). */
+static long cell_of(const struct vaxis *A, double c)
+{
+	return (long)dmin(dmax(floor(c), (double)A->c0), (double)A->c1);
+}
+
+/* The weights cell row cv gives its nodes. Only the cells the row's slab
+ * spans are clipped, and a piece inside its cell is not. */
+static void fp_cell_row(struct fp *F, long cv)
+{
+	const struct vaxis *U = &F->ax[0];
+	struct cellw wv = vcell(&F->ax[1], cv, F->r.y);
+	if (F->point) {
+		struct cellw wu = vcell(U, U->c0, F->r.x);
+		double x = -wu.org, y = -wv.org;
+		fp_add(F, U->c0, cv, &wu, &wv, (struct moments){1, x, y, x * y}, 1);
+		return;
+	}
+	for (int l = 0; l < F->l->n; l++) {
+		int k, kc;
+		const struct pt2 *p = fp_slab(F, l, &wv, &k), *c;
+		if (k < 3)
+			continue;
+		double lo = p[0].x, hi = lo;
+		for (int q = 1; q < k; q++)
+			lo = dmin(lo, p[q].x), hi = dmax(hi, p[q].x);
+		long c1 = cell_of(U, ceil(hi + F->r.x) - 1);
+		for (long cu = cell_of(U, lo + F->r.x); cu <= c1; cu++) {
+			struct cellw wu = vcell(U, cu, F->r.x);
+			if (lo >= wu.lo && hi <= wu.hi)
+				c = p, kc = k;
+			else
+				c = F->cell, kc = poly_clip_slab(p, k, 0, wu.lo, wu.hi, F->cell, F->tmp);
+			if (kc >= 3)
+				fp_add(F, cu, cv, &wu, &wv, poly_moments(c, kc, (struct pt2){wu.org, wv.org}), F->sc[l]);
+		}
+	}
+}
+
+/* Zeroes the weights below NODE_EPS (rounding noise: slivers, degenerate
+ * pieces) and keeps the running sum of the weights, node by node in row
+ * order, at the start of each row in pre; F->total gets the whole sum. */
+static void fp_row_sums(struct fp *F)
+{
+	long rows = F->ax[1].n1 - F->ax[1].n0 + 1;
+	double run = 0;
+	for (long k = 0; k < rows; k++) {
+		double *w = F->w + k * F->cols;
+		F->pre[k] = run;
+		for (long i = 0; i < F->cols; i++) {
+			if (!(w[i] >= NODE_EPS))
+				w[i] = 0;
+			run += w[i];
+		}
+	}
+	F->pre[rows] = F->total = run;
+}
+
+/* Advances the cumulative fixed-point energies cum to the first `upto` (of
+ * F->total) of the flux; d (may be NULL) gets the increments. */
+static void fp_cum(const struct fp *F, double upto, struct fx cum[3], struct fx d[3])
+{
+	double q = upto / F->total;
+	for (int c = 0; c < 3; c++) {
+		struct fx x = F->e[c] > 0 ? fx_from(F->e[c] * q) : (struct fx){0, 0};
+		if (d)
+			d[c] = fx_sub(x, cum[c]);
+		cum[c] = x;
+	}
+}
+
+/* Adds the quantised shares d (in units of `unit`) to node n: one sample
+ * with that weight. */
+static void acc_add_fx(struct acc *n, const struct fx d[3], double unit)
+{
+	for (int c = 0; c < 3; c++) {
+		fx_add(&n->e[c], d[c]);
+		double x = fx_to_double(d[c]) * unit;
+		n->sq[c] += (float)(x * x);
+	}
+	n->count += n->count < UINT32_MAX;
+}
+
+/* Quantises node row k (from n0) cumulatively into the map: C repeats the
+ * additions of fp_row_sums from pre[k], so the row ends exactly where the
+ * next one starts, whoever writes it. */
+static void fp_emit(struct fp *F, long k)
+{
+	const double *w = F->w + k * F->cols;
+	long fj = vnode(&F->ax[1], F->ax[1].n0 + k);
+	double C = F->pre[k];
+	struct fx cum[3], d[3];
+	fp_cum(F, C, cum, NULL);
+	for (long i = 0; i < F->cols; i++) {
+		if (w[i] == 0)
+			continue;
+		C += w[i];
+		fp_cum(F, C, cum, d);
+		acc_add_fx(node_acc(F->m, vnode(&F->ax[0], F->ax[0].n0 + i), fj, true), d, F->m->unit);
+	}
+}
+
+/* Node row J is this deposit's to write: in its band. */
+static bool row_mine(const struct fp *F, long J)
+{
+	return F->nb == 1 || band_of(vnode(&F->ax[1], J), F->nb) == F->band;
+}
+
+/* Whether any node row of the deposit is in its band. */
+static bool fp_any_mine(const struct fp *F)
+{
+	for (long J = F->ax[1].n0; J <= F->ax[1].n1; J++)
+		if (row_mine(F, J))
+			return true;
+	return false;
+}
+
+/* Integrates, then quantises the rows in the band; false (nothing written)
+ * when no node has a share. Every thread computes all the weights, so the
+ * rounding of a row never depends on who writes it. */
+static bool fp_run(struct fp *F)
+{
+	fp_alloc(F);
+	for (long cv = F->ax[1].c0; cv <= F->ax[1].c1; cv++)
+		fp_cell_row(F, cv);
+	fp_row_sums(F);
+	if (!(F->total > 0))
+		return false;
+	for (long J = F->ax[1].n0; J <= F->ax[1].n1; J++)
+		if (row_mine(F, J))
+			fp_emit(F, J - F->ax[1].n0);
+	return true;
+}
+
+/* No corner is NaN or infinite. */
+static bool corners_finite(const double (*uv)[2], int n)
+{
+	for (int k = 0; k < n; k++)
+		if (!isfinite(uv[k][0]) || !isfinite(uv[k][1]))
+			return false;
+	return true;
+}
+
+/* illum_deposit_poly, restricted to the node rows of band `band` of nb. */
+static void poly_band(struct illum_map *m, const double (*uv)[2], int n, const double energy[3], int band, int nb)
+{
+	if (!uv || n < 1 || !corners_finite(uv, n)) {
+		if (band == 0)
+			m->dropped++;
+		return;
+	}
+	struct fp F = {.m = m, .band = band, .nb = nb, .n = n};
+	if (!energy_clean(energy, F.e))
+		return;
+	for (int k = 0; k < 3; k++) /* in the map's unit (map_reserve, done by the caller) */
+		F.e[k] *= m->inv_unit;
+	/* corners, their virtual copy, and clip buffers for loops of ≤ n corners:
+	 * slab 4n, cell 16n, tmp 8n (each Sutherland–Hodgman pass at most doubles) */
+	m->pts = grow(m->pts, &m->cap_pts, 30 * (size_t)n + 8, sizeof *m->pts);
+	struct pt2 *c = m->pts, *v = c + n;
+	F.slab = v + n;
+	F.cell = F.slab + 4 * n;
+	F.tmp = F.cell + 16 * n;
+	corner_nodes(m, uv, n, c);
+	bool poly = n >= 3 && fp_polygon(&F, c, v);
+	if (!poly)
+		fp_point(&F, c);
+	if (nb > 1 && !fp_any_mine(&F))
+		return;
+	if (!fp_run(&F) && poly) { /* every row below noise: cannot happen for a real area */
+		fp_point(&F, c);
+		fp_run(&F);
+	}
+	m->finished = false;
+}
+
+void illum_deposit_poly(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
+{
+	map_reserve(m, energy_max(energy));
+	poly_band(m, uv, n, energy, 0, 1);
+}
+
+struct poly_job {
+	struct illum_map *part;
+	const struct illum_poly *p;
+	long n;
+	int band, nb;
+};
+
+static void *poly_work(void *arg)
+{
+	struct poly_job *b = arg;
+	for (long i = 0; i < b->n; i++)
+		poly_band(b->part, b->p[i].uv, b->p[i].n, b->p[i].e, b->band, b->nb);
+	return NULL;
+}
+
+void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)
+{
+	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
+	double more = 0;
+	for (long i = 0; i < n; i++)
+		more += energy_max(p[i].e);
+	map_reserve(m, more); /* the unit for them all, before any of them (order-free) */
+	if (nb == 1 || n < 1024) {
+		for (long i = 0; i < n; i++)
+			poly_band(m, p[i].uv, p[i].n, p[i].e, 0, 1);
+		return;
+	}
+	struct poly_job jobs[64];
+	for (int b = 0; b < nb; b++)
+		jobs[b] = (struct poly_job){illum_new_like(m), p, n, b, nb};
+	run_jobs(poly_work, jobs, sizeof *jobs, nb);
+	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
+		adopt(m, jobs[b].part);
 }
 
 /* ==== finish: energy → irradiance ========================================= */
@@ -677,7 +1244,7 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	}
 	if (removed)
 		for (int c = 0; c < 3; c++)
-			removed[c] = fx_to_double(rem[c]);
+			removed[c] = fx_to_double(rem[c]) * m->unit;
 	m->finished = true;
 }
 
@@ -693,7 +1260,7 @@ static double node_irr(const struct illum_map *m, const struct tile *t, int q, i
 	double a = t->area ? t->area[q] : m->flat_area;
 	if ((t->iso >> q) & 1 || !(a > 0))
 		return 0;
-	return fx_to_double(t->n[q].e[c]) / a;
+	return fx_to_double(t->n[q].e[c]) * m->unit / a;
 }
 
 void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
@@ -727,11 +1294,15 @@ void illum_total(const struct illum_map *m, double out[3])
 			for (int c = 0; c < 3; c++)
 				fx_add(&s[c], m->tiles[k]->n[q].e[c]);
 	for (int c = 0; c < 3; c++)
-		out[c] = fx_to_double(s[c]);
+		out[c] = fx_to_double(s[c]) * m->unit;
 }
 
 long illum_dropped(const struct illum_map *m) { return m->dropped; }
-size_t illum_memory(const struct illum_map *m) { return m->bytes + arena_bytes(&m->pool); }
+size_t illum_memory(const struct illum_map *m)
+{
+	return m->bytes + arena_bytes(&m->pool) + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
+	       m->cap_rows * sizeof *m->rows;
+}
 long illum_tiles(const struct illum_map *m) { return m->ntiles; }
 
 static int tile_cmp(const void *pa, const void *pb)
@@ -767,7 +1338,7 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 			n.j = (long)s[k]->tj * ILLUM_TILE + q / ILLUM_TILE;
 			illum_node_uv(m, n.i, n.j, &n.u, &n.v);
 			for (int c = 0; c < 3; c++) {
-				n.energy[c] = fx_to_double(a->e[c]);
+				n.energy[c] = fx_to_double(a->e[c]) * m->unit;
 				n.sumsq[c] = a->sq[c];
 			}
 			n.count = a->count;

@@ -32,6 +32,7 @@ struct rec {
 	double u, v;              /* where on it */
 	double e[3];              /* energy per channel (W) */
 	struct vec3 p;            /* world point (for the automatic cell size) */
+	double size;              /* shafts: the spread of the corners around it (m), else 0 */
 };
 
 struct recbuf {
@@ -58,11 +59,17 @@ struct item {
 	long first, count;
 };
 
+/* The maps of a pass. A surface may have several levels (shafts: map
+ * resolution that follows the light), entries objs[k..k+L) of one object,
+ * level 0 the finest, each level's cell twice the one before; the
+ * irradiance is the sum of the levels' lookups. */
 struct lp_result {
 	const struct object **objs; /* primitives with a map, deterministic order */
 	struct illum_map **maps;
 	struct illum_spec *specs;   /* the grid each map was made with */
+	int *level;                 /* level of each entry (0: finest) */
 	int n;
+	const struct object *nomap; /* a surface reached whose map could not be made */
 	int *slots;                 /* hash of objs: index + 1, 0 = empty */
 	int nslots;                 /* power of two, > 2n */
 };
@@ -81,11 +88,45 @@ struct job {
 	struct band band;           /* the light this pass carries */
 };
 
+/* Light shafts (docs/design.md §4): where one specular path of a corner ray
+ * of a shaft ends on a diffuse surface. */
+struct landing {
+	uint64_t sig;             /* the path: surfaces, branches, receiver and chart */
+	const struct object *obj; /* the receiver */
+	double u, v;              /* where on it */
+	struct vec3 p;            /* world point */
+	double e[3];              /* the energy the corner's ray brought there */
+};
+
+struct landbuf {
+	struct landing *l;
+	long n, cap;
+};
+
+/* A shaft's footprint on a receiver, kept until the maps exist. */
+struct prec {
+	const struct object *obj;
+	double uv[4][2];          /* corners in (u,v), unwrapped across seams */
+	int nv;                   /* corners used: 4, or 3 for a fold's hull */
+	double e[3];              /* the shaft's energy along this path (W) */
+	struct vec3 p;            /* world point of corner 0 */
+	double size;              /* world diameter of the footprint */
+};
+
+struct precbuf {
+	struct prec *r;
+	long n, cap;
+};
+
 struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
 	struct band band;           /* the light the current ray carries */
 	struct recbuf recs;
+	bool corners;               /* tracing shaft corners: landings go to lands */
+	struct landbuf lands;
+	struct precbuf precs;
+	long long primaries;        /* shaft corner rays traced */
 	long long segments;
 	double emitted[3];
 	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
@@ -215,14 +256,41 @@ static bool in_beam(const struct target *t, struct vec3 p)
 
 /* ==== tracing ============================================================ */
 
-static void record(struct worker *w, const struct hit *h, const double e[3])
+/* Mixes one step of a path (the object met and what happened there) into a
+ * path signature. */
+static uint64_t sig_mix(uint64_t sig, const void *obj, unsigned what)
 {
+	uint64_t x = sig ^ ((uint64_t)(uintptr_t)obj * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)what << 56);
+	x ^= x >> 31;
+	x *= 0xBF58476D1CE4E5B9ull;
+	x ^= x >> 29;
+	return x;
+}
+
+/* The chart of a hit: the box's (u,v) atlas has six faces whose (u,v) do
+ * not join, so a footprint may not span two of them. */
+static unsigned chart(const struct hit *h)
+{
+	if (h->obj->kind != OBJ_BOX)
+		return 0;
+	int a = (int)(h->u * 3), b = (int)(h->v * 2);
+	return (unsigned)(1 + (a < 0 ? 0 : a > 2 ? 2 : a) + 3 * (b < 0 ? 0 : b > 1 ? 1 : b));
+}
+
+static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
+
+static void record(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
+{
+	if (w->corners) {
+		land(w, h, e, sig_mix(sig, h->obj, 16 + chart(h)));
+		return;
+	}
 	struct recbuf *rb = &w->recs;
 	if (rb->n == rb->cap) {
 		rb->cap = rb->cap ? rb->cap * 2 : 4096;
 		rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)rb->cap);
 	}
-	rb->r[rb->n++] = (struct rec){h->obj, h->u, h->v, {e[0], e[1], e[2]}, h->p};
+	rb->r[rb->n++] = (struct rec){h->obj, h->u, h->v, {e[0], e[1], e[2]}, h->p, 0};
 }
 
 static void add3(double acc[3], const double e[3], double k)
@@ -235,7 +303,8 @@ static void add3(double acc[3], const double e[3], double k)
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
  * followed on, deposited, direct, absorbed, escaped or cut. */
-static void trace(struct worker *w, struct ray r, const double e[3], double cutoff, int depth, int nspec)
+static void trace(struct worker *w, struct ray r, const double e[3], double cutoff, int depth, int nspec,
+                  uint64_t sig)
 {
 	const struct job *J = w->job;
 	struct hit h;
@@ -250,7 +319,8 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct photon_spec *ph = h.obj->has_photons ? &h.obj->photons : NULL;
 	if (ph && ph->pass_through) {
 		if (depth < J->o->max_depth)
-			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec);
+			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
+			      sig);
 		else
 			add3(w->cut, e, 1);
 		return;
@@ -274,7 +344,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	for (int c = 0; c < 3; c++)
 		rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
 	if (si.f->diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
-		record(w, &h, e);
+		record(w, &h, e, sig);
 		add3(w->deposited, rest, 1);
 	} else if (si.f->diffuse > 0 && opacity > 0 && nspec == 0) {
 		add3(w->direct, rest, 1);
@@ -288,13 +358,13 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
 	if (maxc(so.T) > 0) {
 		if (refract && fmax(te[0], fmax(te[1], te[2])) > cutoff)
-			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1);
+			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1, sig_mix(sig, h.obj, 1));
 		else
 			add3(w->cut, te, 1);
 	}
 	if (maxc(so.R) > 0) {
 		if (reflect && fmax(re[0], fmax(re[1], re[2])) > cutoff)
-			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1);
+			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1, sig_mix(sig, h.obj, 2));
 		else
 			add3(w->cut, re, 1);
 	}
@@ -315,6 +385,329 @@ static double ray_wavelength(uint64_t key, uint64_t i, uint64_t side, double e[3
 	for (int c = 0; c < 3; c++)
 		e[c] *= f[c];
 	return lambda;
+}
+
+static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
+{
+	struct landbuf *b = &w->lands;
+	if (b->n == b->cap)
+		b->l = mem_realloc(b->l, sizeof *b->l * (size_t)(b->cap = b->cap ? b->cap * 2 : 1024));
+	b->l[b->n++] = (struct landing){sig, h->obj, h->u, h->v, h->p, {e[0], e[1], e[2]}};
+}
+
+/* ==== light shafts ======================================================= */
+
+#define SHAFT_LEVELS 3 /* subdivisions of a shaft before it deposits as it is */
+
+/* The origin and direction of the ray at (sx, sy) of target t's stratified
+ * grid: (cos θ, φ) over a cone, (r², φ) over a beam's disc; both are
+ * equal-area, so every grid cell carries the same share of the light. */
+static void aim(const struct light *l, const struct target *t, double sx, double sy, struct vec3 *o,
+                struct vec3 *d)
+{
+	double ph = 2 * M_PI * sy;
+	*o = l->pos, *d = t->axis;
+	if (l->kind == LIGHT_PARALLEL) {
+		double rr = t->radius * sqrt(sx);
+		*o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
+	} else {
+		double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct));
+		*d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+	}
+}
+
+/* The light's weight along a ray of target k: 0 where an earlier target
+ * already covers it (overlapping cones count light once) or outside a
+ * spotlight's cone, else the spotlight factor (1 for other lights). */
+static double emit_weight(const struct light *l, const struct target *tg, int k, struct vec3 o, struct vec3 d)
+{
+	bool beam = l->kind == LIGHT_PARALLEL;
+	for (int j = 0; j < k; j++)
+		if (beam ? in_beam(&tg[j], o) : in_cone(&tg[j], d))
+			return 0;
+	return l->kind == LIGHT_SPOT ? opt_spot(l, d) : 1;
+}
+
+/* What a shaft needs to know about its light and target. */
+struct shaft_ctx {
+	const struct light *l;
+	const struct target *tg; /* the light's targets */
+	int k;                   /* this one */
+	double e0[3];            /* energy of a top-level grid cell (W) */
+	double cutoff;           /* branch cutoff */
+};
+
+/* A corner ray: its landings are lands.l[first .. first+n). */
+struct corner {
+	long first, n;
+};
+
+/* Traces the corner ray at (sx, sy) with the cell energy e0 (the landings
+ * then hold e0 × the path's weight). */
+static struct corner corner_at(struct worker *w, const struct shaft_ctx *S, double sx, double sy)
+{
+	struct vec3 o, d;
+	aim(S->l, &S->tg[S->k], sx, sy, &o, &d);
+	struct corner c = {w->lands.n, 0};
+	w->primaries++;
+	double k = emit_weight(S->l, S->tg, S->k, o, d);
+	if (k > 0) {
+		double e[3] = {S->e0[0] * k, S->e0[1] * k, S->e0[2] * k};
+		trace(w, (struct ray){o, d}, e, S->cutoff, 0, 0, 0);
+	}
+	c.n = w->lands.n - c.first;
+	return c;
+}
+
+static const struct landing *find_sig(const struct worker *w, struct corner c, uint64_t sig)
+{
+	for (long i = c.first; i < c.first + c.n; i++)
+		if (w->lands.l[i].sig == sig)
+			return &w->lands.l[i];
+	return NULL;
+}
+
+/* The four landings of one path as a footprint in (u,v): corners unwrapped
+ * across a periodic seam, in shaft order. False when the quadrilateral is
+ * not convex (a fold of the caustic turns it inside out) or has no area. */
+static bool footprint(const struct landing *q[4], double uv[4][2]);
+
+/* The convex hull of the unwrapped corners uv[0..4) in place (a fold turns
+ * a footprint into a bow-tie: the hull is the region its light covers);
+ * returns its vertex count, 3 or 4, or 0 when it has no area. */
+static int hull4(double uv[4][2])
+{
+	double cx = 0.25 * (uv[0][0] + uv[1][0] + uv[2][0] + uv[3][0]);
+	double cy = 0.25 * (uv[0][1] + uv[1][1] + uv[2][1] + uv[3][1]);
+	double ang[4], p[4][2];
+	int idx[4] = {0, 1, 2, 3};
+	for (int i = 0; i < 4; i++)
+		ang[i] = atan2(uv[i][1] - cy, uv[i][0] - cx);
+	for (int i = 1; i < 4; i++) /* sort by angle around the centroid */
+		for (int j = i; j > 0 && ang[idx[j]] < ang[idx[j - 1]]; j--) {
+			int t = idx[j];
+			idx[j] = idx[j - 1], idx[j - 1] = t;
+		}
+	for (int i = 0; i < 4; i++)
+		p[i][0] = uv[idx[i]][0], p[i][1] = uv[idx[i]][1];
+	/* drop a vertex inside the triangle of the others (a reflex corner) */
+	int n = 4;
+	for (int i = 0; i < n && n == 4; i++) {
+		const double *a = p[(i + 3) & 3], *b = p[i], *c = p[(i + 1) & 3];
+		double cr = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+		if (cr <= 0) {
+			for (int j = i; j < 3; j++)
+				p[j][0] = p[j + 1][0], p[j][1] = p[j + 1][1];
+			n = 3;
+		}
+	}
+	double area = 0;
+	for (int i = 0; i < n; i++)
+		area += p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1];
+	if (!(fabs(area) > 0) || !isfinite(area))
+		return 0;
+	memcpy(uv, p, sizeof p);
+	return n;
+}
+
+static bool footprint(const struct landing *q[4], double uv[4][2])
+{
+	struct uv_range rg;
+	bool wu = false, wv = false;
+	if (shape_uv_range(q[0]->obj, &rg))
+		wu = rg.u_wraps, wv = rg.v_wraps;
+	for (int i = 0; i < 4; i++) {
+		uv[i][0] = q[i]->u, uv[i][1] = q[i]->v;
+		if (wu)
+			uv[i][0] -= floor(uv[i][0] - uv[0][0] + 0.5);
+		if (wv)
+			uv[i][1] -= floor(uv[i][1] - uv[0][1] + 0.5);
+	}
+	double sgn = 0, area = 0;
+	for (int i = 0; i < 4; i++) {
+		const double *a = uv[i], *b = uv[(i + 1) & 3], *c = uv[(i + 2) & 3];
+		double cr = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+		area += a[0] * b[1] - b[0] * a[1];
+		if (cr * sgn < 0)
+			return false;
+		if (cr != 0)
+			sgn = cr;
+	}
+	return area != 0 && isfinite(area);
+}
+
+/* Does the centre ray of a shaft land, for every path, where the corners'
+ * bilinear middle says (within a fifth of the footprint's size in (u,v))?
+ * If not, the path bends the shaft too much to spread its flux evenly. */
+static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx, double sy, const struct corner c[4])
+{
+	long mark = w->lands.n;
+	struct corner m = corner_at(w, S, sx, sy);
+	bool ok = m.n == c[0].n;
+	for (long i = c[0].first; ok && i < c[0].first + c[0].n; i++) {
+		const struct landing *q[4] = {&w->lands.l[i], find_sig(w, c[1], w->lands.l[i].sig),
+		                              find_sig(w, c[2], w->lands.l[i].sig), find_sig(w, c[3], w->lands.l[i].sig)};
+		const struct landing *mid = find_sig(w, m, q[0]->sig);
+		double uv[4][2];
+		if (!mid || !footprint(q, uv)) {
+			ok = false;
+			break;
+		}
+		double cu = 0.25 * (uv[0][0] + uv[1][0] + uv[2][0] + uv[3][0]);
+		double cv = 0.25 * (uv[0][1] + uv[1][1] + uv[2][1] + uv[3][1]);
+		double du = mid->u - cu, dv = mid->v - cv;
+		struct uv_range rg;
+		if (shape_uv_range(mid->obj, &rg) && rg.u_wraps)
+			du -= floor(du + 0.5);
+		if (shape_uv_range(mid->obj, &rg) && rg.v_wraps)
+			dv -= floor(dv + 0.5);
+		double sz = fmax(fabs(uv[2][0] - uv[0][0]), fabs(uv[3][0] - uv[1][0])) +
+		            fmax(fabs(uv[2][1] - uv[0][1]), fabs(uv[3][1] - uv[1][1]));
+		ok = du * du + dv * dv <= 0.04 * sz * sz;
+	}
+	w->lands.n = mark;
+	return ok;
+}
+
+static void push_prec(struct worker *w, const struct prec *p)
+{
+	struct precbuf *b = &w->precs;
+	if (b->n == b->cap)
+		b->r = mem_realloc(b->r, sizeof *b->r * (size_t)(b->cap = b->cap ? b->cap * 2 : 1024));
+	b->r[b->n++] = *p;
+}
+
+/* One shaft: the grid cell [sx0,sx1]×[sy0,sy1] at subdivision level lv,
+ * with corner rays c (in the order (sx0,sy0) (sx0,sy1) (sx1,sy1) (sx1,sy0)).
+ * A path all four corners follow spreads the shaft's share of it, the mean
+ * of their energies over 4^lv, over its footprint; where they diverge the
+ * shaft splits in four, and at the last level each corner's landing is a
+ * point deposit of a quarter of that. */
+static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx0, double sx1, double sy0,
+                  double sy1, const struct corner c[4])
+{
+	bool whole = true;
+	for (int k = 0; k < 4 && whole; k++)
+		for (long i = c[k].first; whole && i < c[k].first + c[k].n; i++)
+			for (int j = 0; j < 4 && whole; j++)
+				whole = find_sig(w, c[j], w->lands.l[i].sig) != NULL;
+	for (long i = c[0].first; whole && i < c[0].first + c[0].n; i++) {
+		const struct landing *q[4] = {&w->lands.l[i], find_sig(w, c[1], w->lands.l[i].sig),
+		                              find_sig(w, c[2], w->lands.l[i].sig), find_sig(w, c[3], w->lands.l[i].sig)};
+		double uv[4][2];
+		whole = footprint(q, uv);
+	}
+	double sxm = 0.5 * (sx0 + sx1), sym = 0.5 * (sy0 + sy1);
+	if (lv < SHAFT_LEVELS && c[0].n + c[1].n + c[2].n + c[3].n > 0 &&
+	    (!whole || !linear_enough(w, S, sxm, sym, c))) {
+		long mark = w->lands.n;
+		struct corner a = corner_at(w, S, sxm, sy0), b = corner_at(w, S, sx0, sym), m = corner_at(w, S, sxm, sym);
+		struct corner d = corner_at(w, S, sx1, sym), e = corner_at(w, S, sxm, sy1);
+		shaft(w, S, lv + 1, sx0, sxm, sy0, sym, (struct corner[4]){c[0], b, m, a});
+		shaft(w, S, lv + 1, sx0, sxm, sym, sy1, (struct corner[4]){b, c[1], e, m});
+		shaft(w, S, lv + 1, sxm, sx1, sym, sy1, (struct corner[4]){m, e, c[2], d});
+		shaft(w, S, lv + 1, sxm, sx1, sy0, sym, (struct corner[4]){a, m, d, c[3]});
+		w->lands.n = mark;
+		return;
+	}
+	double share = 0.25 / (double)(1L << (2 * lv));
+	for (int k = 0; k < 4; k++)
+		for (long i = c[k].first; i < c[k].first + c[k].n; i++) {
+			const struct landing *L = &w->lands.l[i];
+			const struct landing *q[4] = {find_sig(w, c[0], L->sig), find_sig(w, c[1], L->sig),
+			                              find_sig(w, c[2], L->sig), find_sig(w, c[3], L->sig)};
+			double uv[4][2];
+			bool all = q[0] && q[1] && q[2] && q[3], convex = all && footprint(q, uv);
+			int nv = convex ? 4 : all ? hull4(uv) : 0;
+			if (!nv) { /* a point deposit of this corner's quarter, as wide as the
+			               other corners' landings on the same surface are far */
+				double size = 0;
+				for (int j = 0; j < 4; j++)
+					for (long m = c[j].first; m < c[j].first + c[j].n; m++)
+						if (w->lands.l[m].obj == L->obj)
+							size = fmax(size, v_len(v_sub(w->lands.l[m].p, L->p)));
+				struct recbuf *rb = &w->recs;
+				if (rb->n == rb->cap)
+					rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)(rb->cap = rb->cap ? rb->cap * 2 : 4096));
+				rb->r[rb->n++] = (struct rec){L->obj, L->u, L->v,
+				                              {L->e[0] * share, L->e[1] * share, L->e[2] * share}, L->p, size};
+				continue;
+			}
+			if (k > 0)
+				continue; /* the whole path was spread from corner 0 */
+			struct prec pr = {L->obj, {{0}}, nv, {0, 0, 0}, L->p, 0};
+			memcpy(pr.uv, uv, sizeof uv);
+			for (int j = 0; j < 4; j++) {
+				for (int ch = 0; ch < 3; ch++)
+					pr.e[ch] += q[j]->e[ch] * share;
+				for (int m = j + 1; m < 4; m++)
+					pr.size = fmax(pr.size, v_len(v_sub(q[j]->p, q[m]->p)));
+			}
+			push_prec(w, &pr);
+		}
+}
+
+/* Shoots the shafts of rows [first, first+count) of a target's grid. Each
+ * row traces its two rows of corner rays; a corner row inside the grid is
+ * traced by both rows that share it, so each trace counts half toward the
+ * energy balance (which the corner rays estimate, as trapezoids). */
+static void run_shafts(struct worker *w, const struct item *it)
+{
+	const struct job *J = w->job;
+	const struct light *l = &J->s->lights[it->light];
+	struct shaft_ctx S = {l, J->targets[it->light], it->target, {0, 0, 0}, 0};
+	const struct target *t = &S.tg[S.k];
+	long n = t->side, side = t->side;
+	double scale = t->omega / (double)(n * n);
+	S.e0[0] = l->colour.r * scale, S.e0[1] = l->colour.g * scale, S.e0[2] = l->colour.b * scale;
+	if (J->o->channel >= 0)
+		for (int c = 0; c < 3; c++)
+			if (c != J->o->channel)
+				S.e0[c] = 0;
+	S.cutoff = J->o->min_weight * fmax(S.e0[0], fmax(S.e0[1], S.e0[2]));
+	w->refract = l->photons_refraction;
+	w->reflect = l->photons_reflection;
+	w->band = J->band;
+	w->corners = true;
+	struct corner *row = mem_alloc(sizeof *row * (size_t)(2 * side));
+	for (long i = it->first; i < it->first + it->count; i++) {
+		double sx0 = (double)i / (double)side, sx1 = (double)(i + 1) / (double)side;
+		double acc[6][3];
+		memcpy(acc[0], w->emitted, sizeof acc[0]), memcpy(acc[1], w->deposited, sizeof acc[1]);
+		memcpy(acc[2], w->direct, sizeof acc[2]), memcpy(acc[3], w->absorbed, sizeof acc[3]);
+		memcpy(acc[4], w->escaped, sizeof acc[4]), memcpy(acc[5], w->cut, sizeof acc[5]);
+		w->lands.n = 0;
+		for (long j = 0; j < side; j++) {
+			double sy = (double)j / (double)side;
+			struct vec3 o, d;
+			aim(l, t, sx0, sy, &o, &d);
+			double k = emit_weight(l, S.tg, S.k, o, d);
+			row[j] = corner_at(w, &S, sx0, sy);
+			row[side + j] = corner_at(w, &S, sx1, sy);
+			aim(l, t, sx1, sy, &o, &d);
+			k += emit_weight(l, S.tg, S.k, o, d);
+			for (int c = 0; c < 3; c++)
+				w->emitted[c] += S.e0[c] * k;
+		}
+		/* each trace counts half (see above) */
+		double *now[6] = {w->emitted, w->deposited, w->direct, w->absorbed, w->escaped, w->cut};
+		for (int q = 0; q < 6; q++)
+			for (int c = 0; c < 3; c++)
+				now[q][c] = acc[q][c] + 0.5 * (now[q][c] - acc[q][c]);
+		memcpy(acc[0], w->emitted, sizeof acc[0]), memcpy(acc[1], w->deposited, sizeof acc[1]);
+		memcpy(acc[2], w->direct, sizeof acc[2]), memcpy(acc[3], w->absorbed, sizeof acc[3]);
+		memcpy(acc[4], w->escaped, sizeof acc[4]), memcpy(acc[5], w->cut, sizeof acc[5]);
+		for (long j = 0; j < side; j++) {
+			long j1 = (j + 1) % side;
+			struct corner c[4] = {row[j], row[j1], row[side + j1], row[side + j]};
+			shaft(w, &S, 0, sx0, sx1, (double)j / (double)side, (double)(j + 1) / (double)side, c);
+		}
+		/* subdivision rays only refine where the light goes, not how much */
+		for (int q = 0; q < 6; q++)
+			memcpy(now[q], acc[q], sizeof acc[q]);
+	}
+	w->corners = false;
+	free(row);
 }
 
 /* Shoots the rays of one work item. */
@@ -366,7 +759,7 @@ static void run_item(struct worker *w, const struct item *it)
 			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
-		trace(w, (struct ray){o, d}, e, cutoff, 0, 0);
+		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0);
 	}
 }
 
@@ -378,7 +771,10 @@ static void *work(void *arg)
 		long k = atomic_fetch_add_explicit(&J->next, 1, memory_order_relaxed);
 		if (k >= J->nitems)
 			return NULL;
-		run_item(w, &J->items[k]);
+		if (J->o->shafts)
+			run_shafts(w, &J->items[k]);
+		else
+			run_item(w, &J->items[k]);
 	}
 }
 
@@ -437,7 +833,8 @@ static void index_maps(struct lp_result *r)
 		r->nslots *= 2;
 	r->slots = mem_calloc((size_t)r->nslots, sizeof *r->slots);
 	for (int k = 0; k < r->n; k++)
-		slot_put(r, k);
+		if (k == 0 || r->objs[k - 1] != r->objs[k]) /* an object's first level */
+			slot_put(r, k);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -476,23 +873,114 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 	return sp;
 }
 
+/* The finest grid for a surface reached by shafts: its illum_map { }, else
+ * nodes half as far apart as the median footprint is wide (coarser levels
+ * take the wider footprints; finer cells would resolve nothing a footprint
+ * spreads evenly and alias in the eye pass's point reads), or, when
+ * most of its deposits are points (folds, silhouettes), their rule
+ * (choose_spec). */
+static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
+                                    long k)
+{
+	if (o->illum.resolution > 0 || o->illum.cell > 0)
+		return o->illum;
+	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1));
+	for (long i = 0; i < np; i++)
+		sz[i] = p[i].size;
+	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
+	double cell = np ? 0.5 * sz[np / 2] : 0;
+	free(sz);
+	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
+		return choose_spec(o, pts, k, 0);
+	struct illum_spec sp = {0, cell > 0 && isfinite(cell) ? cell : 0.01};
+	return sp;
+}
+
+/* The map level for a deposit of world size `size`: the first whose cell
+ * (cell × 2^level) is more than an eighth of it, so a footprint covers at
+ * most about eight cells a side and the tents blur it by at most an eighth
+ * of its size (four cells a side blur smooth caustics 2-3 times more, for
+ * half the cost). */
+static int level_of(double size, double cell, int nl)
+{
+	int l = 0;
+	while (l + 1 < nl && size >= 8 * cell * (double)(1L << l))
+		l++;
+	return l;
+}
+
+#define FOOTPRINT_MAX_CELLS 1024 /* larger footprints are deposited at their corners
+                                     (deposit_levels) */
+
+/* Deposits a surface's shaft footprints p[0..np) and point records
+ * s[0..ns) (of spread sz) into the levels lv[0..nl) (lv[0] exists; cell the
+ * finest level's), each at the level of its size (level_of), making levels
+ * as needed: per level, all its footprints at once, then all its points
+ * (illum_deposit_poly_all and illum_deposit_all fix the map's fixed-point
+ * unit before any deposit, so the result is the same for any order and
+ * thread count). A footprint over more than FOOTPRINT_MAX_CELLS of its
+ * level's cells (nl = 1: a fixed grid) gives its energy to its corners. */
+static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *p,
+                           long np, const struct illum_splat *s, const double *sz, long ns, int threads)
+{
+	struct illum_poly *pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1));
+	struct illum_splat *ps = mem_alloc(sizeof *ps * (size_t)(ns + 4 * np + 1));
+	for (int l = 0; l < nl; l++) {
+		long n = 0, m = 0;
+		for (long i = 0; i < np; i++)
+			if (level_of(p[i].size, cell, nl) == l)
+				pp[n++] = (struct illum_poly){(const double(*)[2])p[i].uv, p[i].nv, {p[i].e[0], p[i].e[1], p[i].e[2]}};
+		for (long i = 0; i < ns; i++)
+			if (level_of(sz[i], cell, nl) == l)
+				ps[m++] = s[i];
+		if (n + m == 0)
+			continue;
+		if (!lv[l])
+			lv[l] = illum_new(o, &(struct illum_spec){0, cell * (double)(1L << l)});
+		if (!lv[l])
+			continue;
+		long nu, nv, keep = 0;
+		double du, dv;
+		illum_grid(lv[l], &nu, &nv, &du, &dv);
+		for (long i = 0; i < n; i++) {
+			double u0 = pp[i].uv[0][0], u1 = u0, v0 = pp[i].uv[0][1], v1 = v0;
+			for (int c = 1; c < pp[i].n; c++) {
+				u0 = fmin(u0, pp[i].uv[c][0]), u1 = fmax(u1, pp[i].uv[c][0]);
+				v0 = fmin(v0, pp[i].uv[c][1]), v1 = fmax(v1, pp[i].uv[c][1]);
+			}
+			if (((u1 - u0) / du + 1) * ((v1 - v0) / dv + 1) <= FOOTPRINT_MAX_CELLS) {
+				pp[keep++] = pp[i];
+				continue;
+			}
+			for (int c = 0; c < pp[i].n; c++)
+				ps[m++] = (struct illum_splat){pp[i].uv[c][0], pp[i].uv[c][1],
+				                               {pp[i].e[0] / pp[i].n, pp[i].e[1] / pp[i].n, pp[i].e[2] / pp[i].n}};
+		}
+		illum_deposit_poly_all(lv[l], pp, keep, threads);
+		illum_deposit_all(lv[l], ps, m, threads);
+	}
+	free(pp), free(ps);
+}
+
 /* Gives every surface reached a map and deposits the records into it: the
  * distinct surfaces through a hash, then the records grouped per surface
  * (a counting sort, keeping their order), so the work is O(records) whatever
- * the number of surfaces. Deposits and finishing run on o->threads threads. */
-static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const struct lp_opts *o)
+ * the number of surfaces. Point deposits and finishing run on o->threads
+ * threads; shaft footprints (precs) are spread over their cells. */
+static struct lp_result *build_maps(const struct recbuf *bufs, const struct precbuf *pbufs, int nbuf,
+                                    const struct lp_opts *o)
 {
 	struct lp_result *r = mem_calloc(1, sizeof *r);
-	long total = 0, t = 0;
+	long total = 0, ptotal = 0, t = 0;
 	for (int b = 0; b < nbuf; b++)
-		total += bufs[b].n;
+		total += bufs[b].n, ptotal += pbufs[b].n;
 	/* the distinct surfaces (through the hash as it grows), then in source order */
 	r->objs = mem_alloc(sizeof *r->objs * 16);
 	int cap = 16;
 	const struct object *prev = NULL;
 	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n; i++) {
-			const struct object *ob = bufs[b].r[i].obj;
+		for (long i = 0; i < bufs[b].n + pbufs[b].n; i++) {
+			const struct object *ob = i < bufs[b].n ? bufs[b].r[i].obj : pbufs[b].r[i - bufs[b].n].obj;
 			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
 			if (seen)
@@ -513,34 +1001,78 @@ static struct lp_result *build_maps(const struct recbuf *bufs, int nbuf, const s
 	/* group the records per surface (counting sort by map index) */
 	int *ki = mem_alloc(sizeof *ki * (size_t)(total ? total : 1));
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
+	long *pstart = mem_calloc((size_t)n + 1, sizeof *pstart);
 	struct vec3 *pts = mem_alloc(sizeof *pts * (size_t)(total ? total : 1));
 	struct illum_splat *sp = mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
+	double *psz = mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
+	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
 	t = 0;
 	for (int b = 0; b < nbuf; b++)
 		for (long i = 0; i < bufs[b].n; i++, t++)
 			start[(ki[t] = find_map(r, bufs[b].r[i].obj)) + 1]++;
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < pbufs[b].n; i++)
+			pstart[find_map(r, pbufs[b].r[i].obj) + 1]++;
 	for (int k = 0; k < n; k++)
-		start[k + 1] += start[k];
+		start[k + 1] += start[k], pstart[k + 1] += pstart[k];
 	t = 0;
 	for (int b = 0; b < nbuf; b++)
 		for (long i = 0; i < bufs[b].n; i++, t++) {
 			const struct rec *rc = &bufs[b].r[i];
 			long at = start[ki[t]] + fill[ki[t]]++;
 			pts[at] = rc->p;
+			psz[at] = rc->size;
 			sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
 		}
-	r->maps = mem_calloc((size_t)(n ? n : 1), sizeof *r->maps);
-	r->specs = mem_calloc((size_t)(n ? n : 1), sizeof *r->specs);
+	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
+	for (int b = 0; b < nbuf; b++)
+		for (long i = 0; i < pbufs[b].n; i++) {
+			int k = find_map(r, pbufs[b].r[i].obj);
+			pr[pstart[k] + fill[k]++] = pbufs[b].r[i];
+		}
+	struct lp_result *out = mem_calloc(1, sizeof *out);
+	int cap2 = n ? n : 1;
+	out->objs = mem_alloc(sizeof *out->objs * (size_t)cap2);
+	out->maps = mem_alloc(sizeof *out->maps * (size_t)cap2);
+	out->specs = mem_alloc(sizeof *out->specs * (size_t)cap2);
+	out->level = mem_alloc(sizeof *out->level * (size_t)cap2);
+	double per_node = o->spectral ? 3 * ILLUM_RAYS_PER_NODE : 0; /* see lp_opts.spectral */
 	for (int k = 0; k < n; k++) {
-		r->specs[k] = choose_spec(objs[k], pts + start[k], start[k + 1] - start[k],
-		                          o->spectral ? 3 * ILLUM_RAYS_PER_NODE : 0);
-		r->maps[k] = illum_new(objs[k], &r->specs[k]);
-		if (r->maps[k]) {
-			illum_deposit_all(r->maps[k], sp + start[k], start[k + 1] - start[k], o->threads);
-			illum_finish_mt(r->maps[k], o->discard_isolated, NULL, o->threads);
+		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
+		struct illum_map *lv[LP_LEVELS] = {NULL};
+		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr)
+		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
+		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
+		lv[0] = illum_new(objs[k], &spec);
+		if (!lv[0] && !out->nomap)
+			out->nomap = objs[k];
+		if (lv[0] && nl == 1 && np == 0)
+			illum_deposit_all(lv[0], sp + start[k], nr, o->threads);
+		else if (lv[0])
+			deposit_levels(lv, objs[k], spec.cell, nl, pr + pstart[k], np, sp + start[k], psz + start[k], nr,
+			               o->threads);
+		for (int l = 0; l < nl; l++) {
+			if (l > 0 && !lv[l])
+				continue;
+			if (lv[l])
+				illum_finish_mt(lv[l], o->discard_isolated && !o->shafts, NULL, o->threads);
+			if (out->n == cap2) {
+				cap2 *= 2;
+				out->objs = mem_realloc(out->objs, sizeof *out->objs * (size_t)cap2);
+				out->maps = mem_realloc(out->maps, sizeof *out->maps * (size_t)cap2);
+				out->specs = mem_realloc(out->specs, sizeof *out->specs * (size_t)cap2);
+				out->level = mem_realloc(out->level, sizeof *out->level * (size_t)cap2);
+			}
+			out->objs[out->n] = objs[k];
+			out->maps[out->n] = lv[l];
+			out->specs[out->n] = l ? (struct illum_spec){0, spec.cell * (double)(1L << l)} : spec;
+			out->level[out->n++] = l;
 		}
 	}
-	free(ki), free(start), free(fill), free(pts), free(sp);
+	free(r->objs), free(r->slots), free(r);
+	r = out;
+	index_maps(r);
+	free(ki), free(start), free(fill), free(pstart), free(pts), free(sp), free(psz), free(pr);
 	return r;
 }
 
@@ -577,12 +1109,15 @@ static long plan(struct job *J)
 		J->ntargets[li] = nt;
 		for (int k = 0; k < nt; k++) {
 			double share = (double)J->o->rays * tg[k].omega / total;
-			tg[k].side = (long)fmax(1, floor(sqrt(share) + 0.5));
-			long nr = tg[k].side * tg[k].side;
-			for (long f = 0; f < nr; f += CHUNK) {
+			/* shafts: a grid cell costs about three rays (its corner rows
+			 * twice, its centre) before any subdivision */
+			tg[k].side = (long)fmax(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 3 : share) + 0.5));
+			long nr = J->o->shafts ? tg[k].side : tg[k].side * tg[k].side;
+			long chunk = J->o->shafts ? (CHUNK + 2 * tg[k].side - 1) / (2 * tg[k].side) : CHUNK;
+			for (long f = 0; f < nr; f += chunk) {
 				if (nitems == capitems)
 					J->items = mem_realloc(J->items, sizeof *J->items * (size_t)(capitems = capitems ? capitems * 2 : 64));
-				J->items[nitems++] = (struct item){li, k, f, nr - f < CHUNK ? nr - f : CHUNK};
+				J->items[nitems++] = (struct item){li, k, f, nr - f < chunk ? nr - f : chunk};
 			}
 		}
 	}
@@ -613,11 +1148,15 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 		if (ws[i].job)
 			pthread_join(tids[i], NULL);
 	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
+	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nt; i++) {
 		bufs[i] = ws[i].recs;
+		pbufs[i] = ws[i].precs;
+		free(ws[i].lands.l);
 		acc.segments += ws[i].segments;
+		acc.rays += ws[i].primaries;
 		for (int c = 0; c < 3; c++) {
 			acc.emitted[c] += ws[i].emitted[c];
 			acc.landed[c] += ws[i].deposited[c];
@@ -627,8 +1166,8 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 			acc.cut[c] += ws[i].cut[c];
 		}
 	}
-	struct lp_result *r = J.nitems > 0 ? build_maps(bufs, nt, o) : NULL;
-	for (long k = 0; k < J.nitems; k++)
+	struct lp_result *r = J.nitems > 0 ? build_maps(bufs, pbufs, nt, o) : NULL;
+	for (long k = 0; k < J.nitems && !o->shafts; k++)
 		acc.rays += J.items[k].count;
 	for (int k = 0; r && k < r->n; k++) {
 		double tot[3];
@@ -641,10 +1180,12 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 		acc.map_bytes += illum_memory(r->maps[k]);
 	}
 	acc.clipped = J.clipped;
+	acc.nomap = r ? r->nomap : NULL;
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		free(bufs[i].r);
+		free(bufs[i].r), free(pbufs[i].r);
+	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
 	free(bufs), free(ws), free(tids), free(J.items), free(J.targets), free(J.ntargets);
@@ -664,24 +1205,36 @@ void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_i
 
 const struct illum_map *lp_map(const struct lp_result *r, const struct object *o)
 {
+	return lp_map_level(r, o, 0);
+}
+
+const struct illum_map *lp_map_level(const struct lp_result *r, const struct object *o, int level)
+{
 	int k = r ? find_map(r, o) : -1;
-	return k >= 0 ? r->maps[k] : NULL;
+	for (; k >= 0 && k < r->n && r->objs[k] == o; k++)
+		if (r->level[k] == level)
+			return r->maps[k];
+	return NULL;
 }
 
 void lp_lookup(const struct lp_result *r, const struct object *o, double u, double v, double out[3])
 {
-	const struct illum_map *m = lp_map(r, o);
 	out[0] = out[1] = out[2] = 0;
-	if (m)
-		illum_lookup(m, u, v, out);
+	int k = r ? find_map(r, o) : -1;
+	for (; k >= 0 && k < r->n && r->objs[k] == o; k++) {
+		double e[3] = {0, 0, 0};
+		if (r->maps[k])
+			illum_lookup(r->maps[k], u, v, e);
+		out[0] += e[0], out[1] += e[1], out[2] += e[2];
+	}
 }
 
-void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o,
+void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o, int level,
                  const struct illum_map *m), void *ctx)
 {
 	for (int k = 0; r && k < r->n; k++)
 		if (r->maps[k])
-			fn(ctx, r->objs[k], r->maps[k]);
+			fn(ctx, r->objs[k], r->level[k], r->maps[k]);
 }
 
 void lp_free(struct lp_result *r)
@@ -692,6 +1245,7 @@ void lp_free(struct lp_result *r)
 		illum_free(r->maps[k]);
 	free(r->maps);
 	free(r->specs);
+	free(r->level);
 	free(r->slots);
 	free(r->objs);
 	free(r);
@@ -830,6 +1384,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 		r->objs = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->objs);
 		r->maps = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->maps);
 		r->specs = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->specs);
+		r->level = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->level);
 		for (int k = 0; k < nm; k++) {
 			int32_t idx, res;
 			double cell;
@@ -840,6 +1395,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 				goto bad;
 			r->n = k + 1;
 			r->objs[k] = P.o[idx];
+			r->level[k] = k > 0 && r->objs[k - 1] == r->objs[k] ? r->level[k - 1] + 1 : 0;
 			r->specs[k] = (struct illum_spec){res, cell};
 			r->maps[k] = illum_new(P.o[idx], &r->specs[k]);
 			if (!r->maps[k])

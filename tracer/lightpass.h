@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* lightpass.h: Arvo's light pass (DESIGN.md §4). Rays leave every light
+/* lightpass.h: Arvo's light pass (docs/design.md §4). Rays leave every light
  * toward the bounds of the objects that reflect or refract (only where a
  * caustic can form), carry Φ = I·Ω/N each, recurse through Fresnel-weighted
  * reflection and refraction, and deposit their energy into the illumination
@@ -25,6 +25,7 @@ struct lp_opts {
 	                         twice-transmitted light) */
 	bool aim_all;         /* debug: aim at every object, not only specular ones
 	                         (with deposit_direct: the eq. 1 consistency checks) */
+	bool shafts;          /* method shaft: light shafts spread over their footprints */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
 	                         refracting with its dispersed index */
 	bool spectral;        /* each ray at its own wavelength (spectrum.h), stratified
@@ -33,7 +34,8 @@ struct lp_opts {
 	                         wavelength where a channel pass's ray carries a whole
 	                         channel, so the automatic cell size asks for three times
 	                         the rays per node: 3N spectral rays get the grid of a
-	                         channel pass of N */
+	                         channel pass of N. Not with shafts: a shaft needs its
+	                         corners on one path, which other wavelengths leave */
 };
 
 struct lp_stats {
@@ -55,6 +57,8 @@ struct lp_stats {
 	size_t map_bytes;     /* memory held by the maps */
 	const struct object *clipped; /* an unbounded specular object under a parallel
 	                         light, whose beam covers only the scene's extent */
+	const struct object *nomap; /* a surface light reached whose map has too many
+	                         nodes (its illum_map is too fine): it gets no caustic */
 };
 
 struct lp_result;
@@ -65,12 +69,18 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
                          const struct lp_opts *o, struct lp_stats *st);
 /* Adds another pass's energies (for the per-channel passes) and refinishes. */
 void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_isolated);
-/* The finished map of primitive o, or NULL when no light reached it. */
+#define LP_LEVELS 12/* map levels of a surface (shafts), cells 1, 2, 4, … × the finest */
+
+/* The finished map of primitive o (its finest level), or NULL when no light
+ * reached it. */
 const struct illum_map *lp_map(const struct lp_result *r, const struct object *o);
+/* The map of o at level 0 .. LP_LEVELS-1 (cell 2^level × the finest), or
+ * NULL; lp_lookup sums the levels. */
+const struct illum_map *lp_map_level(const struct lp_result *r, const struct object *o, int level);
 /* Irradiance from the maps at a hit on o (W/m²); zero where there is none. */
 void lp_lookup(const struct lp_result *r, const struct object *o, double u, double v, double out[3]);
 /* Calls fn for each map (deterministic order). */
-void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o,
+void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o, int level,
                  const struct illum_map *m), void *ctx);
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);

@@ -2,7 +2,7 @@
 /* optics.h: the specular optics the light pass and the eye pass share:
  * unpolarised Fresnel reflectance, Snell refraction, mirror reflection, and
  * a surface's reflected and transmitted colours (POV-Ray's finish reflection
- * and pigment filter/transmit, DESIGN.md §3). */
+ * and pigment filter/transmit, docs/design.md §3). */
 #ifndef ARVO_OPTICS_H
 #define ARVO_OPTICS_H
 

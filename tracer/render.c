@@ -130,10 +130,11 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
-/* The light pass (DESIGN.md §4): one pass, or, when a material disperses,
- * one per colour channel (passes rgb: chromatic aberration) or one spectral
- * pass whose rays each carry a wavelength (passes spectral), shooting as
- * many rays as the three channel passes. Returns the number of results. */
+/* The light pass (docs/design.md §4): one pass, or, when a material
+ * disperses, one per colour channel (passes rgb: chromatic aberration) or
+ * one spectral pass whose rays each carry a wavelength (passes spectral),
+ * shooting as many rays as the three channel passes; it deposits points
+ * (a shaft's corners would part ways). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct lp_result *out[3],
                       struct render_stats *st)
@@ -147,12 +148,18 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
+		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
 	bool dispersive = lp_dispersive(s);
 	lo.spectral = dispersive && s->gs.illum.passes == PASSES_SPECTRAL;
 	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
 	if (lo.spectral)
 		lo.rays *= 3;
+	if (lo.spectral && lo.shafts) {
+		fprintf(stderr, "arvo: warning: passes spectral: light rays of different wavelengths part "
+		        "ways, so the dispersive light pass deposits points, not shafts\n");
+		lo.shafts = false;
+	}
 	for (int c = 0; c < passes; c++) {
 		struct lp_stats ls;
 		lo.channel = passes == 3 ? c : -1;
@@ -172,6 +179,13 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			st->e_cut += ls.cut[k];
 			st->e_held += ls.deposited[k];
 		}
+		if (ls.nomap && c == 0) {
+			struct diag dg;
+			diag_init(&dg, stderr);
+			diag_warning(&dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
+			             "it gets no caustic (give illum_map a coarser cell or resolution)",
+			             scene_object_kind_name(ls.nomap->kind));
+		}
 		if (ls.clipped && c == 0) {
 			struct diag dg;
 			diag_init(&dg, stderr);
@@ -189,12 +203,14 @@ struct dump_ctx {
 	const char *err;  /* first error */
 };
 
-static void dump_one(void *ctx, const struct object *o, const struct illum_map *m)
+static void dump_one(void *ctx, const struct object *o, int level, const struct illum_map *m)
 {
 	struct dump_ctx *d = ctx;
-	char path[4096];
-	snprintf(path, sizeof path, "%s/map-%s-%d-%d%s.exr", d->dir, scene_object_kind_name(o->kind),
-	         o->loc.line, o->loc.col, d->pass < 0 ? "" : d->pass == 0 ? "-R" : d->pass == 1 ? "-G" : "-B");
+	char path[4096], lv[16] = "";
+	if (level > 0)
+		snprintf(lv, sizeof lv, "-L%d", level);
+	snprintf(path, sizeof path, "%s/map-%s-%d-%d%s%s.exr", d->dir, scene_object_kind_name(o->kind),
+	         o->loc.line, o->loc.col, d->pass < 0 ? "" : d->pass == 0 ? "-R" : d->pass == 1 ? "-G" : "-B", lv);
 	const char *e = illum_write_exr(m, path);
 	if (e && strstr(e, "too large")) /* a few far-flung rays on an unbounded plane */
 		fprintf(stderr, "arvo: warning: %s; not dumped\n", e);

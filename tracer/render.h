@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* render.h: the render driver (STYLE.md item 16): builds the BVH, loads the
+/* render.h: the render driver (docs/design.md §1): builds the BVH, loads the
  * images, runs the passes over a thread pool and fills the framebuffer.
  *
  * Layers written: R G B (beauty), direct.R/G/B (irradiance from shadow rays
@@ -25,6 +25,7 @@ struct render_opts {
 	const char *dump_maps;   /* write every illumination map as an EXR here, or NULL */
 	const char *save_maps;   /* save the light pass's maps to this file, or NULL */
 	const char *load_maps;   /* load the maps from this file instead of the light pass */
+	int method;              /* 0: the scene's method, else enum illum_method + 1 */
 };
 
 struct render_stats {

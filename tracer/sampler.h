@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* sampler.h: a counter-based random number generator (DESIGN.md §7).
+/* sampler.h: a counter-based random number generator (docs/design.md §7).
  *
  * Every random number is a pure function of (pixel, sample, dimension): no
  * state is shared between threads or carried between pixels, so an image is

@@ -4,7 +4,7 @@
  * Everything here lives in the scene's arena (scene->arena) until scene_free.
  * Geometry is stored in each primitive's own frame, as the user wrote it; the
  * object's xform maps that frame to the world. Units and colours follow
- * DESIGN.md §3: scene-linear Rec.709, point-light colour = intensity in W/sr. */
+ * docs/design.md §3: scene-linear Rec.709, point-light colour = intensity in W/sr. */
 #ifndef ARVO_SCENE_H
 #define ARVO_SCENE_H
 

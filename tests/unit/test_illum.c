@@ -2,8 +2,8 @@
 /* test_illum.c: illumination maps (tracer/illum.h): exact energy
  * conservation on every primitive, the bilinear split, unbiased irradiance
  * for uniform flux (poles, apex, disc centre included), sparse tiles on the
- * unbounded plane, order-independent merges, the isolated-sample rule, the
- * ray-density rule and the EXR dump. Random numbers: geo_rand.h, fixed seeds. */
+ * unbounded plane, order-independent merges, energies far above 2^32 W,
+ * the isolated-sample rule, the ray-density rule and the EXR dump. Random numbers: geo_rand.h, fixed seeds. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -401,6 +401,57 @@ static void t_merge(void)
 	illum_free(other);
 }
 
+/* ==== range: energies far above 2^32 W ==================================== */
+
+/* A scene at 1e6 scale carries ~1e9 W per ray. The same deposits at 1 W and
+ * at 2^40 W (deposited one by one, on 1 and 3 threads, and merged with a
+ * faint map) must give the same irradiances times 2^40: the fixed-point
+ * unit follows the energy instead of saturating at 2^32 W per node. */
+static void t_range(void)
+{
+	enum { N = 20000 };
+	static struct illum_splat lo[N], hi[N];
+	rng_seed(42);
+	struct object o = prim(OBJ_SPHERE);
+	for (int k = 0; k < N; k++) { /* most of it into a few nodes */
+		double u = 0.5 + 0.01 * rnd(), v = 0.5 + 0.01 * rnd(), e = 0.5 + rnd();
+		lo[k] = (struct illum_splat){u, v, {e, 0.25 * e, 0}};
+		hi[k] = (struct illum_splat){u, v, {e * 0x1p40, 0.25 * e * 0x1p40, 0}};
+	}
+	struct illum_map *ref = map_res(&o, 48), *one = illum_new_like(ref), *three = illum_new_like(ref);
+	for (int k = 0; k < N; k++)
+		illum_deposit(one, hi[k].u, hi[k].v, hi[k].e);
+	illum_deposit_all(ref, lo, N, 1);
+	illum_deposit_all(three, hi, N, 3);
+	struct illum_map *merged = illum_new_like(ref), *faint = illum_new_like(ref);
+	illum_deposit(faint, 0.25, 0.25, (double[3]){1e-20, 0, 0}); /* on one node */
+	CHECK(illum_merge(merged, faint) && illum_merge(merged, three));
+	struct illum_map *ms[3] = {one, three, merged};
+	double tref[3], t[3];
+	illum_finish(ref, false, NULL);
+	illum_total(ref, tref);
+	struct nodes *sr = nodes_of(ref);
+	CHECK(sr->n >= 4 && sr->n < 100);
+	for (int i = 0; i < 3; i++) {
+		illum_finish(ms[i], false, NULL);
+		illum_total(ms[i], t);
+		CHECK_NEAR(t[0], tref[0] * 0x1p40, 1e-12 * tref[0] * 0x1p40);
+		CHECK_NEAR(t[1], tref[1] * 0x1p40, 1e-12 * tref[1] * 0x1p40);
+		struct nodes *s = nodes_of(ms[i]);
+		CHECK(s->n == sr->n + (i == 2));
+		double irr[3];
+		for (int q = 0; q < sr->n; q++) {
+			illum_lookup(ms[i], sr->a[q].u, sr->a[q].v, irr);
+			CHECK_NEAR(irr[0], sr->a[q].irr[0] * 0x1p40, 1e-12 * sr->a[q].irr[0] * 0x1p40);
+		}
+		free(s);
+		illum_free(ms[i]);
+	}
+	free(sr);
+	illum_free(ref);
+	illum_free(faint);
+}
+
 /* ==== isolated samples ==================================================== */
 
 static void t_isolated(void)
@@ -492,6 +543,7 @@ int main(void)
 	RUN(t_plane_sparse);
 	RUN(t_threads);
 	RUN(t_merge);
+	RUN(t_range);
 	RUN(t_isolated);
 	RUN(t_auto_cell);
 	RUN(t_exr);

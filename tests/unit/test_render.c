@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_render.c: analytic renders with known answers (STYLE.md item 21d).
+/* test_render.c: analytic renders with known answers (docs/design.md §11).
  * Each scene under tests/render/ is evaluated and rendered in-process,
  * written as a float EXR, read back, and checked pixel by pixel:
  *   - plane_point: the direct layer is I·cosθ/d² at every pixel to 0.1 %;
