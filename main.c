@@ -54,7 +54,7 @@ struct options {
 	const char *dump_maps;       /* --dump-maps DIR */
 	const char *save_maps;       /* --save-maps FILE */
 	const char *load_maps;       /* --load-maps FILE */
-	int passes;                  /* --passes: -1 the scene's, else an enum illum_passes */
+	int passes;                  /* --passes: 0 not given, else enum illum_passes + 1 */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -254,10 +254,9 @@ static int parse_args(int argc, char **argv, struct options *o)
 			*(a[2] == 's' ? &o->save_maps : &o->load_maps) = next;
 		} else if (!strcmp(a, "--passes")) {
 			NEED_ARG();
-			if (!strcmp(next, "rgb") || !strcmp(next, "spectral"))
-				o->passes = next[0] == 'r' ? PASSES_RGB : PASSES_SPECTRAL;
-			else
-				return usage_error("unknown passes '%s' (expected rgb or spectral)", next);
+			if (strcmp(next, "rgb") && strcmp(next, "spectral"))
+				return usage_error("bad value for --passes: '%s' (expected rgb or spectral)", next);
+			o->passes = (strcmp(next, "rgb") ? PASSES_SPECTRAL : PASSES_RGB) + 1;
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -449,7 +448,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps, o->method};
+	                         o->save_maps, o->load_maps, o->method, o->passes};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);
@@ -479,7 +478,6 @@ int main(int argc, char **argv)
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000, o.rays = -1;
-	o.passes = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
@@ -515,8 +513,6 @@ int main(int argc, char **argv)
 	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
 	if (rc == EX_OK && o.depfile)
 		rc = write_depfile(&o, &deps, output);
-	if (rc == EX_OK && o.passes >= 0) /* --passes overrides illumination { passes } */
-		scene.gs.illum.passes = (enum illum_passes)o.passes;
 	if (rc == EX_OK) {
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);

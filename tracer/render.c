@@ -130,6 +130,12 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
+/* The passes in force: --passes, else the scene's illumination { passes }. */
+static enum illum_passes passes_of(const struct scene *s, const struct render_opts *o)
+{
+	return o->passes > 0 ? (enum illum_passes)(o->passes - 1) : s->gs.illum.passes;
+}
+
 /* The light pass (docs/design.md §4): one pass, or, when a material
  * disperses, one per colour channel (passes rgb: chromatic aberration) or
  * one spectral pass whose rays each carry a wavelength (passes spectral),
@@ -151,7 +157,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
 	bool dispersive = lp_dispersive(s);
-	lo.spectral = dispersive && s->gs.illum.passes == PASSES_SPECTRAL;
+	lo.spectral = dispersive && passes_of(s, o) == PASSES_SPECTRAL;
 	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
 	if (lo.spectral)
 		lo.rays *= 3;
@@ -278,7 +284,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
-	ctx.spectral = s->gs.illum.passes == PASSES_SPECTRAL;
+	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	if (!err)
 		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;

@@ -26,6 +26,7 @@ struct render_opts {
 	const char *save_maps;   /* save the light pass's maps to this file, or NULL */
 	const char *load_maps;   /* load the maps from this file instead of the light pass */
 	int method;              /* 0: the scene's method, else enum illum_method + 1 */
+	int passes;              /* 0: the scene's passes, else enum illum_passes + 1 */
 };
 
 struct render_stats {
