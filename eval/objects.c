@@ -896,10 +896,8 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_PASSES:
 		if (strcmp(n->str, "rgb") == 0)
 			il->passes = PASSES_RGB;
-		else if (strcmp(n->str, "spectral") == 0) {
+		else if (strcmp(n->str, "spectral") == 0)
 			il->passes = PASSES_SPECTRAL;
-			diag_warning(E->diag, n->loc, "passes spectral is not supported yet; using one pass per channel");
-		}
 		else
 			eval_fail(E, n->loc, "passes must be 'rgb' or 'spectral', found '%s'", n->str);
 		return;

@@ -21,6 +21,7 @@
 #include "optics.h"
 #include "sampler.h"
 #include "shape.h"
+#include "spectrum.h"
 #include "surface.h"
 
 #define CHUNK 4096 /* rays per work item */
@@ -120,6 +121,7 @@ struct precbuf {
 struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
+	struct band band;           /* the light the current ray carries */
 	struct recbuf recs;
 	bool corners;               /* tracing shaft corners: landings go to lands */
 	struct landbuf lands;
@@ -334,7 +336,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	struct surf_in si;
 	struct surf_out so;
 	surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-	surf_scatter(&si, J->band, &so);
+	surf_scatter(&si, w->band, &so);
 	double opacity = 1 - si.pc.f - si.pc.t;
 	/* what neither reflects nor transmits stays at the surface: a diffuse
 	 * surface reached after a specular bounce keeps it in its map */
@@ -366,6 +368,23 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		else
 			add3(w->cut, re, 1);
 	}
+}
+
+/* The wavelength of ray i of a side×side grid (spectral passes), and its
+ * energy per channel: e_c times f_c(λ) (spectrum.h). Stratified with the
+ * grid (smp_latin): each row and each column of the grid, a ring or a
+ * spoke of the cone, takes one wavelength from each 1/side of the
+ * spectrum, in a scrambled order (a regular lattice aliases into stripes on
+ * the maps, and a nesting in squares fails a narrow spotlight's strip).
+ * It depends only on the ray's index: the same for any thread count. */
+static double ray_wavelength(uint64_t key, uint64_t i, uint64_t side, double e[3])
+{
+	double f[3];
+	double u = smp_latin(i % side, i / side, side, key, smp_get(key, (uint32_t)i, 2));
+	double lambda = spec_sample(u, f);
+	for (int c = 0; c < 3; c++)
+		e[c] *= f[c];
+	return lambda;
 }
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
@@ -648,6 +667,7 @@ static void run_shafts(struct worker *w, const struct item *it)
 	S.cutoff = J->o->min_weight * fmax(S.e0[0], fmax(S.e0[1], S.e0[2]));
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
+	w->band = J->band;
 	w->corners = true;
 	struct corner *row = mem_alloc(sizeof *row * (size_t)(2 * side));
 	for (long i = it->first; i < it->first + it->count; i++) {
@@ -734,6 +754,9 @@ static void run_item(struct worker *w, const struct item *it)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
+		w->band = J->band;
+		if (J->o->spectral)
+			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0);
@@ -821,11 +844,11 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* The grid for a surface: its illum_map { }, else a cell size chosen from
- * the rays that reached it (pitfall 1): ILLUM_RAYS_PER_NODE rays per node
- * over the region where most of them landed. The region is the 5th to 95th
+ * the rays that reached it (pitfall 1): per_node rays per node (0: the
+ * default ILLUM_RAYS_PER_NODE) over the region where most of them landed. The region is the 5th to 95th
  * percentile of the landing points on each axis, so a few grazing rays that
  * land far away do not inflate it. */
-static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k)
+static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k, double per_node)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
@@ -845,7 +868,7 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 				ex[j] = t;
 			}
 	double area = ex[0] * fmax(ex[1], ex[0] * 1e-3);
-	double cell = illum_auto_cell(0.9 * (double)k, area, 0);
+	double cell = illum_auto_cell(0.9 * (double)k, area, per_node);
 	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
 	return sp;
 }
@@ -868,7 +891,7 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 	double cell = np ? 0.5 * sz[np / 2] : 0;
 	free(sz);
 	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
-		return choose_spec(o, pts, k);
+		return choose_spec(o, pts, k, 0);
 	struct illum_spec sp = {0, cell > 0 && isfinite(cell) ? cell : 0.01};
 	return sp;
 }
@@ -1013,11 +1036,12 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	out->maps = mem_alloc(sizeof *out->maps * (size_t)cap2);
 	out->specs = mem_alloc(sizeof *out->specs * (size_t)cap2);
 	out->level = mem_alloc(sizeof *out->level * (size_t)cap2);
+	double per_node = o->spectral ? 3 * ILLUM_RAYS_PER_NODE : 0; /* see lp_opts.spectral */
 	for (int k = 0; k < n; k++) {
 		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
 		struct illum_map *lv[LP_LEVELS] = {NULL};
 		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr)
-		                            : choose_spec(objs[k], pts + start[k], nr);
+		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
 		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
 		lv[0] = illum_new(objs[k], &spec);
 		if (!lv[0] && !out->nomap)

@@ -30,6 +30,14 @@ struct lp_opts {
 	                         until lp_difference between rounds is at most this */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
 	                         refracting with its dispersed index */
+	bool spectral;        /* each ray at its own wavelength (spectrum.h), stratified
+	                         over the spectrum, carrying f_c(λ) of the light's energy
+	                         per channel (channel must be -1). A ray then carries one
+	                         wavelength where a channel pass's ray carries a whole
+	                         channel, so the automatic cell size asks for three times
+	                         the rays per node: 3N spectral rays get the grid of a
+	                         channel pass of N. Not with shafts: a shaft needs its
+	                         corners on one path, which other wavelengths leave */
 };
 
 struct lp_stats {

@@ -130,57 +130,18 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
-/* The light pass (docs/design.md §4): one pass, or one per colour channel when a
- * material disperses (chromatic aberration). Returns the number of results. */
-/* One round of the light pass at lo->rays: one pass, or one per colour
- * channel when a material disperses (chromatic aberration). Adds its
- * figures to *st; warns (once per run: warn) about surfaces the pass
- * cannot serve. Returns the number of results in out. */
-static int light_round(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
-                       struct lp_opts *lo, struct lp_result *out[3], struct render_stats *st, bool warn)
+/* The passes in force: --passes, else the scene's illumination { passes }. */
+static enum illum_passes passes_of(const struct scene *s, const struct render_opts *o)
 {
-	int passes = lp_dispersive(s) ? 3 : 1, n = 0;
-	for (int c = 0; c < passes; c++) {
-		struct lp_stats ls;
-		lo->channel = passes == 3 ? c : -1;
-		struct lp_result *r = lp_run(s, b, mats, lo, &ls);
-		if (!r)
-			continue;
-		out[n++] = r;
-		st->light_rays += ls.rays;
-		st->tol_estimate = fmax(st->tol_estimate, ls.tol_estimate);
-		st->tol_rounds = ls.tol_rounds > st->tol_rounds ? ls.tol_rounds : st->tol_rounds;
-		st->tol_rays = ls.tol_rays > st->tol_rays ? ls.tol_rays : st->tol_rays;
-		st->maps += ls.maps;
-		st->map_bytes += ls.map_bytes;
-		st->finest_cell = st->finest_cell > 0 ? fmin(st->finest_cell, lp_finest_cell(r)) : lp_finest_cell(r);
-		for (int k = 0; k < 3; k++) {
-			st->e_emitted += ls.emitted[k];
-			st->e_deposited += ls.landed[k];
-			st->e_direct += ls.direct[k];
-			st->e_absorbed += ls.absorbed[k];
-			st->e_escaped += ls.escaped[k];
-			st->e_cut += ls.cut[k];
-			st->e_held += ls.deposited[k];
-		}
-		if (ls.nomap && c == 0 && warn) {
-			struct diag dg;
-			diag_init(&dg, stderr);
-			diag_warning(&dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
-			             "it gets no caustic (give illum_map a coarser cell or resolution)",
-			             scene_object_kind_name(ls.nomap->kind));
-		}
-		if (ls.clipped && c == 0 && warn) {
-			struct diag dg;
-			diag_init(&dg, stderr);
-			diag_warning(&dg, ls.clipped->loc,
-			             "under a parallel light this unbounded %s casts caustics only around the "
-			             "finite objects and the camera", scene_object_kind_name(ls.clipped->kind));
-		}
-	}
-	return n;
+	return o->passes > 0 ? (enum illum_passes)(o->passes - 1) : s->gs.illum.passes;
 }
 
+/* The light pass (docs/design.md §4): one pass, or, when a material
+ * disperses, one per colour channel (passes rgb: chromatic aberration) or
+ * one spectral pass whose rays each carry a wavelength (passes spectral),
+ * shooting as many rays as the three channel passes; it deposits points
+ * (a shaft's corners would part ways). With a tolerance each pass is
+ * progressive (lp_run). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct lp_result *out[3],
                       struct render_stats *st)
@@ -196,10 +157,58 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
+	bool dispersive = lp_dispersive(s);
+	lo.spectral = dispersive && passes_of(s, o) == PASSES_SPECTRAL;
+	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
+	if (lo.spectral)
+		lo.rays *= 3;
+	if (lo.spectral && lo.shafts) {
+		fprintf(stderr, "arvo: warning: passes spectral: light rays of different wavelengths part "
+		        "ways, so the dispersive light pass deposits points, not shafts\n");
+		lo.shafts = false;
+	}
 	/* --tolerance, else the scene's unless --rays was given */
 	lo.tolerance = o->tolerance > 0 ? o->tolerance : o->rays > 0 ? 0 : s->gs.illum.tolerance;
 	st->tolerance = lo.tolerance;
-	int n = light_round(s, b, mats, &lo, out, st, true);
+	for (int c = 0; c < passes; c++) {
+		struct lp_stats ls;
+		lo.channel = passes == 3 ? c : -1;
+		struct lp_result *r = lp_run(s, b, mats, &lo, &ls);
+		if (!r)
+			continue;
+		out[n++] = r;
+		st->light_rays += ls.rays;
+		st->tol_estimate = fmax(st->tol_estimate, ls.tol_estimate);
+		st->tol_rounds = ls.tol_rounds > st->tol_rounds ? ls.tol_rounds : st->tol_rounds;
+		st->tol_rays = ls.tol_rays > st->tol_rays ? ls.tol_rays : st->tol_rays;
+		st->maps += ls.maps;
+		st->map_bytes += ls.map_bytes;
+		double fc = lp_finest_cell(r);
+		st->finest_cell = st->finest_cell > 0 && fc > 0 ? fmin(st->finest_cell, fc) : fmax(st->finest_cell, fc);
+		for (int k = 0; k < 3; k++) {
+			st->e_emitted += ls.emitted[k];
+			st->e_deposited += ls.landed[k];
+			st->e_direct += ls.direct[k];
+			st->e_absorbed += ls.absorbed[k];
+			st->e_escaped += ls.escaped[k];
+			st->e_cut += ls.cut[k];
+			st->e_held += ls.deposited[k];
+		}
+		if (ls.nomap && c == 0) {
+			struct diag dg;
+			diag_init(&dg, stderr);
+			diag_warning(&dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
+			             "it gets no caustic (give illum_map a coarser cell or resolution)",
+			             scene_object_kind_name(ls.nomap->kind));
+		}
+		if (ls.clipped && c == 0) {
+			struct diag dg;
+			diag_init(&dg, stderr);
+			diag_warning(&dg, ls.clipped->loc,
+			             "under a parallel light this unbounded %s casts caustics only around the "
+			             "finite objects and the camera", scene_object_kind_name(ls.clipped->kind));
+		}
+	}
 	if (lo.tolerance > 0 && st->tol_estimate > lo.tolerance)
 		fprintf(stderr, "arvo: warning: tolerance %g not reached: the light pass's error estimate is %.3g after "
 		        "%ld rays per light\n", lo.tolerance, st->tol_estimate, st->tol_rays);
@@ -287,6 +296,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
+	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	if (!err)
 		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;

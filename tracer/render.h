@@ -27,6 +27,7 @@ struct render_opts {
 	const char *load_maps;   /* load the maps from this file instead of the light pass */
 	int method;              /* 0: the scene's method, else enum illum_method + 1 */
 	double tolerance;        /* > 0: the light pass's accuracy target (else the scene's) */
+	int passes;              /* 0: the scene's passes, else enum illum_passes + 1 */
 };
 
 struct render_stats {

@@ -172,6 +172,7 @@ done
 for c in grazing prism light_in_glass trapped; do
 	case_checks $c $T/$c.scn $R
 done
+case_checks prism_spectral $T/prism.scn $R --passes spectral
 m=$(chmax light_in_glass direct.R,direct.G,direct.B)
 is_zero "$m" || fail "direct layer max '$m', expected 0"
 m=$(chmax light_in_glass caustic.R,caustic.G,caustic.B)
