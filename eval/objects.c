@@ -886,6 +886,7 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	case TK_METHOD:
+		il->method_set = true;
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;
 		else if (strcmp(n->str, "shaft") == 0)

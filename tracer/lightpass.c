@@ -1176,7 +1176,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 		illum_total(r->maps[k], tot);
 		for (int c = 0; c < 3; c++)
 			acc.deposited[c] += tot[c];
-		acc.maps++;
+		acc.maps += r->level[k] == 0; /* surfaces, not their levels */
 		acc.map_bytes += illum_memory(r->maps[k]);
 	}
 	acc.clipped = J.clipped;
@@ -1469,8 +1469,10 @@ void lp_free(struct lp_result *r)
  * "ARVOMAP1", int32 passes, int32 primitives in the scene; per pass int32
  * maps; per map int32 primitive index (depth-first over the scene's object
  * tree), int32 resolution, double cell, int64 nodes, then per node int64 i,
- * int64 j, double energy[3]. Loading deposits each energy exactly on its node
- * (a deposit on a node gives it all) and finishes the maps again. */
+ * int64 j, double energy[3]. A surface's levels (shafts) are consecutive
+ * maps of the same primitive, finest first. Loading deposits each energy
+ * exactly on its node (a deposit on a node gives it all) and finishes the
+ * maps again. */
 
 struct prims {
 	const struct object **o; /* primitives in depth-first order */
@@ -1589,7 +1591,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 		goto bad;
 	for (int p = 0; p < hdr[0]; p++) {
 		int32_t nm;
-		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n)
+		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n * LP_LEVELS)
 			goto bad;
 		struct lp_result *r = mem_calloc(1, sizeof *r);
 		out[n++] = r;

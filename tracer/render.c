@@ -162,7 +162,9 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
 	if (lo.spectral)
 		lo.rays *= 3;
-	if (lo.spectral && lo.shafts) {
+	if (lo.spectral && lo.shafts && !(o->method > 0 || s->gs.illum.method_set)) {
+		lo.shafts = false; /* the default method: points, silently */
+	} else if (lo.spectral && lo.shafts) {
 		fprintf(stderr, "arvo: warning: passes spectral: light rays of different wavelengths part "
 		        "ways, so the dispersive light pass deposits points, not shafts\n");
 		lo.shafts = false;

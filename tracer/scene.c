@@ -15,7 +15,7 @@ void scene_init(struct scene *s)
 	s->gs.max_trace_level = 5;
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
-	s->gs.illum.method = ILLUM_POINT;
+	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }
 
