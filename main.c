@@ -51,9 +51,11 @@ struct options {
 	enum out_exr_compression compression; /* --compression */
 	long rays;                   /* --rays: light-pass rays per light (-1: not given, 0: off) */
 	int method;                  /* --method: 0 not given, else enum illum_method + 1 */
+	double tolerance;            /* --tolerance (0: not given) */
 	const char *dump_maps;       /* --dump-maps DIR */
 	const char *save_maps;       /* --save-maps FILE */
 	const char *load_maps;       /* --load-maps FILE */
+	int passes;                  /* --passes: 0 not given, else enum illum_passes + 1 */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -70,8 +72,10 @@ static void usage(FILE *out)
 	      "  --ocio-config FILE OCIO config (default: $OCIO, else the shipped one)\n"
 	      "  --rays N           light-pass rays per light (default: the scene's, else 1000000; 0: off)\n"
 	      "  --method M         light pass: point (deposits) or shaft (light shafts)\n"
+	      "  --tolerance T      shoot light rays until the maps' estimated error is below T\n"
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  --save-maps FILE, --load-maps FILE   keep a light pass for later renders\n"
+	      "  --passes rgb|spectral   dispersion by colour channel or by wavelength\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
@@ -239,6 +243,12 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (!parse_int(next, 0, 1000000000000L, &v))
 				return usage_error("bad value for --rays: '%s' (expected 0 to 1e12)", next);
 			o->rays = v;
+		} else if (!strcmp(a, "--tolerance")) {
+			NEED_ARG();
+			double t;
+			if (!parse_double(next, &t) || !(t >= 1e-5 && t <= 0.5))
+				return usage_error("bad value for --tolerance: '%s' (expected 1e-5 to 0.5)", next);
+			o->tolerance = t;
 		} else if (!strcmp(a, "--method")) {
 			NEED_ARG();
 			if (strcmp(next, "point") && strcmp(next, "shaft"))
@@ -250,6 +260,11 @@ static int parse_args(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "--save-maps") || !strcmp(a, "--load-maps")) {
 			NEED_ARG();
 			*(a[2] == 's' ? &o->save_maps : &o->load_maps) = next;
+		} else if (!strcmp(a, "--passes")) {
+			NEED_ARG();
+			if (strcmp(next, "rgb") && strcmp(next, "spectral"))
+				return usage_error("bad value for --passes: '%s' (expected rgb or spectral)", next);
+			o->passes = (strcmp(next, "rgb") ? PASSES_SPECTRAL : PASSES_RGB) + 1;
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -441,7 +456,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps, o->method};
+	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes};
 	struct render_stats st;
 	struct framebuffer *fb;
 	const char *err = render(scene, &ro, &fb, &st);

@@ -878,7 +878,15 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	case TK_MAX_DEPTH: il->max_depth = arg_int(E, n, 1, 256); return;
+	case TK_TOLERANCE: {
+		double t = arg_float(E, n);
+		if (!(t >= 1e-5 && t <= 0.5))
+			eval_fail(E, n->kids[0]->loc, "tolerance must be 1e-5 to 0.5, found %g", t);
+		il->tolerance = t;
+		return;
+	}
 	case TK_METHOD:
+		il->method_set = true;
 		if (strcmp(n->str, "point") == 0)
 			il->method = ILLUM_POINT;
 		else if (strcmp(n->str, "shaft") == 0)
@@ -889,10 +897,8 @@ static void illum_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_PASSES:
 		if (strcmp(n->str, "rgb") == 0)
 			il->passes = PASSES_RGB;
-		else if (strcmp(n->str, "spectral") == 0) {
+		else if (strcmp(n->str, "spectral") == 0)
 			il->passes = PASSES_SPECTRAL;
-			diag_warning(E->diag, n->loc, "passes spectral is not supported yet; using one pass per channel");
-		}
 		else
 			eval_fail(E, n->loc, "passes must be 'rgb' or 'spectral', found '%s'", n->str);
 		return;

@@ -7,6 +7,7 @@
 
 #include "optics.h"
 #include "sampler.h"
+#include "spectrum.h"
 #include "surface.h"
 
 /* The state of one camera sample's tree of rays. */
@@ -14,8 +15,8 @@ struct path {
 	const struct eye_ctx *ctx; /* shared context */
 	struct smp_stream rng;     /* this sample's random numbers */
 	long long rays;            /* rays traced so far */
-	int channel;               /* -1: all channels; 0..2: a single-channel path
-	                              split off at dispersive glass */
+	struct band band;          /* BAND_ALL, or the channel or wavelength of a
+	                              path split off at dispersive glass */
 };
 
 /* The AOVs of the first visible point (filled at depth 1 only). */
@@ -117,7 +118,7 @@ static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p,
 		surf_prepare(ctx->scene, ctx->mats, &h, L, &si);
 		if (!si.straight)
 			return v3(0, 0, 0);
-		surf_scatter(&si, (struct band){pa->channel, 0}, &so);
+		surf_scatter(&si, pa->band, &so);
 		pass = v_mul(pass, so.T);
 		if (!h.entering)
 			pass = v_mul(pass, opt_fade(si.in, h.t - t0));
@@ -227,30 +228,53 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
                          struct aov *aov);
 
+static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
+                            double weight, unsigned skip);
+
+/* A full-colour path at dispersive glass splits, each part refracting with
+ * its own index: into one path per channel (passes rgb: chromatic
+ * aberration), or into N = dispersion_samples wavelengths stratified over
+ * the spectrum as the light pass draws them (spectrum.h), each weighted by
+ * its factors f(λ), whose mean is white: so the glass seen directly and the
+ * spectrum it casts on a wall agree. */
+static struct vec3 disperse(struct path *pa, const struct surf *sf, const struct interior *in,
+                            struct vec3 d, int depth, double weight, unsigned skip)
+{
+	struct vec3 out = v3(0, 0, 0);
+	if (!pa->ctx->spectral) {
+		double o[3];
+		for (int c = 0; c < 3; c++) {
+			pa->band = (struct band){c, 0};
+			o[c] = v_comp(specular(pa, sf, d, depth, weight, skip), c);
+		}
+		out = v3(o[0], o[1], o[2]);
+	} else {
+		int n = in->dispersion_samples > 0 ? in->dispersion_samples : 7;
+		for (int j = 0; j < n; j++) {
+			double f[3];
+			pa->band = (struct band){-1, spec_sample((j + smp_next(&pa->rng)) / n, f)};
+			out = v_add(out, v_mul(v3(f[0], f[1], f[2]), specular(pa, sf, d, depth, weight, skip)));
+		}
+		out = v_scale(out, 1.0 / n);
+	}
+	pa->band = BAND_ALL;
+	return out;
+}
+
 /* The reflected and transmitted light at a hit, as the surface step
- * (surface.h) splits it. At dispersive glass a full-colour path splits into
- * one path per channel, each refracting with its own index (chromatic
- * aberration). */
+ * (surface.h) splits it; dispersive glass splits a full-colour path first. */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
                             double weight, unsigned skip)
 {
 	const struct interior *in = mat_interior(sf->h->obj);
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
-	if (disperses && clear && pa->channel < 0) {
-		double o[3];
-		for (int c = 0; c < 3; c++) {
-			pa->channel = c;
-			struct vec3 r = specular(pa, sf, d, depth, weight, skip);
-			o[c] = v_comp(r, c);
-		}
-		pa->channel = -1;
-		return v3(o[0], o[1], o[2]);
-	}
+	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
+		return disperse(pa, sf, in, d, depth, weight, skip);
 	struct surf_in si = {sf->h, &sf->tex->finish, sf->pc, in, d, sf->nf,
 	                     pa->ctx->scene->legacy_lights, false};
 	struct surf_out so;
-	surf_scatter(&si, (struct band){pa->channel, 0}, &so);
+	surf_scatter(&si, pa->band, &so);
 	struct vec3 out = v3(0, 0, 0);
 	if (v_maxc(so.T) > 0)
 		out = v_mul(so.T, trace(pa, so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
@@ -359,7 +383,7 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	bool jitter = ctx->spp > 1;
 	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	for (int i = 0; i < ctx->spp; i++) {
-		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0, -1};
+		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL};
 		double jx = jitter ? smp_next(&pa.rng) : 0.5, jy = jitter ? smp_next(&pa.rng) : 0.5;
 		if (jitter && i < m * m) {
 			jx = (i % m + jx) / m;

@@ -38,6 +38,8 @@ struct eye_ctx {
 	int ncaustics;                 /* entries in caustics (0: no light pass) */
 	bool see_through;              /* some object is a straight transmitter: shadow
 	                                  rays look through such objects (surface.h) */
+	bool spectral;                 /* passes spectral: dispersive glass splits a path
+	                                  into wavelengths, not into channels */
 };
 
 /* One pixel's result, averaged over its samples. */

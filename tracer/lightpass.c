@@ -21,6 +21,7 @@
 #include "optics.h"
 #include "sampler.h"
 #include "shape.h"
+#include "spectrum.h"
 #include "surface.h"
 
 #define CHUNK 4096 /* rays per work item */
@@ -120,6 +121,7 @@ struct precbuf {
 struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
+	struct band band;           /* the light the current ray carries */
 	struct recbuf recs;
 	bool corners;               /* tracing shaft corners: landings go to lands */
 	struct landbuf lands;
@@ -334,7 +336,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	struct surf_in si;
 	struct surf_out so;
 	surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-	surf_scatter(&si, J->band, &so);
+	surf_scatter(&si, w->band, &so);
 	double opacity = 1 - si.pc.f - si.pc.t;
 	/* what neither reflects nor transmits stays at the surface: a diffuse
 	 * surface reached after a specular bounce keeps it in its map */
@@ -366,6 +368,23 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		else
 			add3(w->cut, re, 1);
 	}
+}
+
+/* The wavelength of ray i of a side×side grid (spectral passes), and its
+ * energy per channel: e_c times f_c(λ) (spectrum.h). Stratified with the
+ * grid (smp_latin): each row and each column of the grid, a ring or a
+ * spoke of the cone, takes one wavelength from each 1/side of the
+ * spectrum, in a scrambled order (a regular lattice aliases into stripes on
+ * the maps, and a nesting in squares fails a narrow spotlight's strip).
+ * It depends only on the ray's index: the same for any thread count. */
+static double ray_wavelength(uint64_t key, uint64_t i, uint64_t side, double e[3])
+{
+	double f[3];
+	double u = smp_latin(i % side, i / side, side, key, smp_get(key, (uint32_t)i, 2));
+	double lambda = spec_sample(u, f);
+	for (int c = 0; c < 3; c++)
+		e[c] *= f[c];
+	return lambda;
 }
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
@@ -648,6 +667,7 @@ static void run_shafts(struct worker *w, const struct item *it)
 	S.cutoff = J->o->min_weight * fmax(S.e0[0], fmax(S.e0[1], S.e0[2]));
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
+	w->band = J->band;
 	w->corners = true;
 	struct corner *row = mem_alloc(sizeof *row * (size_t)(2 * side));
 	for (long i = it->first; i < it->first + it->count; i++) {
@@ -734,6 +754,9 @@ static void run_item(struct worker *w, const struct item *it)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
+		w->band = J->band;
+		if (J->o->spectral)
+			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0);
@@ -821,11 +844,11 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* The grid for a surface: its illum_map { }, else a cell size chosen from
- * the rays that reached it (pitfall 1): ILLUM_RAYS_PER_NODE rays per node
- * over the region where most of them landed. The region is the 5th to 95th
+ * the rays that reached it (pitfall 1): per_node rays per node (0: the
+ * default ILLUM_RAYS_PER_NODE) over the region where most of them landed. The region is the 5th to 95th
  * percentile of the landing points on each axis, so a few grazing rays that
  * land far away do not inflate it. */
-static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k)
+static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k, double per_node)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
@@ -845,7 +868,7 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 				ex[j] = t;
 			}
 	double area = ex[0] * fmax(ex[1], ex[0] * 1e-3);
-	double cell = illum_auto_cell(0.9 * (double)k, area, 0);
+	double cell = illum_auto_cell(0.9 * (double)k, area, per_node);
 	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
 	return sp;
 }
@@ -868,7 +891,7 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 	double cell = np ? 0.5 * sz[np / 2] : 0;
 	free(sz);
 	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
-		return choose_spec(o, pts, k);
+		return choose_spec(o, pts, k, 0);
 	struct illum_spec sp = {0, cell > 0 && isfinite(cell) ? cell : 0.01};
 	return sp;
 }
@@ -1013,11 +1036,12 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	out->maps = mem_alloc(sizeof *out->maps * (size_t)cap2);
 	out->specs = mem_alloc(sizeof *out->specs * (size_t)cap2);
 	out->level = mem_alloc(sizeof *out->level * (size_t)cap2);
+	double per_node = o->spectral ? 3 * ILLUM_RAYS_PER_NODE : 0; /* see lp_opts.spectral */
 	for (int k = 0; k < n; k++) {
 		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
 		struct illum_map *lv[LP_LEVELS] = {NULL};
 		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr)
-		                            : choose_spec(objs[k], pts + start[k], nr);
+		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
 		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
 		lv[0] = illum_new(objs[k], &spec);
 		if (!lv[0] && !out->nomap)
@@ -1100,8 +1124,8 @@ static long plan(struct job *J)
 	return nitems;
 }
 
-struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
-                         const struct lp_opts *o, struct lp_stats *st)
+static struct lp_result *run_once(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                                  const struct lp_opts *o, struct lp_stats *st)
 {
 	struct job J;
 	memset(&J, 0, sizeof J);
@@ -1152,7 +1176,7 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 		illum_total(r->maps[k], tot);
 		for (int c = 0; c < 3; c++)
 			acc.deposited[c] += tot[c];
-		acc.maps++;
+		acc.maps += r->level[k] == 0; /* surfaces, not their levels */
 		acc.map_bytes += illum_memory(r->maps[k]);
 	}
 	acc.clipped = J.clipped;
@@ -1168,6 +1192,47 @@ struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struc
 	return r;
 }
 
+#define TOL_START 16384L    /* rays per light of a tolerance's first round */
+#define TOL_MAX 67108864L   /* and the most it goes to */
+
+struct lp_result *lp_run(const struct scene *s, const struct bvh *b, const struct mat_cache *mc,
+                         const struct lp_opts *o, struct lp_stats *st)
+{
+	if (!(o->tolerance > 0))
+		return run_once(s, b, mc, o, st);
+	/* progressive: rounds of 4× more rays until this round's error,
+	 * estimated from the difference between its maps and the previous
+	 * round's, is at most the tolerance */
+	struct lp_opts oo = *o;
+	struct lp_stats ls;
+	oo.rays = TOL_START;
+	struct lp_result *prev = run_once(s, b, mc, &oo, &ls), *r = NULL;
+	long long shot = ls.rays;
+	int rounds = 1;
+	double d = 1;
+	for (;;) {
+		oo.rays *= 4;
+		r = run_once(s, b, mc, &oo, &ls);
+		shot += ls.rays;
+		rounds++;
+		/* if a round cuts the error r-fold, the difference d ≥ (r − 1)·error:
+		 * shafts' error falls at least 2.5-fold a round (refs A, B, C and the
+		 * fold ring, docs/methods.md), point deposits' noise 2-fold */
+		d = lp_difference(r, prev) / (o->shafts ? 1.5 : 1);
+		lp_free(prev);
+		if (d <= o->tolerance || oo.rays >= TOL_MAX)
+			break;
+		prev = r;
+	}
+	ls.rays = shot;
+	ls.tol_estimate = d;
+	ls.tol_rounds = rounds;
+	ls.tol_rays = oo.rays;
+	if (st)
+		*st = ls;
+	return r;
+}
+
 void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_isolated)
 {
 	for (int k = 0; k < src->n; k++) {
@@ -1177,6 +1242,177 @@ void lp_merge(struct lp_result *dst, const struct lp_result *src, bool discard_i
 			illum_finish(dst->maps[i], discard_isolated, NULL);
 		}
 	}
+}
+
+/* ==== the error estimate (tolerance) ====================================== */
+
+/* Sums of energy over bins of bu × bv in (u,v): a hash of (i, j) → sum. */
+struct binsum {
+	int64_t *key;
+	double *val;
+	long n, cap;     /* used, allocated (power of two) */
+	double bu, bv;   /* bin size */
+	double u0, u1, v0, v1; /* the region compared */
+	double du, dv;   /* the current level's node spacing */
+	double sign;     /* +1 for the first result, −1 for the second */
+};
+
+static void bin_add(struct binsum *B, double u, double v, double e)
+{
+	if (!(u >= B->u0 && u < B->u1 && v >= B->v0 && v < B->v1))
+		return; /* the faint far field is left out, as the references leave it */
+	double fi = floor(u / B->bu), fj = floor(v / B->bv);
+	if (!(fabs(fi) < 1e9 && fabs(fj) < 1e9))
+		return;
+	if (2 * (B->n + 1) > B->cap) {
+		struct binsum old = *B;
+		B->cap = B->cap ? B->cap * 2 : 1024;
+		B->key = mem_alloc(sizeof *B->key * (size_t)B->cap);
+		B->val = mem_calloc((size_t)B->cap, sizeof *B->val);
+		for (long i = 0; i < B->cap; i++)
+			B->key[i] = INT64_MIN;
+		B->n = 0;
+		for (long i = 0; i < old.cap; i++)
+			if (old.key[i] != INT64_MIN) {
+				uint64_t h = (uint64_t)old.key[i] * 0x9E3779B97F4A7C15ull;
+				long k = (long)(h >> 20) & (B->cap - 1);
+				while (B->key[k] != INT64_MIN)
+					k = (k + 1) & (B->cap - 1);
+				B->key[k] = old.key[i], B->val[k] = old.val[i], B->n++;
+			}
+		free(old.key), free(old.val);
+	}
+	int64_t key = (int64_t)fi * 2000000000LL + (int64_t)fj;
+	uint64_t h = (uint64_t)key * 0x9E3779B97F4A7C15ull;
+	long k = (long)(h >> 20) & (B->cap - 1);
+	while (B->key[k] != INT64_MIN && B->key[k] != key)
+		k = (k + 1) & (B->cap - 1);
+	if (B->key[k] == INT64_MIN)
+		B->key[k] = key, B->n++;
+	B->val[k] += B->sign * e;
+}
+
+/* A node's energy (all channels) spread over its bilinear tent, 4×4
+ * points, into the bins. */
+static void bin_node(void *ctx, const struct illum_node *n)
+{
+	struct binsum *B = ctx;
+	double e = (n->irr[0] + n->irr[1] + n->irr[2]) * n->area;
+	static const double at[4] = {-0.75, -0.25, 0.25, 0.75}, w[4] = {0.25, 0.75, 0.75, 0.25};
+	for (int i = 0; i < 4; i++)
+		for (int j = 0; j < 4; j++)
+			bin_add(B, n->u + at[i] * B->du, n->v + at[j] * B->dv, e * w[i] * w[j] / 4);
+}
+
+struct wpt {
+	double x, w;
+};
+
+static int cmp_wpt(const void *a, const void *b)
+{
+	double x = ((const struct wpt *)a)->x, y = ((const struct wpt *)b)->x;
+	return x < y ? -1 : x > y;
+}
+
+struct extent {
+	struct wpt *p[2];
+	long n, cap;
+};
+
+static void extent_node(void *ctx, const struct illum_node *n)
+{
+	struct extent *X = ctx;
+	if (X->n == X->cap) {
+		X->cap = X->cap ? X->cap * 2 : 1024;
+		for (int a = 0; a < 2; a++)
+			X->p[a] = mem_realloc(X->p[a], sizeof *X->p[a] * (size_t)X->cap);
+	}
+	double e = n->energy[0] + n->energy[1] + n->energy[2];
+	X->p[0][X->n] = (struct wpt){n->u, e};
+	X->p[1][X->n++] = (struct wpt){n->v, e};
+}
+
+/* The energy-weighted 2 %–98 % range [*lo, *hi] of p[0..n). */
+static void wrange(struct wpt *p, long n, double *lo, double *hi)
+{
+	double tot = 0, acc = 0;
+	qsort(p, (size_t)n, sizeof *p, cmp_wpt);
+	for (long i = 0; i < n; i++)
+		tot += p[i].w;
+	*lo = *hi = n ? p[0].x : 0;
+	bool have_lo = false;
+	for (long i = 0; i < n; i++) {
+		acc += p[i].w;
+		if (!have_lo && acc >= 0.05 * tot)
+			*lo = p[i].x, have_lo = true;
+		if (acc <= 0.95 * tot)
+			*hi = p[i].x;
+	}
+}
+
+/* Adds every level of o in r into B with sign. */
+static void bin_levels(struct binsum *B, const struct lp_result *r, const struct object *o, double sign)
+{
+	int k = find_map(r, o);
+	B->sign = sign;
+	for (; k >= 0 && k < r->n && r->objs[k] == o; k++) {
+		if (!r->maps[k])
+			continue;
+		long nu, nv;
+		illum_grid(r->maps[k], &nu, &nv, &B->du, &B->dv);
+		illum_each(r->maps[k], bin_node, B);
+	}
+}
+
+double lp_finest_cell(const struct lp_result *r)
+{
+	double c = 0;
+	for (int k = 0; r && k < r->n; k++)
+		if (r->maps[k] && r->specs[k].cell > 0 && (c == 0 || r->specs[k].cell < c))
+			c = r->specs[k].cell;
+	return c;
+}
+
+double lp_difference(const struct lp_result *a, const struct lp_result *b)
+{
+	double num = 0, den = 0;
+	for (int k = 0; a && k < a->n; k++) {
+		if (k > 0 && a->objs[k - 1] == a->objs[k])
+			continue; /* one object at a time, all its levels */
+		const struct object *o = a->objs[k];
+		struct extent X = {{NULL, NULL}, 0, 0};
+		for (int j = k; j < a->n && a->objs[j] == o; j++)
+			if (a->maps[j])
+				illum_each(a->maps[j], extent_node, &X);
+		struct binsum B;
+		memset(&B, 0, sizeof B);
+		wrange(X.p[0], X.n, &B.u0, &B.u1);
+		wrange(X.p[1], X.n, &B.v0, &B.v1);
+		free(X.p[0]), free(X.p[1]);
+		double eu = B.u1 - B.u0, ev = B.v1 - B.v0;
+		B.u0 -= 0.02 * eu, B.u1 += 0.02 * eu, B.v0 -= 0.02 * ev, B.v1 += 0.02 * ev;
+		long nu, nv;
+		double du = 1, dv = 1;
+		if (a->maps[k])
+			illum_grid(a->maps[k], &nu, &nv, &du, &dv);
+		B.bu = fmax(eu / 48, du), B.bv = fmax(ev / 48, dv);
+		bin_levels(&B, a, o, 1);
+		for (long i = 0; i < B.cap; i++)
+			if (B.key[i] != INT64_MIN)
+				den += B.val[i];
+		bin_levels(&B, b, o, -1);
+		for (long i = 0; i < B.cap; i++)
+			if (B.key[i] != INT64_MIN)
+				num += fabs(B.val[i]);
+		free(B.key), free(B.val);
+	}
+	for (int k = 0; b && k < b->n; k++) /* what b lit and a did not */
+		if (b->maps[k] && (!a || find_map(a, b->objs[k]) < 0)) {
+			double t[3];
+			illum_total(b->maps[k], t);
+			num += t[0] + t[1] + t[2];
+		}
+	return den > 0 ? num / den : num > 0 ? 1 : 0;
 }
 
 const struct illum_map *lp_map(const struct lp_result *r, const struct object *o)
@@ -1233,8 +1469,10 @@ void lp_free(struct lp_result *r)
  * "ARVOMAP1", int32 passes, int32 primitives in the scene; per pass int32
  * maps; per map int32 primitive index (depth-first over the scene's object
  * tree), int32 resolution, double cell, int64 nodes, then per node int64 i,
- * int64 j, double energy[3]. Loading deposits each energy exactly on its node
- * (a deposit on a node gives it all) and finishes the maps again. */
+ * int64 j, double energy[3]. A surface's levels (shafts) are consecutive
+ * maps of the same primitive, finest first. Loading deposits each energy
+ * exactly on its node (a deposit on a node gives it all) and finishes the
+ * maps again. */
 
 struct prims {
 	const struct object **o; /* primitives in depth-first order */
@@ -1353,7 +1591,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 		goto bad;
 	for (int p = 0; p < hdr[0]; p++) {
 		int32_t nm;
-		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n)
+		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n * LP_LEVELS)
 			goto bad;
 		struct lp_result *r = mem_calloc(1, sizeof *r);
 		out[n++] = r;

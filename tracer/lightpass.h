@@ -26,8 +26,18 @@ struct lp_opts {
 	bool aim_all;         /* debug: aim at every object, not only specular ones
 	                         (with deposit_direct: the eq. 1 consistency checks) */
 	bool shafts;          /* method shaft: light shafts spread over their footprints */
+	double tolerance;     /* > 0: ignore rays; shoot rounds of 4× more rays (from 16384)
+	                         until lp_difference between rounds is at most this */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
 	                         refracting with its dispersed index */
+	bool spectral;        /* each ray at its own wavelength (spectrum.h), stratified
+	                         over the spectrum, carrying f_c(λ) of the light's energy
+	                         per channel (channel must be -1). A ray then carries one
+	                         wavelength where a channel pass's ray carries a whole
+	                         channel, so the automatic cell size asks for three times
+	                         the rays per node: 3N spectral rays get the grid of a
+	                         channel pass of N. Not with shafts: a shaft needs its
+	                         corners on one path, which other wavelengths leave */
 };
 
 struct lp_stats {
@@ -49,6 +59,9 @@ struct lp_stats {
 	size_t map_bytes;     /* memory held by the maps */
 	const struct object *clipped; /* an unbounded specular object under a parallel
 	                         light, whose beam covers only the scene's extent */
+	double tol_estimate;  /* tolerance: the error estimate when it stopped */
+	int tol_rounds;       /* rounds shot */
+	long tol_rays;        /* rays per light of the last round (the maps kept) */
 	const struct object *nomap; /* a surface light reached whose map has too many
 	                         nodes (its illum_map is too fine): it gets no caustic */
 };
@@ -74,6 +87,14 @@ void lp_lookup(const struct lp_result *r, const struct object *o, double u, doub
 /* Calls fn for each map (deterministic order). */
 void lp_each_map(const struct lp_result *r, void (*fn)(void *ctx, const struct object *o, int level,
                  const struct illum_map *m), void *ctx);
+/* The relative L1 difference between two passes' maps (a the reference,
+ * e.g. the one with more rays): on each surface a lit, every level's
+ * irradiance, each node's tent spread over bins of 1/48 of the
+ * energy-weighted 5–95 % extent of its light (at least a node), summed over
+ * channels; Σ|a − b| / Σ a. The tolerance's error estimate. */
+double lp_difference(const struct lp_result *a, const struct lp_result *b);
+/* The finest cell (world units) of r's maps made with a cell; 0 if none. */
+double lp_finest_cell(const struct lp_result *r);
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);
 void lp_free(struct lp_result *r);

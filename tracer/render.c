@@ -130,8 +130,18 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	return NULL;
 }
 
-/* The light pass (docs/design.md §4): one pass, or one per colour channel when a
- * material disperses (chromatic aberration). Returns the number of results. */
+/* The passes in force: --passes, else the scene's illumination { passes }. */
+static enum illum_passes passes_of(const struct scene *s, const struct render_opts *o)
+{
+	return o->passes > 0 ? (enum illum_passes)(o->passes - 1) : s->gs.illum.passes;
+}
+
+/* The light pass (docs/design.md §4): one pass, or, when a material
+ * disperses, one per colour channel (passes rgb: chromatic aberration) or
+ * one spectral pass whose rays each carry a wavelength (passes spectral),
+ * shooting as many rays as the three channel passes; it deposits points
+ * (a shaft's corners would part ways). With a tolerance each pass is
+ * progressive (lp_run). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct lp_result *out[3],
                       struct render_stats *st)
@@ -147,7 +157,21 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
-	int passes = lp_dispersive(s) ? 3 : 1, n = 0;
+	bool dispersive = lp_dispersive(s);
+	lo.spectral = dispersive && passes_of(s, o) == PASSES_SPECTRAL;
+	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;
+	if (lo.spectral)
+		lo.rays *= 3;
+	if (lo.spectral && lo.shafts && !(o->method > 0 || s->gs.illum.method_set)) {
+		lo.shafts = false; /* the default method: points, silently */
+	} else if (lo.spectral && lo.shafts) {
+		fprintf(stderr, "arvo: warning: passes spectral: light rays of different wavelengths part "
+		        "ways, so the dispersive light pass deposits points, not shafts\n");
+		lo.shafts = false;
+	}
+	/* --tolerance, else the scene's unless --rays was given */
+	lo.tolerance = o->tolerance > 0 ? o->tolerance : o->rays > 0 ? 0 : s->gs.illum.tolerance;
+	st->tolerance = lo.tolerance;
 	for (int c = 0; c < passes; c++) {
 		struct lp_stats ls;
 		lo.channel = passes == 3 ? c : -1;
@@ -156,8 +180,13 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			continue;
 		out[n++] = r;
 		st->light_rays += ls.rays;
+		st->tol_estimate = fmax(st->tol_estimate, ls.tol_estimate);
+		st->tol_rounds = ls.tol_rounds > st->tol_rounds ? ls.tol_rounds : st->tol_rounds;
+		st->tol_rays = ls.tol_rays > st->tol_rays ? ls.tol_rays : st->tol_rays;
 		st->maps += ls.maps;
 		st->map_bytes += ls.map_bytes;
+		double fc = lp_finest_cell(r);
+		st->finest_cell = st->finest_cell > 0 && fc > 0 ? fmin(st->finest_cell, fc) : fmax(st->finest_cell, fc);
 		for (int k = 0; k < 3; k++) {
 			st->e_emitted += ls.emitted[k];
 			st->e_deposited += ls.landed[k];
@@ -182,6 +211,9 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			             "finite objects and the camera", scene_object_kind_name(ls.clipped->kind));
 		}
 	}
+	if (lo.tolerance > 0 && st->tol_estimate > lo.tolerance)
+		fprintf(stderr, "arvo: warning: tolerance %g not reached: the light pass's error estimate is %.3g after "
+		        "%ld rays per light\n", lo.tolerance, st->tol_estimate, st->tol_rays);
 	return n;
 }
 
@@ -266,6 +298,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
+	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	if (!err)
 		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;
@@ -295,6 +328,10 @@ void render_print_stats(FILE *f, const struct render_stats *st)
 	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
 	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %ld maps, %.1f MiB)\n", st->t_light,
 	        st->light_rays, st->maps, st->map_bytes / 1048576.0);
+	if (st->tolerance > 0)
+		fprintf(f, "arvo: tolerance        %.3g asked, %.3g estimated (%d rounds, last %ld rays per light, "
+		        "finest map cell %.3g)\n", st->tolerance, st->tol_estimate, st->tol_rounds, st->tol_rays,
+		        st->finest_cell);
 	if (st->e_emitted > 0) {
 		fprintf(f, "arvo: light energy     emitted %.6g W = deposited %.6g + direct %.6g + absorbed %.6g"
 		        " + escaped %.6g + cut %.6g\n", st->e_emitted, st->e_deposited, st->e_direct,

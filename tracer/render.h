@@ -26,6 +26,8 @@ struct render_opts {
 	const char *save_maps;   /* save the light pass's maps to this file, or NULL */
 	const char *load_maps;   /* load the maps from this file instead of the light pass */
 	int method;              /* 0: the scene's method, else enum illum_method + 1 */
+	double tolerance;        /* > 0: the light pass's accuracy target (else the scene's) */
+	int passes;              /* 0: the scene's passes, else enum illum_passes + 1 */
 };
 
 struct render_stats {
@@ -39,6 +41,11 @@ struct render_stats {
 	 * the specular objects = deposited + direct + absorbed + escaped + cut
 	 * (lightpass.h); held is what the maps hold */
 	double e_emitted, e_deposited, e_direct, e_absorbed, e_escaped, e_cut, e_held;
+	double finest_cell;   /* the finest map cell reached (world units; 0: none) */
+	double tolerance;     /* the accuracy asked (0: none) */
+	double tol_estimate;  /* the light pass's error estimate when it stopped */
+	int tol_rounds;       /* rounds of rays it took */
+	long tol_rays;        /* rays per light of the last round */
 	double t_eye;       /* seconds in the eye pass */
 	long peak_rss_kb;   /* peak resident memory (getrusage) */
 	int threads;        /* threads used */

@@ -15,7 +15,7 @@ void scene_init(struct scene *s)
 	s->gs.max_trace_level = 5;
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
-	s->gs.illum.method = ILLUM_POINT;
+	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }
 
@@ -280,6 +280,8 @@ void scene_dump(FILE *o, const struct scene *s)
 	fprintf(o, "\n  illumination rays %ld method %s passes %s max_depth %d photon_spacing %.6g photon_count %ld\n",
 	        g->illum.rays, g->illum.method == ILLUM_SHAFT ? "shaft" : "point",
 	        g->illum.passes == PASSES_SPECTRAL ? "spectral" : "rgb", g->illum.max_depth, g->illum.spacing, g->illum.count);
+	if (g->illum.tolerance > 0)
+		fprintf(o, "  illumination tolerance %.6g\n", g->illum.tolerance);
 	fputs("background ", o);
 	pc(o, s->background);
 	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",

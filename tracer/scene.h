@@ -177,12 +177,14 @@ enum illum_passes { PASSES_RGB, PASSES_SPECTRAL };
 
 struct illum_settings {
 	long rays;                 /* light-ray budget per light (0: default) */
-	enum illum_method method;
+	enum illum_method method;  /* default shaft */
+	bool method_set;           /* the scene named its method */
 	enum illum_passes passes;
 	bool given;                /* illumination { } or photons { } was present */
 	double spacing;            /* POV photons spacing (0: none) */
 	long count;                /* POV photons count (0: none) */
 	int max_depth;             /* light ray recursion limit (0: max_trace_level) */
+	double tolerance;          /* accuracy target: relative L1 of the maps (0: none) */
 };
 
 struct global_settings {

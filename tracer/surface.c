@@ -3,21 +3,15 @@
 #include "surface.h"
 
 #include "optics.h"
-
-#define SPEC_RED 700.0   /* nm: the red end of the dispersion ratio */
-#define SPEC_BLUE 400.0  /* nm: the violet end */
-#define SPEC_MID 550.0   /* nm: where the index is ior */
+#include "spectrum.h"
 
 double surf_ior(const struct interior *in, struct band b)
 {
 	double ior = in->ior > 0 ? in->ior : 1, D = in->dispersion > 0 ? in->dispersion : 1;
 	if (D == 1)
 		return ior;
-	if (b.lambda > 0) { /* Cauchy: n = A + B/λ², n(550) = ior, n(blue)/n(red) = D */
-		double q = (D / (SPEC_RED * SPEC_RED) - 1 / (SPEC_BLUE * SPEC_BLUE)) / (1 - D);
-		double B = ior / (q + 1 / (SPEC_MID * SPEC_MID));
-		return B * q + B / (b.lambda * b.lambda);
-	}
+	if (b.lambda > 0)
+		return spec_ior(ior, D, b.lambda);
 	if (b.channel < 0)
 		return ior;
 	return ior * pow(D, (b.channel - 1) / 2.0);

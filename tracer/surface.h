@@ -32,8 +32,9 @@ struct band {
 
 /* The index of refraction of interior in for band b: ior itself for all
  * channels; with dispersion D (the ratio of blue's index to red's) red uses
- * ior/√D, green ior and blue ior·√D; a wavelength follows Cauchy's law
- * n(λ) = A + B/λ² through n(550 nm) = ior and n(SPEC_BLUE)/n(SPEC_RED) = D. */
+ * ior/√D, green ior and blue ior·√D; a wavelength follows Cauchy's law,
+ * fitted so that each channel's light refracts on average as that channel
+ * does (spec_ior, spectrum.h). */
 double surf_ior(const struct interior *in, struct band b);
 
 /* A ray meeting a surface. */

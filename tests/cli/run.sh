@@ -90,6 +90,14 @@ want_rc 64; has err '^arvo: error: .*9x'; report "-D with an invalid name: exit 
 run --max-iterations -5 --check $D/hello.scn
 want_rc 64; has err '^arvo: error: .*max-iterations'; report "--max-iterations -5: exit 64"
 
+run --passes rainbow --check $D/hello.scn
+want_rc 64; is err "arvo: error: bad value for --passes: 'rainbow' (expected rgb or spectral)
+(see 'arvo --help')"; empty out; report "--passes rainbow: exit 64, names the choices"
+
+run --check $D/hello.scn --passes
+want_rc 64; is err "arvo: error: option '--passes' needs a value
+(see 'arvo --help')"; report "--passes without a value: exit 64"
+
 # ---- missing input (66) -----------------------------------------------------
 run --check tests/cli/data/nope.scn
 want_rc 66; is err "arvo: error: cannot open 'tests/cli/data/nope.scn': No such file or directory"; empty out
@@ -178,7 +186,11 @@ run --quiet --width 8 --height 6 -o "$tmp/probe.exr" $D/hello.scn
 if [ "$rc" -ne 0 ] || [ ! -s "$tmp/probe.exr" ]; then
 	for c in "-o out.exr writes the image" "-o out.png writes a PNG" "+Oout.png (POV-Ray switch)" \
 		"default output: the scene name with .exr" "output in a missing directory: exit 73/74, no file" \
-		"a failed render leaves no output file" "an unbounded mirror under a parallel light warns where it is"; do
+		"a failed render leaves no output file" "an unbounded mirror under a parallel light warns where it is" \
+		"passes spectral in the scene renders without a warning" "--passes spectral renders without a warning" \
+		"--passes rgb overrides a scene's passes spectral (three channel passes)" \
+		"--passes spectral overrides the scene's rgb (one spectral pass)" \
+		"--passes spectral with --method shaft warns that the spectral pass deposits points"; do
 		skip "$c" "rendering not available yet"
 	done
 	why=
@@ -217,5 +229,25 @@ else
 plane { x, 3 pigment { rgb 0 } finish { reflection 1 } }
 ^"
 	report "an unbounded mirror under a parallel light warns where it is"
+
+	run --width 8 --height 6 -o "$tmp/spectral.exr" $D/spectral.scn
+	want_rc 0; [ -s "$tmp/spectral.exr" ] || why="${why:+$why; }no spectral.exr"; empty err; empty out
+	report "passes spectral in the scene renders without a warning"
+
+	run --passes spectral --rays 3000 --width 8 --height 6 -o "$tmp/prism.exr" tests/accuracy/prism.scn
+	want_rc 0; [ -s "$tmp/prism.exr" ] || why="${why:+$why; }no prism.exr"; empty err; empty out
+	report "--passes spectral renders without a warning"
+
+	run --quiet --stats --passes rgb --width 8 --height 6 -o "$tmp/rgb.exr" $D/spectral.scn
+	want_rc 0; has err '^arvo: light pass .*, 3 maps,'
+	report "--passes rgb overrides a scene's passes spectral (three channel passes)"
+
+	run --quiet --stats --passes spectral --rays 3000 --width 8 --height 6 -o "$tmp/sp.exr" tests/accuracy/prism.scn
+	want_rc 0; has err '^arvo: light pass .*, 1 maps,'
+	report "--passes spectral overrides the scene's rgb (one spectral pass)"
+
+	run --passes spectral --method shaft --rays 3000 --width 8 --height 6 -o "$tmp/sh.exr" tests/accuracy/prism.scn
+	want_rc 0; is err "arvo: warning: passes spectral: light rays of different wavelengths part ways, so the dispersive light pass deposits points, not shafts"
+	report "--passes spectral with --method shaft warns that the spectral pass deposits points"
 fi
 exit 0

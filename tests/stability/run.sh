@@ -172,6 +172,7 @@ done
 for c in grazing prism light_in_glass trapped; do
 	case_checks $c $T/$c.scn $R
 done
+case_checks prism_spectral $T/prism.scn $R --passes spectral
 m=$(chmax light_in_glass direct.R,direct.G,direct.B)
 is_zero "$m" || fail "direct layer max '$m', expected 0"
 m=$(chmax light_in_glass caustic.R,caustic.G,caustic.B)
@@ -239,10 +240,14 @@ set -- $peak
 awk -v m="${3:-nan}" 'BEGIN { exit !(m > 100 && m < 1e6) }' || fail "peak caustic ${3:-?}, expected a finite peak > 100"
 report "focus: the brightest caustic pixel is the focus, and it is finite"
 SIZE="--width 32 --height 24"
-case_checks sparse $T/sparse.scn --rays 10
+case_checks sparse $T/sparse.scn --rays 10 --method point
 rays=$(sed -n 's/^arvo: light pass .*(\([0-9]*\) light rays.*/\1/p' "$tmp/sparse.err")
 [ -n "$rays" ] && [ "$rays" -ge 1 ] && [ "$rays" -le 10 ] || fail "light pass shot '${rays:-?}' rays, expected 1 to 10"
 report "sparse: --rays 10 shoots at most 10 light rays"
+case_checks sparse_shaft $T/sparse.scn --rays 10 --method shaft
+rays=$(sed -n 's/^arvo: light pass .*(\([0-9]*\) light rays.*/\1/p' "$tmp/sparse_shaft.err")
+[ -n "$rays" ] && [ "$rays" -ge 1 ] && [ "$rays" -le 200 ] || fail "light pass traced '${rays:-?}' rays, expected 1 to 200"
+report "sparse shafts: --rays 10 traces a 2x2 grid of shafts and their splits (at most 200 rays)"
 
 # ---- invalid scenes: located error, exit 65, no image -------------------------------
 # invalid NAME LINE COL MESSAGE
