@@ -10,14 +10,8 @@
  *                      of B and C hold only twice-transmitted light)
  *     --keep-isolated  keep isolated samples (the renderer discards them)
  *     --tolerance T    the light pass's own accuracy target T (lp_opts
- *                      .tolerance: it shoots rounds of more rays until its
- *                      error estimate is at most T; RAYS is then unused)
- *     --has-tolerance  exit 0 when --tolerance is available, else 3
- *
- * TOLERANCE: lp_opts.tolerance is being built on another branch. This file
- * uses it only when compiled with -DARVO_LP_TOLERANCE (run.sh adds it when
- * tracer/lightpass.h declares the field); without it --tolerance exits 3
- * and run.sh skips the series.
+ *                      .tolerance, arvo --tolerance: rounds of 4x more rays
+ *                      until its error estimate is at most T; RAYS unused)
  *
  * Runs lp_run once with the renderer's settings (render.c: min_weight 1e-4,
  * the isolated-sample rule, max_depth 5, which these scenes never reach) and
@@ -98,7 +92,7 @@ static double now(void)
 static int usage(void)
 {
 	fprintf(stderr, "usage: accuracy SCENE REF point|shaft RAYS THREADS [-D NAME=VALUE]... "
-	                "[--all-paths] [--keep-isolated] [--tolerance T] | accuracy --has-tolerance\n");
+	                "[--all-paths] [--keep-isolated] [--tolerance T]\n");
 	return 2;
 }
 
@@ -119,12 +113,6 @@ int main(int argc, char **argv)
 			keep_isolated = true;
 		else if (!strcmp(argv[i], "--tolerance") && i + 1 < argc)
 			tolerance = strtod(argv[++i], NULL);
-		else if (!strcmp(argv[i], "--has-tolerance"))
-#ifdef ARVO_LP_TOLERANCE
-			return 0;
-#else
-			return 3;
-#endif
 		else if (argv[i][0] == '-' && argv[i][1])
 			return usage();
 		else if (npos < 5)
@@ -140,12 +128,6 @@ int main(int argc, char **argv)
 	bool shafts = !strcmp(method, "shaft");
 	if ((!shafts && strcmp(method, "point")) || rays <= 0 || threads <= 0)
 		return usage();
-#ifndef ARVO_LP_TOLERANCE
-	if (tolerance > 0) {
-		fprintf(stderr, "accuracy: built without the light pass's tolerance (-DARVO_LP_TOLERANCE)\n");
-		return 3;
-	}
-#endif
 
 	struct ref R;
 	if (ref_load(refspec, &R))
@@ -164,10 +146,7 @@ int main(int argc, char **argv)
 	memset(&mc, 0, sizeof mc);
 	struct lp_opts o = {.rays = rays, .max_depth = 5, .min_weight = 1e-4, .threads = threads,
 	                    .discard_isolated = !keep_isolated, .channel = -1, .transmit_only = !all_paths,
-	                    .shafts = shafts};
-#ifdef ARVO_LP_TOLERANCE
-	o.tolerance = tolerance;
-#endif
+	                    .shafts = shafts, .tolerance = tolerance};
 	struct lp_stats st;
 	memset(&st, 0, sizeof st);
 
@@ -204,10 +183,8 @@ int main(int argc, char **argv)
 	       "l1_noise=%.6f flux_ratio=%.6f map_bytes=%zu cell=%.6g levels=%d",
 	       method, rays, threads, t, st.rays, st.segments, ref_l1(&R, look, 1), ref_l1(&R, nodes, 1),
 	       ref_l1_noise(&R, w), got / tot, st.map_bytes, S.cell, levels);
-#ifdef ARVO_LP_TOLERANCE
 	if (tolerance > 0)
 		printf(" tol_estimate=%.6f tol_rounds=%d tol_rays=%ld", st.tol_estimate, st.tol_rounds, st.tol_rays);
-#endif
 	printf("\n");
 
 	free(look);

@@ -24,8 +24,16 @@
 #                             costs at fixed cells
 #   point-auto                point deposits, no illum_map (automatic cell)
 #   shaft-auto  shaft-0.01    light shafts, automatic / fixed finest cell
-#   tol-T                     the light pass's own accuracy target T (its
-#                             --tolerance), when the build has it (see below)
+#   tol-0.01                  the light pass's own accuracy target T (arvo
+#                             --tolerance T: rounds of 4x more rays until its
+#                             error estimate is at most T), shafts, the
+#                             scene's cell 0.01, T in $TOLERANCES (budget
+#                             column: T); the ladder stops after a target
+#                             that took over $TOL_MAXT s
+#   tol-auto                  the same without illum_map, for T in $TOL_AUTO
+#                             (none by default: the automatic cell refines
+#                             with every round, so the estimate falls slowly;
+#                             B at 0.005 took minutes and 2.4 GB of maps)
 # each at the ray budgets $POINT_BUDGETS / $SHAFT_BUDGETS / $KEPT_BUDGETS (a
 # ladder stops before a rung predicted to take more than $MAXT seconds a run,
 # so a loaded machine drops the top rungs rather than run for an hour).
@@ -68,10 +76,9 @@ THREADS=${THREADS:-2} RUNS=${RUNS:-3} MAXT=${MAXT:-6} POV_MAXT=${POV_MAXT:-15}
 SCENES=${SCENES:-A B C}
 POINT_BUDGETS=${POINT_BUDGETS:-10000 30000 100000 300000 1000000 3000000 10000000}
 SHAFT_BUDGETS=${SHAFT_BUDGETS:-10000 30000 100000 300000 1000000 3000000}
-KEPT_BUDGETS=${KEPT_BUDGETS:-10000 30000 100000 300000 1000000 3000000}
+KEPT_BUDGETS=${KEPT_BUDGETS:-10000 30000 100000 300000 1000000}
 POV_COUNTS=${POV_COUNTS:-100000 300000 1000000 3000000 10000000 30000000}
-TOLERANCES=${TOLERANCES:-0.02 0.01 0.005 0.002}
-TOL_METHOD=${TOL_METHOD:-shaft} TOL_CAP=${TOL_CAP:-30000000}
+TOLERANCES=${TOLERANCES:-0.02 0.01 0.005 0.002} TOL_MAXT=${TOL_MAXT:-10} TOL_AUTO=${TOL_AUTO:-}
 TARGETS=${TARGETS:-0.02 0.01 0.005 0.001}
 mkdir -p "$res" "$docs"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-bench-accuracy.XXXXXX")
@@ -110,21 +117,9 @@ WARN="-Wall -Wextra -Wpedantic -Wshadow -Wundef -Wpointer-arith -Wcast-align -Ww
  -Wmissing-prototypes -Wstrict-prototypes -Wmissing-declarations -Wformat=2 -Wvla -Wold-style-definition"
 PKG_CFLAGS=$(pkg-config --cflags OpenEXR OpenColorIO libpng)
 PKG_LIBS=$(pkg-config --libs OpenEXR OpenColorIO libpng)
-# TOLERANCE: accuracy.c uses lp_opts.tolerance (being built on another
-# branch) when tracer/lightpass.h declares it; should that not compile, the
-# series is skipped with a note.
-TOLDEF=
-grep -q 'double tolerance;' tracer/lightpass.h && TOLDEF=-DARVO_LP_TOLERANCE
 # shellcheck disable=SC2086
-cc -std=c11 -O2 $WARN -pthread -D_DEFAULT_SOURCE $TOLDEF $PKG_CFLAGS -o "$tmp/accuracy" \
-	"$here/accuracy.c" "$LIBARVO" $PKG_LIBS -lstdc++ -lm -pthread 2> "$tmp/cc.err" || {
-	[ -n "$TOLDEF" ] || { cat "$tmp/cc.err" >&2; exit 1; }
-	echo "bench/accuracy: accuracy.c does not build with the tolerance field; the tolerance series is skipped:" >&2
-	head -5 "$tmp/cc.err" >&2
-	# shellcheck disable=SC2086
-	cc -std=c11 -O2 $WARN -pthread -D_DEFAULT_SOURCE $PKG_CFLAGS -o "$tmp/accuracy" \
-		"$here/accuracy.c" "$LIBARVO" $PKG_LIBS -lstdc++ -lm -pthread
-}
+cc -std=c11 -O2 $WARN -pthread -D_DEFAULT_SOURCE $PKG_CFLAGS -o "$tmp/accuracy" \
+	"$here/accuracy.c" "$LIBARVO" $PKG_LIBS -lstdc++ -lm -pthread
 # shellcheck disable=SC2086
 cc -std=c11 -O2 $WARN -D_DEFAULT_SOURCE -o "$tmp/povbin" "$here/povbin.c" -lm
 
@@ -172,7 +167,7 @@ ladder() {
 		arvo_point "$sc" "$series" "$meth" "$file" "$n" "$n" "$@" || break
 		n_last=$n
 	done
-	t= n_last=
+	t='' n_last=''
 }
 
 # the scene with its floor's `illum_map { cell 0.01 }` replaced by $2 (empty: none)
@@ -200,8 +195,6 @@ pov() {
 	awk '/photons shot/ { print $NF; exit }' "$tmp/p.log" > "$tmp/p.shot"
 }
 
-have_tol=0
-"$tmp/accuracy" --has-tolerance 2> /dev/null && have_tol=1
 have_pov=0
 command -v "$POVRAY" > /dev/null 2>&1 && command -v oiiotool > /dev/null 2>&1 && have_pov=1
 [ $have_pov = 1 ] || echo "bench/accuracy: $POVRAY or oiiotool not found: arvo only" >&2
@@ -218,23 +211,22 @@ for sc in $SCENES; do
 	ladder "$sc" point-auto point "$tmp/$sc-auto.scn" "$POINT_BUDGETS"
 	ladder "$sc" shaft-auto shaft "$tmp/$sc-auto.scn" "$SHAFT_BUDGETS"
 	ladder "$sc" shaft-0.01 shaft "$tmp/$sc-0.01.scn" "$SHAFT_BUDGETS"
-	# TOLERANCE: the light pass's own accuracy target (lp_opts.tolerance,
-	# being built on another branch; see the build above). Budget column:
-	# the target; the pass picks its rays (TOL_CAP is passed as RAYS).
-	if [ $have_tol = 1 ]; then
-		for T in $TOLERANCES; do
-			arvo_point "$sc" "tol-$TOL_METHOD" "$TOL_METHOD" "$tmp/$sc-auto.scn" "$TOL_CAP" "$T" --tolerance "$T" || :
-		done
-	else
-		echo "  (tolerance series: not in this build of the light pass, skipped)"
-	fi
+	# the light pass's own accuracy target, loosest first
+	for T in $TOLERANCES; do
+		arvo_point "$sc" tol-0.01 shaft "$tmp/$sc-0.01.scn" 1 "$T" --tolerance "$T" || break
+		awk -v t="$t" -v m="$TOL_MAXT" 'BEGIN { exit !(t <= m) }' || {
+			echo "  (tol-0.01: ${t} s > TOL_MAXT=$TOL_MAXT s: ladder stops)"; break; }
+	done
+	for T in $TOL_AUTO; do
+		arvo_point "$sc" tol-auto shaft "$tmp/$sc-auto.scn" 1 "$T" --tolerance "$T" || break
+	done
 
 	[ $have_pov = 1 ] || continue
 	pov 0
 	base=$(median < "$tmp/p.walls")
 	echo "  POV-Ray without photons: $base s wall (subtracted)"
 	echo "$base" > "$tmp/base-$sc"
-	c_last= t_pov=
+	c_last='' t_pov=''
 	for c in $POV_COUNTS; do
 		if [ -n "$c_last" ] && ! awk -v t="$t_pov" -v a="$c_last" -v b="$c" -v m="$POV_MAXT" 'BEGIN { exit !(t * b / a <= m) }'; then
 			echo "  (POV-Ray: count $c would take about $(awk -v t="$t_pov" -v a="$c_last" -v b="$c" 'BEGIN { printf "%.0f", t * b / a }') s > POV_MAXT=$POV_MAXT s: ladder stops)"
@@ -265,11 +257,14 @@ fi
 # L1 <= T: the time interpolated log-log between the rung before (L1 > T)
 # and the first rung at or below T, and that rung's budget; a ladder whose
 # first rung is already below T gives that rung's time (an upper bound, "<").
+# Tolerance series are not interpolated (a target between two of theirs
+# costs a whole round of 4x the rays): the first rung that reached T.
 reach() {
 	awk -F, -v sc="$1" -v m="$2" -v T="$3" 'NR > 1 && $1 == sc && $2 == m { n++; b[n] = $3; t[n] = $4; l[n] = $5 }
 	END {
 		for (i = 1; i <= n; i++) if (l[i] <= T) break
 		if (i > n) exit
+		if (m ~ /^tol-/) { printf "%s %s\n", t[i], b[i]; exit }
 		if (i == 1 || l[i] <= 0) { printf "%s %s <\n", t[i], b[i]; exit }
 		f = (log(l[i - 1]) - log(T)) / (log(l[i - 1]) - log(l[i]))
 		printf "%.4g %s\n", exp(log(t[i - 1]) + f * (log(t[i]) - log(t[i - 1]))), b[i]
@@ -319,8 +314,11 @@ methods_of() { awk -F, -v sc="$1" 'NR > 1 && $1 == sc && !s[$2]++ { print $2 }' 
 		done
 		echo
 		echo "  (POV-Ray's time over the fastest arvo method's, which is named)"
+		awk -F, -v sc="$sc" 'NR > 1 && $1 == sc && $2 ~ /^tol-/ { n++; m[n] = $2; T[n] = $3; t[n] = $4; l[n] = $5; e[n] = $15; r[n] = $10 }
+		END { if (n) print "the accuracy target (--tolerance T): asked, measured L1, the pass'"'"'s own estimate, time, rays:"
+			for (i = 1; i <= n; i++) printf "  %-16s T %-6s L1 %-9.2g estimate %-9.2g %8.3g s  %d rays (L1/T %.2f)\n", m[i], T[i], l[i], e[i], t[i], r[i], l[i] / T[i] }' "$csv"
 		echo "where each method's error stops falling (L1 along its ladder, budgets in order):"
-		for m in $(methods_of "$sc"); do
+		for m in $(methods_of "$sc" | grep -v '^tol-'); do
 			awk -F, -v sc="$sc" -v m="$m" 'NR > 1 && $1 == sc && $2 == m { n++; b[n] = $3; l[n] = $5 }
 			END {
 				lo = 1; for (i = 2; i <= n; i++) if (l[i] < l[lo]) lo = i
@@ -355,6 +353,8 @@ if command -v gnuplot > /dev/null 2>&1; then
 			point-auto) st="lc rgb '#2ca02c' pt 13" t=$m ;;
 			shaft-auto) st="lc rgb '#d62728' pt 11" t=$m ;;
 			shaft-0.01) st="lc rgb '#ff7f0e' pt 6" t=$m ;;
+			tol-0.01) st="lc rgb '#9467bd' lw 2 pt 3" t="tolerance T (shaft, cell 0.01)" ;;
+			tol-auto) st="lc rgb '#8c564b' lw 2 pt 2" t="tolerance T (shaft, automatic)" ;;
 			*) st="lc rgb '#9467bd' pt 3" t=$m ;;
 			esac
 			plot="$plot '$tmp/$sc-$i.dat' using 1:2 with linespoints $st ps 0.8 title '$t',"
