@@ -28,8 +28,8 @@
 #                             --tolerance T: rounds of 4x more rays until its
 #                             error estimate is at most T), shafts, the
 #                             scene's cell 0.01, T in $TOLERANCES (budget
-#                             column: T); the ladder stops after a target
-#                             that took over $TOL_MAXT s
+#                             column: T); the ladder stops before a target
+#                             predicted to take over $TOL_MAXT s
 #   tol-auto                  the same without illum_map, for T in $TOL_AUTO
 #                             (none by default: the automatic cell refines
 #                             with every round, so the estimate falls slowly;
@@ -78,7 +78,7 @@ POINT_BUDGETS=${POINT_BUDGETS:-10000 30000 100000 300000 1000000 3000000 1000000
 SHAFT_BUDGETS=${SHAFT_BUDGETS:-10000 30000 100000 300000 1000000 3000000}
 KEPT_BUDGETS=${KEPT_BUDGETS:-10000 30000 100000 300000 1000000}
 POV_COUNTS=${POV_COUNTS:-100000 300000 1000000 3000000 10000000 30000000}
-TOLERANCES=${TOLERANCES:-0.02 0.01 0.005 0.002} TOL_MAXT=${TOL_MAXT:-10} TOL_AUTO=${TOL_AUTO:-}
+TOLERANCES=${TOLERANCES:-0.02 0.01 0.005 0.002} TOL_MAXT=${TOL_MAXT:-12} TOL_AUTO=${TOL_AUTO:-}
 TARGETS=${TARGETS:-0.02 0.01 0.005 0.001}
 mkdir -p "$res" "$docs"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-bench-accuracy.XXXXXX")
@@ -124,7 +124,7 @@ cc -std=c11 -O2 $WARN -pthread -D_DEFAULT_SOURCE $PKG_CFLAGS -o "$tmp/accuracy" 
 cc -std=c11 -O2 $WARN -D_DEFAULT_SOURCE -o "$tmp/povbin" "$here/povbin.c" -lm
 
 echo "$HEADER" > "$tmp/c.csv"
-t_start=$(now)
+t_start=$(now) load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 
 # arvo_point SCENE SERIES METHOD SCN RAYS LABEL [OPTION...]: RUNS light
 # passes, one CSV row (LABEL in the budget column); sets t, the median time.
@@ -212,10 +212,19 @@ for sc in $SCENES; do
 	ladder "$sc" shaft-auto shaft "$tmp/$sc-auto.scn" "$SHAFT_BUDGETS"
 	ladder "$sc" shaft-0.01 shaft "$tmp/$sc-0.01.scn" "$SHAFT_BUDGETS"
 	# the light pass's own accuracy target, loosest first
+	# (a target the last run's own estimate already meets stops at the same
+	# round: same time; any other needs one more round at least: 4x)
+	est=''
 	for T in $TOLERANCES; do
+		if [ -n "$est" ]; then
+			p=$(awk -v t="$t" -v e="$est" -v T="$T" 'BEGIN { print (e <= T ? t : 4 * t) }')
+			if ! awk -v p="$p" -v m="$TOL_MAXT" 'BEGIN { exit !(p <= m) }'; then
+				echo "  (tol-0.01: tolerance $T would take about $p s > TOL_MAXT=$TOL_MAXT s: ladder stops)"
+				break
+			fi
+		fi
 		arvo_point "$sc" tol-0.01 shaft "$tmp/$sc-0.01.scn" 1 "$T" --tolerance "$T" || break
-		awk -v t="$t" -v m="$TOL_MAXT" 'BEGIN { exit !(t <= m) }' || {
-			echo "  (tol-0.01: ${t} s > TOL_MAXT=$TOL_MAXT s: ladder stops)"; break; }
+		est=$(tail -1 "$tmp/c.csv" | cut -d, -f15)
 	done
 	for T in $TOL_AUTO; do
 		arvo_point "$sc" tol-auto shaft "$tmp/$sc-auto.scn" 1 "$T" --tolerance "$T" || break
@@ -246,7 +255,7 @@ cp "$tmp/c.csv" "$csv"
 total=$(awk -v a="$t_start" -v b="$(now)" 'BEGIN { printf "%.0f", b - a }')
 bases=$(for sc in $SCENES; do [ -f "$tmp/base-$sc" ] && printf ' %s %ss' "$sc" "$(cat "$tmp/base-$sc")"; done; :)
 {
-	echo "run: $(date -u +%Y-%m-%d), $total s in all; cpu: $(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo), $(nproc) online; load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
+	echo "run: $(date -u +%Y-%m-%d), $total s in all; cpu: $(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo), $(nproc) online; load (1, 5, 15 min) at the start: $load_start, at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
 	echo "POV-Ray without photons (subtracted):${bases:- -}"
 } > "$res/accuracy.meta"
 fi
@@ -338,7 +347,9 @@ cat "$res/accuracy.txt"
 
 # ---- chart -------------------------------------------------------------------------
 if command -v gnuplot > /dev/null 2>&1; then
-	plots=
+	plots='' keyplot='' keyseen=''
+	n=$(echo "$SCENES" | wc -w)
+	k=0
 	for sc in $SCENES; do
 		i=0
 		plot="plot"
@@ -353,38 +364,59 @@ if command -v gnuplot > /dev/null 2>&1; then
 			point-auto) st="lc rgb '#2ca02c' pt 13" t=$m ;;
 			shaft-auto) st="lc rgb '#d62728' pt 11" t=$m ;;
 			shaft-0.01) st="lc rgb '#ff7f0e' pt 6" t=$m ;;
-			tol-0.01) st="lc rgb '#9467bd' lw 2 pt 3" t="tolerance T (shaft, cell 0.01)" ;;
-			tol-auto) st="lc rgb '#8c564b' lw 2 pt 2" t="tolerance T (shaft, automatic)" ;;
+			tol-0.01) st="lc rgb '#9467bd' lw 2 pt 3" t="--tolerance T (shaft, cell 0.01)" ;;
+			tol-auto) st="lc rgb '#8c564b' lw 2 pt 2" t="--tolerance T (shaft, automatic)" ;;
 			*) st="lc rgb '#9467bd' pt 3" t=$m ;;
 			esac
-			plot="$plot '$tmp/$sc-$i.dat' using 1:2 with linespoints $st ps 0.8 title '$t',"
+			plot="$plot '$tmp/$sc-$i.dat' using 1:2 with linespoints $st ps 0.8 notitle,"
+			# the key (a panel of its own under the others): each method once
+			case " $keyseen " in *" $m "*) ;; *)
+				keyseen="${keyseen:-} $m"
+				keyplot="${keyplot:+$keyplot,} 2 with linespoints $st ps 0.8 title '$t'" ;;
+			esac
 		done
 		case $sc in
 		A) name="A: mirror" ;;
 		B) name="B: glass sphere" ;;
 		C) name="C: glass slab" ;;
+		*) name=$sc ;;
 		esac
 		plots="$plots
+set origin $(awk -v k="$k" -v n="$n" 'BEGIN { print k / n }'),0.16
 set title '$name'
 $plot 0.01 with lines dt 2 lc rgb 'gray' notitle"
+		k=$((k + 1))
 	done
-	n=$(echo "$SCENES" | wc -w)
-	for term in "svg size 1500,520 font 'sans,11'" "pngcairo size 1500,520 font 'sans,10'"; do
+	for term in "svg size 1500,600 font 'sans,11'" "pngcairo size 1500,600 font 'sans,10'"; do
 		case $term in svg*) out=$docs/accuracy.svg ;; *) out=$docs/accuracy.png ;; esac
 		gnuplot <<GP
 set terminal $term
 set output "$out"
-set multiplot layout 1,$n title "Caustic error against time: arvo light-pass methods vs POV-Ray 3.7 photons ($THREADS threads, median of $RUNS; make bench-accuracy)"
+set multiplot title "Caustic error against time: arvo light-pass methods vs POV-Ray 3.7 photons ($THREADS threads, median of $RUNS; make bench-accuracy)"
+set size $(awk -v n="$n" 'BEGIN { print 1 / n }'),0.78
 set logscale xy
 set xlabel "time (s): arvo lp\\\\_run; POV-Ray wall minus no-photon wall"
-set ylabel "flux-weighted relative L1"
+set ylabel "flux-weighted relative L1 (dashed: 1 %)"
 set format x "%g"
 set format y "%g"
 set grid
-set key top right font ",9"
+unset key
 set xrange [1e-3:100]
 set yrange [5e-5:2]
 $plots
+set origin 0,0
+set size 1,0.15
+unset logscale
+unset border
+unset tics
+unset grid
+unset title
+unset xlabel
+unset ylabel
+set xrange [0:1]
+set yrange [0:1]
+set key center center horizontal maxrows 2 width 2
+plot $keyplot
 unset multiplot
 GP
 	done
