@@ -15,7 +15,7 @@
 #include "../common/diag.h"
 #include "bvh.h"
 #include "eyepass.h"
-#include "lightpass.h"
+#include "light/lightpass.h"
 #include "material.h"
 #include "output/exrout.h"
 

@@ -18,11 +18,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "optics.h"
-#include "sampler.h"
-#include "shape.h"
-#include "spectrum.h"
-#include "surface.h"
+#include "../optics.h"
+#include "../sampler.h"
+#include "../shape.h"
+#include "../spectrum.h"
+#include "../surface.h"
 
 #define CHUNK 4096 /* rays per work item */
 

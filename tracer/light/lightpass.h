@@ -9,10 +9,10 @@
 
 #include <stdbool.h>
 
-#include "bvh.h"
+#include "../bvh.h"
 #include "illum.h"
-#include "material.h"
-#include "scene.h"
+#include "../material.h"
+#include "../scene.h"
 
 struct lp_opts {
 	long rays;            /* light-ray budget per light (> 0) */
