@@ -887,19 +887,29 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 /* The finest grid for a surface reached by shafts: its illum_map { }, else
  * nodes half as far apart as the median footprint is wide (coarser levels
  * take the wider footprints; finer cells would resolve nothing a footprint
- * spreads evenly and alias in the eye pass's point reads), or, when
+ * spreads evenly), but no closer than the image's pixels are there (opt:
+ * finer nodes alias in the eye pass's point reads), or, when
  * most of its deposits are points (folds, silhouettes), their rule
  * (choose_spec). */
 static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
-                                    long k)
+                                    long k, const struct lp_opts *opt)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
-	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1));
+	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
 	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
 	double cell = np ? 0.5 * sz[np / 2] : 0;
+	/* no finer than a pixel of the image where the light lands (the eye
+	 * pass reads one point per sample: a finer map only adds noise) */
+	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
+		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i].p, opt->eye)) * opt->pixel_angle;
+	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
+		qsort(sz, (size_t)np, sizeof *sz, cmp_double);
+		px = sz[np / 2];
+	}
+	cell = fmax(cell, px);
 	free(sz);
 	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
 		return choose_spec(o, pts, k, 0);
@@ -1061,7 +1071,7 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	for (int k = 0; k < n; k++) {
 		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
 		struct illum_map *lv[LP_LEVELS] = {NULL};
-		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr)
+		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr, o)
 		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
 		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
 		lv[0] = illum_new(objs[k], &spec);
