@@ -709,7 +709,8 @@ static void run_shafts(struct worker *w, const struct item *it)
 				memcpy(now[q], acc[q], sizeof acc[q]);
 			/* keep only row r's landings, at the front */
 			long from = hi[0].first, cnt = w->lands.n - from;
-			memmove(w->lands.l, w->lands.l + from, sizeof *w->lands.l * (size_t)cnt);
+			if (cnt > 0)
+				memmove(w->lands.l, w->lands.l + from, sizeof *w->lands.l * (size_t)cnt);
 			w->lands.n = cnt;
 			for (long j = 0; j < side; j++)
 				hi[j].first -= from;
