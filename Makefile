@@ -53,7 +53,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check test unit deps install demo bench lint
+.PHONY: all clean check test unit deps install demo bench bench-accuracy lint
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -111,6 +111,11 @@ demo: deps
 
 bench: deps all
 	sh bench/run.sh
+
+# caustic error against time: arvo's light-pass methods and POV-Ray's photons
+# on the analytic references A, B, C (bench/results/accuracy.*, docs/accuracy.*)
+bench-accuracy: deps all
+	sh bench/accuracy/run.sh
 
 lint:
 	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5
