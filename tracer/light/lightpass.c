@@ -886,9 +886,9 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 }
 
 /* The finest grid for a surface reached by shafts: its illum_map { }, else
- * nodes half as far apart as the median footprint is wide (coarser levels
- * take the wider footprints; finer cells would resolve nothing a footprint
- * spreads evenly), but no closer than the image's pixels are there (opt:
+ * nodes half as far apart as the narrowest tenth of the footprints are wide
+ * (the densest light; coarser levels take the wider footprints), but no
+ * closer than the image's pixels are there (opt:
  * finer nodes alias in the eye pass's point reads), or, when
  * most of its deposits are points (folds, silhouettes), their rule
  * (choose_spec). */
@@ -901,7 +901,7 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
 	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-	double cell = np ? 0.5 * sz[np / 2] : 0;
+	double cell = np ? 0.5 * sz[np / 10] : 0;
 	/* no finer than a pixel of the image where the light lands (the eye
 	 * pass reads one point per sample: a finer map only adds noise) */
 	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
