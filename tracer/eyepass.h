@@ -23,7 +23,7 @@
 #include "bvh.h"
 #include "camera.h"
 #include "material.h"
-#include "lightpass.h"
+#include "light/lightpass.h"
 #include "scene.h"
 
 /* What every render thread shares, read-only. */

@@ -15,7 +15,7 @@
 #include "../common/diag.h"
 #include "bvh.h"
 #include "eyepass.h"
-#include "lightpass.h"
+#include "light/lightpass.h"
 #include "material.h"
 #include "output/exrout.h"
 
@@ -157,6 +157,14 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
+	/* the image's pixel, so the maps need not be finer than it */
+	struct cam cm;
+	cam_setup(&cm, &s->camera);
+	lo.eye = cm.loc;
+	if (cm.kind == CAM_ORTHOGRAPHIC)
+		lo.pixel_width = v_len(cm.right) / (o->width > 0 ? o->width : 1);
+	else
+		lo.pixel_angle = 2 * atan(0.5 * v_len(cm.right) / v_len(cm.dir)) / (o->width > 0 ? o->width : 1);
 	bool dispersive = lp_dispersive(s);
 	lo.spectral = dispersive && passes_of(s, o) == PASSES_SPECTRAL;
 	int passes = dispersive && !lo.spectral ? 3 : 1, n = 0;

@@ -37,7 +37,7 @@
 #include "../../common/srcloc.h"
 #include "../../eval/eval.h"
 #include "../../tracer/bvh.h"
-#include "../../tracer/lightpass.h"
+#include "../../tracer/light/lightpass.h"
 #include "../../tracer/shape.h"
 
 enum { MAXBINS = 400 };

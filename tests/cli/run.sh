@@ -97,6 +97,12 @@ want_rc 64; is err "arvo: error: bad value for --passes: 'rainbow' (expected rgb
 run --check $D/hello.scn --passes
 want_rc 64; is err "arvo: error: option '--passes' needs a value
 (see 'arvo --help')"; report "--passes without a value: exit 64"
+run --method beam --check $D/hello.scn
+want_rc 64; is err "arvo: error: bad value for --method: 'beam' (expected point or shaft)
+(see 'arvo --help')"; empty out; report "--method beam: exit 64, names the choices"
+run --tolerance 0 --check $D/hello.scn
+want_rc 64; is err "arvo: error: bad value for --tolerance: '0' (expected 1e-5 to 0.5)
+(see 'arvo --help')"; empty out; report "--tolerance 0: exit 64, names the range"
 
 # ---- missing input (66) -----------------------------------------------------
 run --check tests/cli/data/nope.scn

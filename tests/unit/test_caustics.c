@@ -11,7 +11,7 @@
 #include "../../common/diag.h"
 #include "../../eval/eval.h"
 #include "../../tracer/bvh.h"
-#include "../../tracer/lightpass.h"
+#include "../../tracer/light/lightpass.h"
 #include "../../tracer/render.h"
 #include "../../tracer/shape.h"
 #include "test.h"

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* test_footprint.c: polygon (light-shaft footprint) deposits into
- * illumination maps (illum_deposit_poly, tracer/illum.h): exact conservation
+ * illumination maps (illum_deposit_poly, tracer/light/illum.h): exact conservation
  * on every kind of map, exact shares for cell-aligned and hand-integrated
  * polygons, agreement with point deposits in the small limit, a uniform
  * field from a tiling, seams, clamped edges, folds (bow-ties), huge
@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "../../tracer/illum.h"
-#include "../../tracer/polygon.h"
+#include "../../tracer/light/illum.h"
+#include "../../tracer/light/polygon.h"
 #include "geo_rand.h"
 #include "test.h"
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_illum.c: illumination maps (tracer/illum.h): exact energy
+/* test_illum.c: illumination maps (tracer/light/illum.h): exact energy
  * conservation on every primitive, the bilinear split, unbiased irradiance
  * for uniform flux (poles, apex, disc centre included), sparse tiles on the
  * unbounded plane, order-independent merges, energies far above 2^32 W,
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "../../tracer/illum.h"
+#include "../../tracer/light/illum.h"
 #include "../../tracer/output/exrout.h"
 #include "geo_rand.h"
 #include "test.h"

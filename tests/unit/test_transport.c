@@ -13,7 +13,7 @@
 #include "../../common/diag.h"
 #include "../../eval/eval.h"
 #include "../../tracer/bvh.h"
-#include "../../tracer/lightpass.h"
+#include "../../tracer/light/lightpass.h"
 #include "../../tracer/render.h"
 #include "../../tracer/spectrum.h"
 #include "../../tracer/surface.h"

@@ -49,7 +49,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "scene.h"
+#include "../scene.h"
 
 #define ILLUM_TILE 2            /* nodes per tile side: small, since most tiles of a
                                    sparse caustic hold one ray's splat */

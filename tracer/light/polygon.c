@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../common/arena.h"
+#include "../../common/arena.h"
 
 double poly_area(const struct pt2 *p, int n)
 {

@@ -18,11 +18,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "optics.h"
-#include "sampler.h"
-#include "shape.h"
-#include "spectrum.h"
-#include "surface.h"
+#include "../optics.h"
+#include "../sampler.h"
+#include "../shape.h"
+#include "../spectrum.h"
+#include "../surface.h"
 
 #define CHUNK 4096 /* rays per work item */
 
@@ -647,10 +647,11 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 		}
 }
 
-/* Shoots the shafts of rows [first, first+count) of a target's grid. Each
- * row traces its two rows of corner rays; a corner row inside the grid is
- * traced by both rows that share it, so each trace counts half toward the
- * energy balance (which the corner rays estimate, as trapezoids). */
+/* Shoots the shafts of rows [first, first+count) of a target's grid,
+ * tracing its corner rows first .. first+count once each. The energy
+ * balance is estimated from the corner rays, as trapezoids: a corner row
+ * counts half for each row of shafts it bounds, so a row on the boundary
+ * of two items (traced by both) counts once in all. */
 static void run_shafts(struct worker *w, const struct item *it)
 {
 	const struct job *J = w->job;
@@ -669,45 +670,56 @@ static void run_shafts(struct worker *w, const struct item *it)
 	w->reflect = l->photons_reflection;
 	w->band = J->band;
 	w->corners = true;
-	struct corner *row = mem_alloc(sizeof *row * (size_t)(2 * side));
-	for (long i = it->first; i < it->first + it->count; i++) {
-		double sx0 = (double)i / (double)side, sx1 = (double)(i + 1) / (double)side;
-		double acc[6][3];
-		memcpy(acc[0], w->emitted, sizeof acc[0]), memcpy(acc[1], w->deposited, sizeof acc[1]);
-		memcpy(acc[2], w->direct, sizeof acc[2]), memcpy(acc[3], w->absorbed, sizeof acc[3]);
-		memcpy(acc[4], w->escaped, sizeof acc[4]), memcpy(acc[5], w->cut, sizeof acc[5]);
-		w->lands.n = 0;
+	w->lands.n = 0;
+	/* rows of corner rays: lo (at sx0) and hi (at sx1); hi becomes the next
+	 * shaft row's lo */
+	struct corner *lo = mem_alloc(sizeof *lo * (size_t)side), *hi = mem_alloc(sizeof *hi * (size_t)side);
+	double *now[6] = {w->emitted, w->deposited, w->direct, w->absorbed, w->escaped, w->cut};
+	long first = it->first, last = it->first + it->count; /* corner rows first .. last */
+	for (long r = first; r <= last; r++) {
+		/* trace corner row r; it bounds (r > first) + (r < last) of this
+		 * item's shaft rows, and counts that many halves */
+		double sx = (double)r / (double)side, wr = 0.5 * ((r > first) + (r < last)), acc[6][3];
+		for (int q = 0; q < 6; q++)
+			memcpy(acc[q], now[q], sizeof acc[q]);
 		for (long j = 0; j < side; j++) {
 			double sy = (double)j / (double)side;
 			struct vec3 o, d;
-			aim(l, t, sx0, sy, &o, &d);
+			aim(l, t, sx, sy, &o, &d);
 			double k = emit_weight(l, S.tg, S.k, o, d);
-			row[j] = corner_at(w, &S, sx0, sy);
-			row[side + j] = corner_at(w, &S, sx1, sy);
-			aim(l, t, sx1, sy, &o, &d);
-			k += emit_weight(l, S.tg, S.k, o, d);
+			hi[j] = corner_at(w, &S, sx, sy);
 			for (int c = 0; c < 3; c++)
 				w->emitted[c] += S.e0[c] * k;
 		}
-		/* each trace counts half (see above) */
-		double *now[6] = {w->emitted, w->deposited, w->direct, w->absorbed, w->escaped, w->cut};
 		for (int q = 0; q < 6; q++)
 			for (int c = 0; c < 3; c++)
-				now[q][c] = acc[q][c] + 0.5 * (now[q][c] - acc[q][c]);
-		memcpy(acc[0], w->emitted, sizeof acc[0]), memcpy(acc[1], w->deposited, sizeof acc[1]);
-		memcpy(acc[2], w->direct, sizeof acc[2]), memcpy(acc[3], w->absorbed, sizeof acc[3]);
-		memcpy(acc[4], w->escaped, sizeof acc[4]), memcpy(acc[5], w->cut, sizeof acc[5]);
-		for (long j = 0; j < side; j++) {
-			long j1 = (j + 1) % side;
-			struct corner c[4] = {row[j], row[j1], row[side + j1], row[side + j]};
-			shaft(w, &S, 0, sx0, sx1, (double)j / (double)side, (double)(j + 1) / (double)side, c);
+				now[q][c] = acc[q][c] + wr * (now[q][c] - acc[q][c]);
+		if (r > first) {
+			/* the shafts between rows r-1 and r; subdivision rays only refine
+			 * where the light goes, not how much */
+			for (int q = 0; q < 6; q++)
+				memcpy(acc[q], now[q], sizeof acc[q]);
+			double sx0 = (double)(r - 1) / (double)side;
+			for (long j = 0; j < side; j++) {
+				long j1 = (j + 1) % side;
+				struct corner c[4] = {lo[j], lo[j1], hi[j1], hi[j]};
+				shaft(w, &S, 0, sx0, sx, (double)j / (double)side, (double)(j + 1) / (double)side, c);
+			}
+			for (int q = 0; q < 6; q++)
+				memcpy(now[q], acc[q], sizeof acc[q]);
+			/* keep only row r's landings, at the front */
+			long from = hi[0].first, cnt = w->lands.n - from;
+			if (cnt > 0)
+				memmove(w->lands.l, w->lands.l + from, sizeof *w->lands.l * (size_t)cnt);
+			w->lands.n = cnt;
+			for (long j = 0; j < side; j++)
+				hi[j].first -= from;
 		}
-		/* subdivision rays only refine where the light goes, not how much */
-		for (int q = 0; q < 6; q++)
-			memcpy(now[q], acc[q], sizeof acc[q]);
+		struct corner *tmp = lo;
+		lo = hi, hi = tmp;
 	}
 	w->corners = false;
-	free(row);
+	free(lo), free(hi);
 }
 
 /* Shoots the rays of one work item. */
@@ -874,21 +886,31 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 }
 
 /* The finest grid for a surface reached by shafts: its illum_map { }, else
- * nodes half as far apart as the median footprint is wide (coarser levels
- * take the wider footprints; finer cells would resolve nothing a footprint
- * spreads evenly and alias in the eye pass's point reads), or, when
+ * nodes half as far apart as the narrowest tenth of the footprints are wide
+ * (the densest light; coarser levels take the wider footprints), but no
+ * closer than the image's pixels are there (opt:
+ * finer nodes alias in the eye pass's point reads), or, when
  * most of its deposits are points (folds, silhouettes), their rule
  * (choose_spec). */
 static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
-                                    long k)
+                                    long k, const struct lp_opts *opt)
 {
 	if (o->illum.resolution > 0 || o->illum.cell > 0)
 		return o->illum;
-	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1));
+	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
 	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-	double cell = np ? 0.5 * sz[np / 2] : 0;
+	double cell = np ? 0.5 * sz[np / 10] : 0;
+	/* no finer than a pixel of the image where the light lands (the eye
+	 * pass reads one point per sample: a finer map only adds noise) */
+	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
+		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i].p, opt->eye)) * opt->pixel_angle;
+	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
+		qsort(sz, (size_t)np, sizeof *sz, cmp_double);
+		px = sz[np / 2];
+	}
+	cell = fmax(cell, px);
 	free(sz);
 	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
 		return choose_spec(o, pts, k, 0);
@@ -918,7 +940,8 @@ static int level_of(double size, double cell, int nl)
  * as needed: per level, all its footprints at once, then all its points
  * (illum_deposit_poly_all and illum_deposit_all fix the map's fixed-point
  * unit before any deposit, so the result is the same for any order and
- * thread count). A footprint over more than FOOTPRINT_MAX_CELLS of its
+ * thread count). A footprint under a quarter of a cell a side is a point
+ * deposit at its centre; one over more than FOOTPRINT_MAX_CELLS of its
  * level's cells (nl = 1: a fixed grid) gives its energy to its corners. */
 static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *p,
                            long np, const struct illum_splat *s, const double *sz, long ns, int threads)
@@ -947,6 +970,15 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 			for (int c = 1; c < pp[i].n; c++) {
 				u0 = fmin(u0, pp[i].uv[c][0]), u1 = fmax(u1, pp[i].uv[c][0]);
 				v0 = fmin(v0, pp[i].uv[c][1]), v1 = fmax(v1, pp[i].uv[c][1]);
+			}
+			if ((u1 - u0) < 0.25 * du && (v1 - v0) < 0.25 * dv) {
+				/* much smaller than a cell: its tent integrals are the tents
+				 * at its centre to second order, so a point deposit there */
+				double cu = 0, cv = 0;
+				for (int c = 0; c < pp[i].n; c++)
+					cu += pp[i].uv[c][0] / pp[i].n, cv += pp[i].uv[c][1] / pp[i].n;
+				ps[m++] = (struct illum_splat){cu, cv, {pp[i].e[0], pp[i].e[1], pp[i].e[2]}};
+				continue;
 			}
 			if (((u1 - u0) / du + 1) * ((v1 - v0) / dv + 1) <= FOOTPRINT_MAX_CELLS) {
 				pp[keep++] = pp[i];
@@ -1040,7 +1072,7 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	for (int k = 0; k < n; k++) {
 		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
 		struct illum_map *lv[LP_LEVELS] = {NULL};
-		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr)
+		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr, o)
 		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
 		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
 		lv[0] = illum_new(objs[k], &spec);
@@ -1109,11 +1141,11 @@ static long plan(struct job *J)
 		J->ntargets[li] = nt;
 		for (int k = 0; k < nt; k++) {
 			double share = (double)J->o->rays * tg[k].omega / total;
-			/* shafts: a grid cell costs about three rays (its corner rows
-			 * twice, its centre) before any subdivision */
-			tg[k].side = (long)fmax(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 3 : share) + 0.5));
+			/* shafts: a grid cell costs about two rays (a corner, its
+			 * centre) before any subdivision */
+			tg[k].side = (long)fmax(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 2 : share) + 0.5));
 			long nr = J->o->shafts ? tg[k].side : tg[k].side * tg[k].side;
-			long chunk = J->o->shafts ? (CHUNK + 2 * tg[k].side - 1) / (2 * tg[k].side) : CHUNK;
+			long chunk = J->o->shafts ? (4 * CHUNK + tg[k].side - 1) / tg[k].side : CHUNK; /* rows */
 			for (long f = 0; f < nr; f += chunk) {
 				if (nitems == capitems)
 					J->items = mem_realloc(J->items, sizeof *J->items * (size_t)(capitems = capitems ? capitems * 2 : 64));

@@ -9,10 +9,10 @@
 
 #include <stdbool.h>
 
-#include "bvh.h"
+#include "../bvh.h"
 #include "illum.h"
-#include "material.h"
-#include "scene.h"
+#include "../material.h"
+#include "../scene.h"
 
 struct lp_opts {
 	long rays;            /* light-ray budget per light (> 0) */
@@ -26,6 +26,9 @@ struct lp_opts {
 	bool aim_all;         /* debug: aim at every object, not only specular ones
 	                         (with deposit_direct: the eq. 1 consistency checks) */
 	bool shafts;          /* method shaft: light shafts spread over their footprints */
+	struct vec3 eye;      /* the camera, for the automatic finest cell of shafts: */
+	double pixel_angle;   /* a pixel's angle (perspective; 0: unknown) */
+	double pixel_width;   /* or its width (orthographic; 0: unknown) */
 	double tolerance;     /* > 0: ignore rays; shoot rounds of 4× more rays (from 16384)
 	                         until lp_difference between rounds is at most this */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,

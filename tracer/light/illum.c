@@ -13,11 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../common/arena.h"
-#include "output/exrout.h"
-#include "output/framebuffer.h"
+#include "../../common/arena.h"
+#include "../output/exrout.h"
+#include "../output/framebuffer.h"
 #include "polygon.h"
-#include "shape.h"
+#include "../shape.h"
 
 #define TN (ILLUM_TILE * ILLUM_TILE) /* nodes per tile */
 #define PLANE_LIMIT 1073741824.0     /* |node index| bound on the plane (2^30) */
