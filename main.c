@@ -4,6 +4,7 @@
  * and maps each stage's result to an exit code (docs/design.md §8). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -118,7 +119,7 @@ static int parse_double(const char *s, double *out)
 	char *end;
 	errno = 0;
 	double v = strtod(s, &end);
-	if (errno || end == s || *end)
+	if (errno || end == s || *end || !isfinite(v))
 		return 0;
 	*out = v;
 	return 1;

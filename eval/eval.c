@@ -6,6 +6,7 @@
  * are reported once and longjmp back to eval_scene (Lua's luaD_throw). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -423,7 +424,24 @@ static struct value identifier(struct eval *E, const struct node *n)
 	eval_fail(E, n->loc, "undeclared identifier '%s'", n->str);
 }
 
+static struct value eval_expr_node(struct eval *E, const struct node *n);
+
+/* Every number the language computes passes here: an infinity or a NaN
+ * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
+ * non-finite number reaches the scene (docs/design.md §8). */
 struct value eval_expr(struct eval *E, const struct node *n)
+{
+	struct value v = eval_expr_node(E, n);
+	if (v.kind == V_FLOAT || v.kind == V_VECTOR || v.kind == V_COLOUR) {
+		int k = v.kind == V_FLOAT ? 1 : v.kind == V_COLOUR ? 5 : v.n;
+		for (int i = 0; i < k; i++)
+			if (!isfinite(v.v[i]))
+				eval_fail(E, n->loc, "the result is not a finite number (%s)", isnan(v.v[i]) ? "NaN" : "infinite");
+	}
+	return v;
+}
+
+static struct value eval_expr_node(struct eval *E, const struct node *n)
 {
 	switch (n->kind) {
 	case N_NUM: return val_float(n->num);
@@ -682,10 +700,18 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 
 /* ==== items =============================================================== */
 
+/* Every nested list of items (a directive's body, a block, a macro body, an
+ * include) passes here, so this one counter bounds the evaluator's recursion
+ * whatever mix of directives, blocks, macros and includes makes it. */
 void eval_items(struct eval *E, const struct node *list, struct sink *s)
 {
+	if (E->depth >= MAX_EVAL_DEPTH)
+		eval_fail(E, list->loc, "nesting too deep (more than %d levels of blocks, directives, macro calls and includes)",
+		          MAX_EVAL_DEPTH);
+	E->depth++;
 	for (int i = 0; i < list->nkids && !E->breaking; i++)
 		eval_item(E, list->kids[i], s);
+	E->depth--;
 }
 
 void eval_item(struct eval *E, const struct node *n, struct sink *s)

@@ -15,6 +15,7 @@
 #define MAX_STRING 1048576    /* bytes in a string value */
 #define MAX_ARRAY 16777216L   /* elements in an array */
 #define MAX_SCOPES 512        /* scope stack */
+#define MAX_EVAL_DEPTH 1000   /* nested item lists: blocks, directives, macros, includes */
 
 struct scope;
 struct inc_cache;
@@ -53,6 +54,7 @@ struct eval {
 	int nscopes;
 	int include_depth;
 	int macro_depth;
+	int depth;                 /* nested item lists (eval_items) */
 	long iterations;           /* loop iterations so far */
 	int breaking;              /* a #break is unwinding to its #switch */
 	jmp_buf *fail;             /* where a fatal error jumps */
