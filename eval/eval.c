@@ -362,6 +362,8 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		          def->nkids == 1 ? "" : "s", call->nkids);
 	if (E->macro_depth >= MAX_MACRO_DEPTH)
 		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
+	if (++E->calls > E->opt->max_calls)
+		eval_fail(E, call->loc, "macro call limit (%ld) exceeded; raise it with --max-calls", E->opt->max_calls);
 	struct value args[64];
 	if (call->nkids > 64)
 		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
@@ -393,6 +395,7 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		scope_push(E, sc, call->loc);
 	}
 	scope_pop(E);
+	scope_release(E, sc);
 }
 
 /* A macro call in an expression: its body must yield exactly one value. */
@@ -488,6 +491,12 @@ static void count_iteration(struct eval *E, struct srcloc loc)
 {
 	if (++E->iterations > E->opt->max_iterations)
 		eval_fail(E, loc, "loop iteration limit (%ld) exceeded; raise it with --max-iterations", E->opt->max_iterations);
+}
+
+void eval_count_object(struct eval *E, struct srcloc loc)
+{
+	if (++E->objects > E->opt->max_objects)
+		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
 static void exec_declare(struct eval *E, const struct node *n)
@@ -692,9 +701,11 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	struct inc_cache *c = load_include(E, n, name);
 	E->dir_stack[E->include_depth + 1] = c->dir;
 	E->include_depth++;
-	scope_push(E, scope_new(E), n->loc);
+	struct scope *sc = scope_new(E);
+	scope_push(E, sc, n->loc);
 	eval_items(E, c->ast, s);
 	scope_pop(E);
+	scope_release(E, sc);
 	E->include_depth--;
 }
 
@@ -716,6 +727,8 @@ void eval_items(struct eval *E, const struct node *list, struct sink *s)
 
 void eval_item(struct eval *E, const struct node *n, struct sink *s)
 {
+	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
+		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
 	switch (n->kind) {
 	case N_DECLARE: exec_declare(E, n); return;
 	case N_UNDEF: env_undef(E, n->str); return;
@@ -785,6 +798,8 @@ void eval_default_options(struct eval_options *o)
 	o->width = 320;
 	o->height = 240;
 	o->max_iterations = 10000000;
+	o->max_calls = 1000000;
+	o->max_objects = 1000000;
 	o->debug_out = stdout;
 }
 
@@ -804,6 +819,24 @@ static void declare_define(struct eval *E, const char *def)
 		v = val_float(strtod(val, &end));
 	}
 	*env_declare(E, name, false) = v;
+}
+
+/* The evaluator running now, for the memory budget's handler. */
+static struct eval *running;
+
+/* Over the --max-memory budget while building the scene: an error at the
+ * statement being evaluated, and exit status 70 (docs/design.md §8). */
+static void eval_over_budget(size_t request)
+{
+	struct eval *E = running;
+	char size[32];
+	(void)request;
+	if (!E) /* already unwinding: let the allocation go ahead */
+		return;
+	mem_format_size(size, sizeof size, mem_budget());
+	E->out_of_memory = 1;
+	running = NULL; /* the error path allocates nothing more under this handler */
+	eval_fail(E, E->stmt, "out of memory: the scene needs more than the %s that --max-memory allows", size);
 }
 
 int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out)
@@ -829,6 +862,9 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	arena_init(&E->arena);
 	E->default_tex = scene_default_texture();
 	int rc = 0;
+	E->stmt = (struct srcloc){file, 1, 1};
+	running = E;
+	mem_over_fn outer = mem_set_budget(mem_budget(), eval_over_budget);
 	if (setjmp(jb) == 0) {
 		struct node *ast = parse_file(file, diag, &E->arena);
 		if (diag->errors == 0) {
@@ -842,8 +878,10 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 			objects_finish(E);
 		}
 	}
+	mem_set_budget(mem_budget(), outer);
+	running = NULL;
 	if (diag->errors > 0)
-		rc = 65;
+		rc = E->out_of_memory ? 70 : 65;
 	free(E->rng);
 	arena_free(&E->arena);
 	free(E);
