@@ -461,8 +461,8 @@ static void render_over_budget(size_t request)
 		for (;;)
 			pause();
 	mem_format_size(size, sizeof size, mem_budget());
-	fprintf(stderr, "arvo: error: out of memory: rendering needs more than the %s that --max-memory allows "
-	        "(allocating %zu bytes)\n", size, request);
+	(void)request;
+	fprintf(stderr, "arvo: error: out of memory: rendering needs more than the %s that --max-memory allows\n", size);
 	exit(EX_SOFTWARE);
 }
 

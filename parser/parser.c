@@ -410,9 +410,13 @@ static struct node *parse_block_body(struct parser *p, struct node *blk)
 		error_at(p, p->tok.loc, "expected '{' after %s, found %s", tok_name(blk->op), found(p));
 		return blk;
 	}
-	advance(p);
-	if (!enter(p))
+	if (p->depth >= MAX_DEPTH) { /* reported at the block's keyword */
+		error_at(p, blk->loc, "nesting too deep (more than %d levels)", MAX_DEPTH);
+		advance(p);
 		return blk;
+	}
+	enter(p);
+	advance(p);
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
 		long start = p->ntok;
 		struct node *it = parse_item(p);
