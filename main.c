@@ -451,9 +451,13 @@ static int can_create(const char *path)
 	return access(dir, W_OK | X_OK) == 0;
 }
 
-/* Over the --max-memory budget after the scene is built: the light pass's
- * maps, the acceleration structure or the framebuffer. Exit status 70. */
-static void render_over_budget(size_t request)
+/* What runs outside the evaluator, for out-of-memory messages. */
+static const char *volatile mem_phase = "reading the scene";
+
+/* Over the --max-memory budget outside the evaluator (which reports at the
+ * statement it was running): reading the scene file, or rendering (the
+ * light pass's maps, the acceleration structure, the framebuffer). Exit 70. */
+static void over_budget(size_t request)
 {
 	static atomic_int once;
 	char size[32];
@@ -462,7 +466,7 @@ static void render_over_budget(size_t request)
 			pause();
 	mem_format_size(size, sizeof size, mem_budget());
 	(void)request;
-	fprintf(stderr, "arvo: error: out of memory: rendering needs more than the %s that --max-memory allows\n", size);
+	fprintf(stderr, "arvo: error: out of memory: %s needs more than the %s that --max-memory allows\n", mem_phase, size);
 	exit(EX_SOFTWARE);
 }
 
@@ -522,7 +526,7 @@ int main(int argc, char **argv)
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
-	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), render_over_budget);
+	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), over_budget);
 	struct diag dg;
 	diag_init(&dg, stderr);
 	if (o.action == ACT_TOKENS || o.action == ACT_AST) {
@@ -561,6 +565,7 @@ int main(int argc, char **argv)
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);
 		} else if (o.action == ACT_RENDER) {
+			mem_phase = "rendering";
 			rc = render_and_write(&o, &scene, output);
 		}
 	}

@@ -32,3 +32,5 @@ render "lights, spp 2, 2 threads" --threads 2 --width 32 --height 24 --rays 5000
 render "spectral, 2 threads" --threads 2 --width 24 --height 18 --rays 20000 --passes spectral tests/cli/data/spectral.scn
 render "tolerance, 2 threads" --threads 2 --width 24 --height 18 --tolerance 0.2 tests/cli/data/sun_mirror.scn
 render "mirror, 2 threads" --threads 2 --width 32 --height 24 --rays 20000 tests/render/mirror_a.scn
+render "glass, 300000 rays, 64x48, 2 threads" --threads 2 --width 64 --height 48 --rays 300000 tests/render/g_glass.scn
+render "fig3 lenses, 2 threads" --threads 2 --width 48 --height 36 --rays 200000 stdlib-scenes/fig3-lenses.scn
