@@ -368,10 +368,16 @@ static struct node *parse_unary(struct parser *p)
 static struct node *parse_binary(struct parser *p, int min_prec)
 {
 	struct node *left = parse_unary(p);
+	int chain = 0; /* each operator nests its left operand one level deeper */
 	for (;;) {
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
-			return left;
+			break;
+		if (p->depth >= MAX_DEPTH) {
+			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
+			break;
+		}
+		p->depth++, chain++;
 		struct node *n = node(p, N_BINARY, p->tok.loc);
 		n->op = p->tok.kind;
 		advance(p);
@@ -379,6 +385,8 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 		n->b = parse_binary(p, prec + 1);
 		left = n;
 	}
+	p->depth -= chain;
+	return left;
 }
 
 /* expr := binary ['?' expr ':' expr] */

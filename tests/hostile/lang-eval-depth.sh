@@ -4,5 +4,5 @@
 # parser's 200 levels, the evaluation is not (was 38,000 C frames deep).
 . tests/hostile/data/lang-lib.sh "$@"
 { echo '#macro M(N)'; repeat 190 '#if (1)'; echo 'M(N + 1)'; repeat 190 '#end'; echo '#end'; echo 'M(0)'; } > "$T/s.scn"
-expect 65 "$T/s.scn:46:1: error: nesting too deep (more than 1000 levels of blocks, directives, macro calls and includes)" --check "$T/s.scn"
-done_case "recursive macro nesting 190 #if: a located error at 1000 levels, exit 65"
+expect 65 "$T/s.scn:90:6: error: nesting too deep (more than 2000 levels of blocks, directives, macro calls, includes and expressions)" --check "$T/s.scn"
+done_case "recursive macro nesting 190 #if: a located error at 2000 levels, exit 65"
