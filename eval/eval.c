@@ -436,7 +436,7 @@ static struct value eval_expr_node(struct eval *E, const struct node *n);
 /* Counts one level of the evaluator's recursion at loc: the count bounds
  * it at MAX_EVAL_DEPTH wherever the nesting comes from (directives, blocks,
  * macro calls, includes, expressions), and the stack in use is checked
- * against half the stack limit as a second guard (docs/design.md §9). */
+ * against three quarters of the stack limit as a second guard (docs/design.md §9). */
 static void enter(struct eval *E, struct srcloc loc)
 {
 	char here;
@@ -876,7 +876,7 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	E->stack_max = (size_t)64 << 20;
 	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < E->stack_max)
 		E->stack_max = (size_t)rl.rlim_cur;
-	E->stack_max /= 2;
+	E->stack_max = E->stack_max / 4 * 3;
 	E->diag = diag;
 	E->opt = opt;
 	E->scene = out;

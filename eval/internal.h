@@ -58,7 +58,7 @@ struct eval {
 	int macro_depth;
 	int depth;                 /* evaluator recursion (eval_items, eval_expr) */
 	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
-	size_t stack_max;          /* half the stack limit (64 MiB at most) */
+	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
 	long calls;                /* macro calls so far */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
