@@ -38,7 +38,7 @@ CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS) -lstdc++ -lm -pthread
 
 # Every .c under the source directories; main.c is the program's entry.
-SRCDIRS  = common lexer parser eval tracer
+SRCDIRS  = common lexer parser eval tracer tools
 LIB_C    = $(shell find $(SRCDIRS) -name '*.c' | sort)
 LIB_CXX  = $(shell find $(SRCDIRS) -name '*.cpp' | sort)
 LIB_OBJ  = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)

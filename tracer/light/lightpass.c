@@ -737,7 +737,7 @@ static void run_item(struct worker *w, const struct item *it)
 			if (c != J->o->channel)
 				e0[c] = 0;
 	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
-	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
+	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u ^ J->o->seed_key;
 	bool beam = l->kind == LIGHT_PARALLEL;
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;

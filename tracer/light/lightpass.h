@@ -41,6 +41,7 @@ struct lp_opts {
 	                         the rays per node: 3N spectral rays get the grid of a
 	                         channel pass of N. Not with shafts: a shaft needs its
 	                         corners on one path, which other wavelengths leave */
+	uint64_t seed_key;    /* --seed, mixed into every ray's key (0: seed 0) */
 };
 
 struct lp_stats {
