@@ -127,7 +127,7 @@ static void t_float_all_compressions(void)
 {
 	static const char *const comp[] = {"zip", "none", "zips", "piz", "rle"};
 	for (int c = 0; c < 5; c++) {
-		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test"};
+		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test", NULL};
 		char file[32];
 		CHECK(out_exr_compression_parse(comp[c], &o.compression) == 0);
 		CHECK((int)o.compression == c);
@@ -140,7 +140,7 @@ static void t_float_all_compressions(void)
 
 static void t_half(void)
 {
-	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL, NULL};
 	roundtrip(&o, "h_piz.exr");
 	o.compression = OUT_EXR_ZIP;
 	roundtrip(&o, "h_zip.exr");
@@ -154,7 +154,7 @@ static void t_half_rgb(void)
 	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
 	for (int i = 0; i < 15; i++)
 		p[0][i] = 0.5f * (float)i, p[1][i] = 0.1f, p[2][i] = -1.0f / 3.0f;
-	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL, NULL};
 	struct out_exr_info info;
 	CHECK(out_exr_write(fb, in_dir("rgb_half.exr"), &o) == NULL);
 	CHECK(out_exr_read(in_dir("rgb_half.exr"), &rd, &info) == NULL);
@@ -186,7 +186,7 @@ static void t_small_sizes(void)
 							for (int i = 0; i < w * h; i++)
 								p[i] = (float)((i * 37 + k * 11 + w) % 17) * 0.125f - 0.5f;
 						}
-						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL};
+						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL, NULL};
 						runs++;
 						if (out_exr_write(fb, in_dir("s.exr"), &o) ||
 						    out_exr_read(in_dir("s.exr"), &rd, NULL)) {
@@ -260,7 +260,7 @@ static void t_failed_write_midway(void)
 	lim.rlim_cur = 4096;
 	signal(SIGXFSZ, SIG_IGN);
 	setrlimit(RLIMIT_FSIZE, &lim);
-	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL};
+	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL, NULL};
 	const char *err = out_exr_write(fb, path, &o);
 	setrlimit(RLIMIT_FSIZE, &old);
 	CHECK(err != NULL);

@@ -252,7 +252,7 @@ int out_png_signal(const char *display, const char *view, unsigned char cicp[4])
 		{"P3", 12, 13}, {"Rec.1886", 1, 1}, {"BT.1886", 1, 1}, {"Rec.709", 1, 1},
 		{"PQ", 9, 16}, {"ST2084", 9, 16}, {"HLG", 9, 18}};
 	if (view && !strcasecmp(view, "Raw"))
-		return OUT_PNG_LINEAR;
+		return OUT_PNG_RAW;
 	if (!display)
 		return OUT_PNG_UNKNOWN;
 	for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
@@ -285,18 +285,16 @@ static void on_png_warning(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
-/* The colour chunks for the display: sRGB, cICP (an unknown chunk to
- * libpng 1.6.39, written before PLTE/IDAT), or gAMA 1.0 for the Raw view
- * (linear values); none for a display arvo does not recognise. */
+/* The colour chunks for the display: sRGB, or cICP (an unknown chunk to
+ * libpng 1.6.39, written before PLTE/IDAT); none for the Raw view (scene
+ * values in the config's scene-linear space, which no chunk names) or for
+ * a display arvo does not recognise. */
 static void set_colour_chunks(png_structp png, png_infop info, const struct png_tags *t,
                               png_unknown_chunk *cicp)
 {
 	switch (out_png_signal(t->display, t->view, cicp->data)) {
 	case OUT_PNG_SRGB:
 		png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-		break;
-	case OUT_PNG_LINEAR:
-		png_set_gAMA_fixed(png, info, PNG_GAMMA_LINEAR);
 		break;
 	case OUT_PNG_CICP:
 		memcpy(cicp->name, "cICP", 5);

@@ -30,7 +30,7 @@ enum out_png_signal {
 	OUT_PNG_UNKNOWN, /* a display arvo does not recognise: no colour chunk */
 	OUT_PNG_SRGB,    /* a display named "sRGB…": sRGB chunk (with gAMA and cHRM) */
 	OUT_PNG_CICP,    /* P3, Rec.1886/Rec.709, PQ, HLG displays: a cICP chunk */
-	OUT_PNG_LINEAR   /* the Raw view (values unchanged): gAMA 1.0 */
+	OUT_PNG_RAW      /* the Raw view (scene-linear values unchanged): no chunk */
 };
 /* The signal for display/view; for OUT_PNG_CICP fills cicp (colour
  * primaries, transfer, matrix 0, full range 1; ITU-T H.273 codes). */
