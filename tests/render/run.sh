@@ -109,11 +109,11 @@ oiiotool "$tmp/nolp.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stat
 check "--rays 0 turns the light pass off (caustic layer all zero)" $?
 "$ARVO" -q --rays 200000 --save-maps "$tmp/g.maps" --width 33 --height 21 -o "$tmp/sv1.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1 &&
 	"$ARVO" -q --load-maps "$tmp/g.maps" --width 33 --height 21 -o "$tmp/sv2.exr" "$T/g_glass.scn" >> "$tmp/log" 2>&1 &&
-	cmp "$tmp/sv1.exr" "$tmp/sv2.exr" >> "$tmp/log" 2>&1
-check "--save-maps then --load-maps renders the same image, bit for bit" $?
+	"$ARVO" compare "$tmp/sv1.exr" "$tmp/sv2.exr" >> "$tmp/log" 2>&1
+check "--save-maps then --load-maps renders the same pixels (arvo compare: exactly)" $?
 "$ARVO" -q --load-maps "$tmp/g.maps" -o "$tmp/x.exr" "$T/g_lights.scn" > "$tmp/log" 2>&1
 st=$?
-[ $st -eq 66 ] && grep -q "is not a map file saved for this scene" "$tmp/log" && [ ! -e "$tmp/x.exr" ]
+[ $st -eq 66 ] && grep -q "was saved for another scene" "$tmp/log" && [ ! -e "$tmp/x.exr" ]
 check "--load-maps of another scene's maps: exit 66, clear error, no image" $?
 rm -f "$tmp/g.maps"
 "$ARVO" -q --save-maps "$tmp/no/such/dir/g.maps" -o "$tmp/x.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1
