@@ -273,4 +273,21 @@ report "--png-depth 16: a 16-bit RGB PNG with an sRGB chunk and the OCIO view in
 run -q --png-depth 12 tests/render/g_glass.scn
 want_rc 64; has err "^arvo: error: bad value for --png-depth: '12' \(expected 8 or 16\)$"
 report "--png-depth 12: exit 64"
+
+# ---- docs/golden.md ---------------------------------------------------------
+sed -n '/^<!-- golden.sh -->$/,/^```$/p' docs/golden.md | sed '1,2d;$d' > "$tmp/out"
+cmp -s "$tmp/out" tests/golden/images.sh || why="docs/golden.md's script is not tests/golden/images.sh"
+report "docs/golden.md shows tests/golden/images.sh word for word"
+
+mkdir -p "$tmp/golden"
+printf '# a suite of one\nflat tests/render/flat.scn --width 8 --height 6\n' > "$tmp/golden/golden.list"
+UPDATE=1 ARVO=$ARVO sh tests/golden/images.sh "$tmp/golden/golden.list" > "$tmp/out" 2>&1 || why="update failed"
+is out "ok 1 - flat # updated"
+ARVO=$ARVO sh tests/golden/images.sh "$tmp/golden/golden.list" > "$tmp/out" 2>&1 || why="check failed"
+is out "ok 1 - flat"
+printf 'flat tests/render/flat.scn --width 8 --height 6 -D Value=0.2\n' > "$tmp/golden/golden.list"
+ARVO=$ARVO KEEP="$tmp/kept" sh tests/golden/images.sh "$tmp/golden/golden.list" > "$tmp/out" 2>&1 && why="a changed image passed"
+has out '^not ok 1 - flat \(differs\)$'; has out '^#   RGBA .* differs$'
+[ -f "$tmp/kept/flat.diff.exr" ] || why="${why:+$why; }no difference image kept"
+report "the golden recipe: UPDATE=1 makes the image, a rerun passes, a change fails and keeps the difference"
 echo "1..$n"
