@@ -270,6 +270,17 @@ grep -a -q 'sRGB' "$tmp/p16.png" || why="${why:+$why; }no sRGB chunk"
 grep -a -q 'OCIO view' "$tmp/p16.png" && grep -a -q 'ACES 1.0 - SDR Video' "$tmp/p16.png" || why="${why:+$why; }no OCIO view text"
 report "--png-depth 16: a 16-bit RGB PNG with an sRGB chunk and the OCIO view in a text chunk"
 
+# a config with a Display P3 display (no transform: only its name matters here)
+sed -e 's/^active_displays: \[sRGB - Display\]$/  Display P3:\n    - !<View> {name: Standard, view_transform: Un-tone-mapped, display_colorspace: Display P3}\nactive_displays: [sRGB - Display, Display P3]/' \
+    -e 's/^display_colorspaces:$/display_colorspaces:\n  - !<ColorSpace>\n    name: Display P3\n    family: Display\n    encoding: sdr-video/' \
+    stdlib-scenes/ocio/config.ocio > "$tmp/p3.ocio"
+run -q --ocio-config "$tmp/p3.ocio" --display "Display P3" --view Standard --width 8 --height 6 --rays 0 -o "$tmp/p3.png" tests/render/g_glass.scn
+want_rc 0
+od -A n -t x1 -j 33 -N 12 "$tmp/p3.png" | tr -s ' \n' ' ' > "$tmp/out"; echo >> "$tmp/out"
+is out " 00 00 00 04 63 49 43 50 0c 0d 00 01 "
+grep -a -q 'sRGB' "$tmp/p3.png" && why="${why:+$why; }an sRGB chunk beside cICP"
+report "a Display P3 display: a cICP chunk (primaries 12, transfer 13, full range) right after IHDR"
+
 run -q --png-depth 12 tests/render/g_glass.scn
 want_rc 64; has err "^arvo: error: bad value for --png-depth: '12' \(expected 8 or 16\)$"
 report "--png-depth 12: exit 64"
