@@ -3,7 +3,8 @@
  * renders (--region, --tile) into the whole frame. Each part's data window
  * says where it goes; the parts must share the frame (display window) and
  * the channels, and cover the frame exactly once. Pixels are copied, so
- * the result is bit-identical to a render of the whole frame. */
+ * the result is bit-identical to a render of the whole frame (the first
+ * part's header, compression and pixel types are kept). */
 #include "tools.h"
 
 #include <stdarg.h>
@@ -141,7 +142,7 @@ int tool_merge(int argc, char **argv)
 	if (rc < 0)
 		rc = assemble(parts, n, &fb, &info);
 	if (rc < 0) {
-		struct out_exr_opts eo = {info.half, OUT_EXR_ZIP, info.scene[0] ? info.scene : NULL, &info.meta};
+		struct out_exr_opts eo = {info.half_but_z, info.compression, info.scene[0] ? info.scene : NULL, &info.meta};
 		const char *err = out_exr_write(fb, output, &eo);
 		if (err)
 			fprintf(stderr, "arvo merge: error: %s\n", err);

@@ -87,6 +87,14 @@ run merge -o "$tmp/merged2.exr" "$tmp/r1.exr" "$tmp/r2.exr" "$tmp/r3.exr"
 want_rc 0; same whole.exr merged2.exr
 report "arvo merge of three --region parts (columns and rows) is the whole render, byte for byte"
 
+H="--width 40 --height 30 --rays 0 --half --compression piz"
+"$ARVO" -q $H -o "$tmp/h.exr" tests/render/g_glass.scn
+"$ARVO" -q $H --tile 1/2 -o "$tmp/h1.exr" tests/render/g_glass.scn
+"$ARVO" -q $H --tile 2/2 -o "$tmp/h2.exr" tests/render/g_glass.scn
+run merge -o "$tmp/hm.exr" "$tmp/h1.exr" "$tmp/h2.exr"
+want_rc 0; same h.exr hm.exr
+report "arvo merge keeps the parts' half pixels and piz compression: byte for byte again"
+
 oiiotool "$tmp/t1.exr" "$tmp/t2.exr" "$tmp/t3.exr" --paste:all=1:mergeroi=1 auto -o "$tmp/oiio.exr" > "$tmp/out" 2>&1 ||
 	why="oiiotool failed"
 oiiotool "$tmp/whole.exr" --dumpdata > "$tmp/d1" 2>&1

@@ -381,10 +381,20 @@ static void read_info(exr_const_context_t ctx, const exr_attr_chlist_t *cl,
 	if (exr_attr_get_string(ctx, 0, "arvo:scene", &len, &s) == EXR_ERR_SUCCESS)
 		snprintf(info->scene, sizeof info->scene, "%.*s", (int)len, s);
 	read_meta(ctx, &info->meta);
-	info->half = 1;
+	exr_compression_t comp;
+	static const exr_compression_t ours[] = {EXR_COMPRESSION_ZIP, EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIPS,
+	                                         EXR_COMPRESSION_PIZ, EXR_COMPRESSION_RLE};
+	if (exr_get_compression(ctx, 0, &comp) == EXR_ERR_SUCCESS)
+		for (int i = 0; i < 5; i++)
+			if (ours[i] == comp)
+				info->compression = (enum out_exr_compression)i;
+	info->half = info->half_but_z = 1;
 	for (int i = 0; i < cl->num_channels; i++)
-		if (cl->entries[i].pixel_type != EXR_PIXEL_HALF)
+		if (cl->entries[i].pixel_type != EXR_PIXEL_HALF) {
 			info->half = 0;
+			if (strcmp(cl->entries[i].name.str, "Z") != 0)
+				info->half_but_z = 0;
+		}
 }
 
 /* Points every channel of the decoder at its plane (ALL channels: decoding a

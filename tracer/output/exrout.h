@@ -52,6 +52,8 @@ struct out_exr_info {
 	int has_chroma;   /* 1 when a chromaticities attribute was present */
 	float chroma[8];  /* red x,y  green x,y  blue x,y  white x,y */
 	int half;         /* 1 when every channel is stored as half */
+	int half_but_z;   /* 1 when every channel but Z is (as --half writes them) */
+	enum out_exr_compression compression; /* the file's (OUT_EXR_ZIP when not one of ours) */
 	char software[128]; /* the "software" attribute, or "" */
 	char scene[256];  /* the "arvo:scene" attribute, or "" */
 	struct out_exr_meta meta; /* the matrices, and every string attribute named "arvo:…" */
