@@ -132,14 +132,25 @@ static struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+/* A pattern transform old (NULL: identity) followed by X, in a slot of its
+ * own (textures that were copied may share old). */
+static const struct xform *pigment_xf(struct eval *E, const struct xform *old, const struct xform *X)
+{
+	struct xform *x = NEW(E, struct xform);
+	*x = xf_then(old ? *old : xf_ident, *X);
+	return xf_is_identity(x) ? NULL : x;
+}
+
 /* Applies X to an object, its texture and its children (POV-Ray moves the
  * texture with the object when the texture came first). */
 static void object_transform(struct eval *E, struct object *o, const struct xform *X)
 {
-	o->xf = xf_then(o->xf, *X);
+	struct xform *x = NEW(E, struct xform); /* a copied object may share the old one */
+	*x = xf_then(*obj_xf(o), *X);
+	o->xf = xf_is_identity(x) ? NULL : x;
 	if (o->tex) {
 		o->tex = texture_copy(E, o->tex);
-		o->tex->pigment.xf = xf_then(o->tex->pigment.xf, *X);
+		o->tex->pigment.xf = pigment_xf(E, o->tex->pigment.xf, X);
 	}
 	if (o->kind >= OBJ_UNION)
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -187,6 +198,17 @@ static void run_block(struct eval *E, const struct node *blk, enum sink_kind kin
 {
 	sink_init(out, kind, blk->op, blk->loc, target);
 	eval_items(E, blk, out);
+}
+
+/* A finish { } block on a texture's finish: it changes a copy, since
+ * textures share finishes (the default one, a declared texture's). */
+static void finish_block(struct eval *E, const struct node *n, const struct finish **f)
+{
+	struct sink sub;
+	struct finish *c = NEW(E, struct finish);
+	*c = **f;
+	run_block(E, n, SK_FINISH, c, &sub);
+	*f = c;
 }
 
 static struct colour_map *colour_map_block(struct eval *E, const struct node *blk)
@@ -257,7 +279,7 @@ static void pigment_keyword(struct eval *E, struct sink *s, const struct node *n
 	struct xform X;
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
-		p->xf = xf_then(p->xf, X);
+		p->xf = pigment_xf(E, p->xf, &X);
 		return;
 	}
 	switch (n->op) {
@@ -439,7 +461,7 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
 		else
-			run_block(E, n, SK_FINISH, &o->tex->finish, &sub);
+			finish_block(E, n, &o->tex->finish);
 	} else if (n->op == TK_INTERIOR) {
 		struct interior *in = NEW(E, struct interior);
 		*in = o->interior ? *o->interior : scene_default_interior();
@@ -690,7 +712,7 @@ static struct value object_block(struct eval *E, const struct node *blk)
 		o = NEW(E, struct object);
 		o->kind = object_kind_of(blk->op);
 		o->loc = blk->loc;
-		o->xf = xf_identity();
+		o->xf = NULL; /* the identity until a transform comes */
 	}
 	sink_init(&s, SK_OBJECT, blk->op, blk->loc, o);
 	eval_items(E, blk, &s);
@@ -947,7 +969,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 	case TK_FINISH:
 		v.kind = V_FINISH;
 		v.p.fin = NEW(E, struct finish);
-		*v.p.fin = scene_default_texture().finish;
+		*v.p.fin = *scene_default_texture().finish;
 		run_block(E, blk, SK_FINISH, v.p.fin, &s);
 		return v;
 	case TK_INTERIOR:
@@ -1009,13 +1031,13 @@ static void texture_keyword(struct eval *E, struct sink *s, const struct node *n
 	struct sink sub;
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
-		t->pigment.xf = xf_then(t->pigment.xf, X);
+		t->pigment.xf = pigment_xf(E, t->pigment.xf, &X);
 		return;
 	}
 	if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		run_block(E, n, SK_FINISH, &t->finish, &sub);
+		finish_block(E, n, &t->finish);
 	else
 		misplaced(E, s, n);
 }
@@ -1060,7 +1082,7 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		run_block(E, n, SK_FINISH, &t->finish, &sub);
+		finish_block(E, n, &t->finish);
 	else
 		misplaced(E, s, n);
 }
@@ -1119,7 +1141,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (transform_of(E, n, &X)) {
 			if (m->tex) {
 				m->tex = texture_copy(E, m->tex);
-				m->tex->pigment.xf = xf_then(m->tex->pigment.xf, X);
+				m->tex->pigment.xf = pigment_xf(E, m->tex->pigment.xf, &X);
 			}
 			return;
 		}
