@@ -138,7 +138,7 @@ static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
  * bent (a straight transmitter's light is the shadow rays', surface.h). */
 static bool is_specular(const struct scene *s, const struct object *o)
 {
-	if (o->kind >= OBJ_UNION) {
+	if (o->kind >= OBJ_FIRST_CSG) {
 		for (int i = 0; i < o->g.csg.n; i++)
 			if (is_specular(s, o->g.csg.kids[i]))
 				return true;
@@ -162,7 +162,7 @@ bool lp_dispersive(const struct scene *s)
 			const struct object *o = stack[--n];
 			if (o->interior && o->interior->dispersion != 1)
 				return true;
-			if (o->kind >= OBJ_UNION)
+			if (o->kind >= OBJ_FIRST_CSG)
 				for (int k = 0; k < o->g.csg.n && n < 64; k++)
 					stack[n++] = o->g.csg.kids[k];
 		}
@@ -1500,7 +1500,7 @@ struct prims {
 
 static void collect(struct prims *p, const struct object *o)
 {
-	if (o->kind >= OBJ_UNION) {
+	if (o->kind >= OBJ_FIRST_CSG) {
 		for (int i = 0; i < o->g.csg.n; i++)
 			collect(p, o->g.csg.kids[i]);
 		return;
