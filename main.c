@@ -468,7 +468,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		struct out_exr_opts eo = {o->half, o->compression, scene->name};
 		err = out_exr_write(fb, output, &eo);
 	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL};
+		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene)};
 		err = out_png_write(fb, output, &po);
 	}
 	fb_free(fb);

@@ -95,8 +95,9 @@ for s in $list; do
 		[ -n "$why" ] || why="--check failed or took over ${TIMEOUT} s"
 	fi
 	if [ $rendered = yes ] && [ -f "$pov" ]; then
+		# idiff prints its statistics only when some pixel differs
 		diff=$(idiff -a "$tmp/arvo.png" "$pov" 2>/dev/null |
-			awk '/Mean error/ { printf "%.2f", $4 * 100; exit }')
+			awk '/Mean error/ { printf "%.2f", $4 * 100; exit } /^PASS/ { print "0.00"; exit }')
 		[ -n "$diff" ] || diff=-
 	fi
 	[ -f "$pov" ] || why="${why:+$why; }POV-Ray did not render it"
