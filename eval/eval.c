@@ -183,8 +183,29 @@ static double srgb_to_linear(double c)
 	return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n);
+
+/* A colour expression: its prefix applied to its operand, then POV-Ray's
+ * trailing components (red/green/blue/filter/transmit value) in order. */
 static struct value colour_prefix(struct eval *E, const struct node *n)
+{
+	struct value v = n->a ? colour_base(E, n) : val_colour(c_rgb(0, 0, 0));
+	for (int i = 0; i < n->nkids; i++) {
+		const struct node *k = n->kids[i];
+		double f = eval_float(E, k->a);
+		switch (k->op) {
+		case TK_RED: v.v[0] = f; break;
+		case TK_GREEN: v.v[1] = f; break;
+		case TK_BLUE: v.v[2] = f; break;
+		case TK_FILTER: v.v[3] = f; break;
+		default: v.v[4] = f; break;
+		}
+	}
+	return v;
+}
+
+/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n)
 {
 	struct value a = eval_expr(E, n->a);
 	if (n->op == TK_COLOR || n->op == TK_COLOUR)
@@ -420,6 +441,8 @@ static struct value identifier(struct eval *E, const struct node *n)
 		return c;
 	if (env_macro(E, n->str))
 		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
+	if (tok_is_pov_word(n->str))
+		eval_fail(E, n->loc, "'%s' is not supported", n->str);
 	eval_fail(E, n->loc, "undeclared identifier '%s'", n->str);
 }
 
