@@ -606,13 +606,20 @@ static int is_dir_prefix(const char *dir, const char *path)
  * directory, as given, where it was found. `what` names the file kind in errors. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
 {
-	const char *dirs[66];
+	const char *dirs[68];
 	int nd = 0;
 	dirs[nd++] = E->dir_stack[E->include_depth];
 	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
 		dirs[nd++] = E->opt->include_dirs[i];
+	/* arvo's library, then POV-Ray's; a POV-Ray scene (#version 3.x) reads
+	 * POV-Ray's files first, so they mean what they mean in POV-Ray */
+	bool pov_first = E->scene->legacy_lights;
+	if (E->opt->pov_include_dir && pov_first)
+		dirs[nd++] = E->opt->pov_include_dir;
 	if (E->opt->stdlib_dir)
 		dirs[nd++] = E->opt->stdlib_dir;
+	if (E->opt->pov_include_dir && !pov_first)
+		dirs[nd++] = E->opt->pov_include_dir;
 	if (name[0] == '/')
 		eval_fail(E, loc, "%s needs a relative path, found '%s'", what, name);
 	for (int i = 0; i < nd; i++) {

@@ -531,21 +531,36 @@ static struct node *parse_declare(struct parser *p, struct token d)
 {
 	struct node *n = node(p, N_DECLARE, d.loc);
 	n->op = d.kind;
-	if (!check(p, TK_IDENT)) {
-		if (tok_is_keyword(p->tok.kind)) {
-			error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
-			advance(p); /* so resynchronising does not restart at it */
+	struct token name = p->tok;
+	bool have_name = false;
+	if (check(p, TK_IDENT) && p->tok.len == 10 && memcmp(p->tok.text, "deprecated", 10) == 0) {
+		advance(p);
+		if (check(p, TK_ONCE) || check(p, TK_STRING)) {
+			/* POV-Ray's #declare deprecated [once] "message" Name = … */
+			accept(p, TK_ONCE);
+			accept(p, TK_STRING);
 		} else {
-			expected(p, "an identifier");
+			have_name = true; /* a variable called deprecated */
 		}
-		return n;
 	}
-	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-	n->len = p->tok.len;
-	n->b = node(p, N_IDENT, p->tok.loc); /* where the name is */
+	if (!have_name) {
+		if (!check(p, TK_IDENT)) {
+			if (tok_is_keyword(p->tok.kind)) {
+				error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
+				advance(p); /* so resynchronising does not restart at it */
+			} else {
+				expected(p, "an identifier");
+			}
+			return n;
+		}
+		name = p->tok;
+		advance(p);
+	}
+	n->str = arena_strndup(p->arena, name.text, (size_t)name.len);
+	n->len = name.len;
+	n->b = node(p, N_IDENT, name.loc); /* where the name is */
 	n->b->str = n->str;
 	n->b->len = n->len;
-	advance(p);
 	while (check(p, TK_LBRACKET)) {
 		struct srcloc open = p->tok.loc;
 		advance(p);
