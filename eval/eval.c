@@ -611,21 +611,23 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 	dirs[nd++] = E->dir_stack[E->include_depth];
 	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
 		dirs[nd++] = E->opt->include_dirs[i];
-	/* arvo's library, then POV-Ray's; a POV-Ray scene (#version 3.x) reads
-	 * POV-Ray's files first, so they mean what they mean in POV-Ray */
-	bool pov_first = E->scene->legacy_lights;
-	if (E->opt->pov_include_dir && pov_first)
+	char libreal[PATH_MAX] = "";
+	if (E->opt->stdlib_dir && !realpath(dirs[nd++] = E->opt->stdlib_dir, libreal))
+		libreal[0] = '\0';
+	if (E->opt->pov_include_dir)
 		dirs[nd++] = E->opt->pov_include_dir;
-	if (E->opt->stdlib_dir)
-		dirs[nd++] = E->opt->stdlib_dir;
-	if (E->opt->pov_include_dir && !pov_first)
-		dirs[nd++] = E->opt->pov_include_dir;
+	/* a library file that includes its own name reads the next file of that
+	 * name on the path (as C's #include_next): arvo's glass.inc adds POV-Ray's */
+	const struct srcfile *from = srcfile_get(loc.file);
+	char self[PATH_MAX];
+	if (!from || !realpath(from->name, self))
+		self[0] = '\0';
 	if (name[0] == '/')
 		eval_fail(E, loc, "%s needs a relative path, found '%s'", what, name);
 	for (int i = 0; i < nd; i++) {
 		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
 		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
-		if (!realpath(cand, real) || !realpath(dirs[i], realdir))
+		if (!realpath(cand, real) || !realpath(dirs[i], realdir) || (strcmp(real, self) == 0 && strcmp(realdir, libreal) == 0))
 			continue;
 		if (!is_dir_prefix(realdir, real))
 			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
@@ -838,6 +840,8 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 		if (diag->errors == 0) {
 			scope_push(E, scope_new(E), srcloc_none());
 			E->dir_stack[0] = dir_of(E, path);
+			if (opt->pov_include_dir) /* arvo's library reads POV-Ray's files after itself */
+				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
 			for (int i = 0; i < opt->ndefines; i++)
 				declare_define(E, opt->defines[i]);
 			struct sink s;

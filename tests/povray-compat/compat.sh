@@ -16,12 +16,12 @@
 #
 # Debian's povray, povray-includes and povray-examples are installed when
 # missing (apt-get, as root); never copied into the repository.
-# Environment: ARVO (the binary), TIMEOUT (seconds per render, default 60).
+# Environment: ARVO (the binary), TIMEOUT (seconds per render, default 120).
 set -u
 cd "$(dirname "$0")/../.." || exit 2
 ROOT=$PWD
 ARVO=${ARVO:-$ROOT/arvo}
-TIMEOUT=${TIMEOUT:-60}
+TIMEOUT=${TIMEOUT:-120}
 EX=/usr/share/doc/povray/examples
 CACHE=${ARVO_POV_CACHE:-${HOME:-/tmp}/.cache/arvo-povray-compat}
 W=160 H=120 LIMIT=2
