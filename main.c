@@ -179,6 +179,20 @@ done:
 		snprintf(o->stdlib_dir, sizeof o->stdlib_dir, "%s/include", o->data_dir);
 }
 
+#ifndef POVRAY_INCLUDE_DIR
+#define POVRAY_INCLUDE_DIR "/usr/share/povray-3.7/include" /* Debian's povray-includes */
+#endif
+
+/* POV-Ray's include directory: $ARVO_POVRAY_INCLUDE (empty: none), else
+ * POVRAY_INCLUDE_DIR when it exists. */
+static const char *pov_include_dir(void)
+{
+	const char *env = getenv("ARVO_POVRAY_INCLUDE");
+	if (env)
+		return *env ? env : NULL;
+	return access(POVRAY_INCLUDE_DIR, R_OK) == 0 ? POVRAY_INCLUDE_DIR : NULL;
+}
+
 /* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K. */
 static int pov_switch(struct options *o, const char *a)
 {
@@ -468,7 +482,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		struct out_exr_opts eo = {o->half, o->compression, scene->name};
 		err = out_exr_write(fb, output, &eo);
 	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL};
+		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene)};
 		err = out_png_write(fb, output, &po);
 	}
 	fb_free(fb);
@@ -503,6 +517,7 @@ int main(int argc, char **argv)
 	eo.include_dirs = o.includes;
 	eo.ninclude = o.ninclude;
 	eo.stdlib_dir = o.stdlib_dir[0] ? o.stdlib_dir : NULL;
+	eo.pov_include_dir = pov_include_dir();
 	eo.defines = o.defines;
 	eo.ndefines = o.ndefines;
 	eo.clock = o.clock;
