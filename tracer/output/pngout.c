@@ -184,6 +184,8 @@ static const char *make_proc(const struct out_png_opts *o, struct ocio_config **
 	const char *err = out_ocio_load(o->ocio_config, cfg);
 	if (!err)
 		err = out_ocio_pick_view(*cfg, o->display, o->view, disp, view);
+	if (!err && !o->view && o->scene_view && has_view(*cfg, *disp, o->scene_view))
+		*view = o->scene_view;
 	if (err)
 		return err;
 	*proc = ocio_proc_display(*cfg, o->source, *disp, *view, msg, sizeof msg);
@@ -229,7 +231,7 @@ static const char *encode_float(const struct framebuffer *fb, const struct out_p
 const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
                            unsigned char *rgb8)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, 8};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
 	float *rgb;
 	const char *err = encode_float(fb, opts ? opts : &defaults, &rgb, NULL);
 	for (size_t i = 0; !err && i < 3 * (size_t)fb->w * (size_t)fb->h; i++)
@@ -375,7 +377,7 @@ static const char *write_png_fd(int fd, const char *path, const unsigned char *p
 const char *out_png_write(const struct framebuffer *fb, const char *path,
                           const struct out_png_opts *opts)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, 8};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
 	const struct out_png_opts *o = opts ? opts : &defaults;
 	int depth = o->depth == 16 ? 16 : 8;
 	size_t n = (size_t)fb->w * (size_t)fb->h * 3;
