@@ -20,6 +20,8 @@ struct eval_options {
 	int frame;                       /* frame_number */
 	int width, height;               /* image_width, image_height */
 	long max_iterations;             /* #while/#for iterations in total */
+	long max_calls;                  /* macro calls in total */
+	long max_objects;                /* objects and lights in the scene */
 	FILE *debug_out;                 /* where #debug writes (stdout) */
 	/* Called for each file read (the scene and every include), for -M. */
 	void (*on_file)(const char *path, void *ctx);

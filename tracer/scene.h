@@ -57,7 +57,7 @@ struct pigment {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
-	struct xform xf;          /* pattern space → world */
+	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
 
 struct finish {
@@ -89,7 +89,7 @@ struct interior {
 
 struct texture {
 	struct pigment pigment;
-	struct finish finish;
+	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
 };
 
@@ -145,7 +145,7 @@ struct object {
 		struct { struct vec3 p[3]; } triangle;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
-	struct xform xf;             /* object frame → world */
+	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
 	unsigned flags;              /* enum object_flags */
@@ -153,6 +153,12 @@ struct object {
 	struct photon_spec photons;  /* photons { } */
 	bool has_photons;            /* a photons { } block was given */
 };
+
+/* The object's frame → world transform (the identity when it has none). */
+static inline const struct xform *obj_xf(const struct object *o)
+{
+	return o->xf ? o->xf : &xf_ident;
+}
 
 /* ---- lights and camera -------------------------------------------------- */
 
