@@ -319,7 +319,9 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0)
 		sf.nf = v_neg(sf.nf);
-	sf.opacity = fmin(1, fmax(0, 1 - sf.pc.f - sf.pc.t));
+	sf.opacity = 1 - sf.pc.f - sf.pc.t;
+	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
+		sf.opacity = fmin(1, fmax(0, sf.opacity));
 	const struct finish *f = sf.tex->finish;
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0), H = v3(0, 0, 0), lit = v3(0, 0, 0);
 	struct vec3 emis = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
