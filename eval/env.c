@@ -18,6 +18,7 @@ struct scope {
 	struct entry **buckets; /* hash chains */
 	int nbuckets;           /* power of two */
 	int count;              /* entries */
+	struct scope *next;     /* on E->spare_scopes once released */
 };
 
 static uint32_t hash(const char *s)
@@ -30,10 +31,34 @@ static uint32_t hash(const char *s)
 
 struct scope *scope_new(struct eval *E)
 {
-	struct scope *sc = ARENA_NEW(&E->arena, struct scope);
+	struct scope *sc = E->spare_scopes;
+	if (sc) { /* a released scope: its table and entries are reused */
+		E->spare_scopes = sc->next;
+		sc->next = NULL;
+		return sc;
+	}
+	sc = ARENA_NEW(&E->arena, struct scope);
 	sc->nbuckets = 16;
 	sc->buckets = ARENA_ARRAY(&E->arena, struct entry *, sc->nbuckets);
 	return sc;
+}
+
+/* A macro's or an include's scope, popped and no longer reachable: its
+ * entries go to E->spare_entries and the table to E->spare_scopes, so a
+ * million macro calls cost no more memory than the deepest of them. */
+void scope_release(struct eval *E, struct scope *sc)
+{
+	for (int i = 0; i < sc->nbuckets; i++) {
+		for (struct entry *e = sc->buckets[i], *next; e; e = next) {
+			next = e->next;
+			e->next = E->spare_entries;
+			E->spare_entries = e;
+		}
+		sc->buckets[i] = NULL;
+	}
+	sc->count = 0;
+	sc->next = E->spare_scopes;
+	E->spare_scopes = sc;
 }
 
 void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
@@ -92,8 +117,14 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 	}
 	if (sc->count >= sc->nbuckets)
 		grow(E, sc);
-	e = ARENA_NEW(&E->arena, struct entry);
-	e->name = eval_strdup(E, name, (int)strlen(name));
+	e = E->spare_entries;
+	if (e) {
+		E->spare_entries = e->next;
+		memset(e, 0, sizeof *e);
+	} else {
+		e = ARENA_NEW(&E->arena, struct entry);
+	}
+	e->name = name; /* names are AST or evaluator strings: they live as long */
 	e->hash = hash(name);
 	uint32_t h = e->hash & (uint32_t)(sc->nbuckets - 1);
 	e->next = sc->buckets[h];

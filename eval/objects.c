@@ -159,6 +159,8 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.kind = V_SKIPPED;
 		return v;
 	}
+	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
+		eval_count_object(E, blk->loc);
 	if (is_object_kw(blk->op))
 		return object_block(E, blk);
 	switch (blk->op) {

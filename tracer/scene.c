@@ -99,6 +99,14 @@ void scene_add_light(struct scene *s, const struct light *l)
 
 void scene_free(struct scene *s) { arena_free(&s->arena); }
 
+const char *scene_pov_view(const struct scene *s)
+{
+	if (!s->legacy_lights)
+		return NULL;
+	bool srgb = s->gs.gamma_given ? s->gs.assumed_gamma < 1.6 : s->version >= 3.7;
+	return srgb ? "Standard" : "Raw";
+}
+
 /* ==== --dump-scene ======================================================== */
 
 static const char *const kind_names[OBJ_KIND_COUNT] = {

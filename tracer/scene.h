@@ -197,6 +197,7 @@ struct illum_settings {
 
 struct global_settings {
 	double assumed_gamma;      /* parsed, recorded (output is linear) */
+	bool gamma_given;          /* the scene set assumed_gamma */
 	int max_trace_level;       /* default 5 */
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
@@ -230,6 +231,11 @@ void scene_add_light(struct scene *s, const struct light *l);
 /* Stable text for golden tests (--dump-scene). */
 void scene_dump(FILE *out, const struct scene *s);
 const char *scene_object_kind_name(enum object_kind k);
+/* The OCIO view whose PNG matches POV-Ray's own for a #version 3.x scene
+ * (docs/design.md §6): "Standard" (sRGB) for assumed_gamma 1, "Raw" for
+ * POV-Ray's un-corrected output (assumed_gamma 2.2, or none before 3.7);
+ * NULL for arvo's own scenes. */
+const char *scene_pov_view(const struct scene *s);
 void scene_free(struct scene *s);
 
 #endif
