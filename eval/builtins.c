@@ -545,7 +545,7 @@ bool builtin_is_name(const char *name)
 
 bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 {
-	if (strcmp(n->str, "defined") == 0) {
+	if (n->str[0] == 'd' && strcmp(n->str, "defined") == 0) {
 		if (n->nkids != 1 || !n->kids[0] || n->kids[0]->kind != N_IDENT)
 			eval_fail(E, n->loc, "defined() needs one identifier");
 		*out = val_float(env_lookup(E, n->kids[0]->str) != NULL || env_macro(E, n->kids[0]->str) != NULL);

@@ -83,12 +83,14 @@ static void do_tile(void *arg, long t, int worker)
 {
 	struct eye_job *j = arg;
 	int x0 = (int)(t % j->tx) * TILE, y0 = (int)(t / j->tx) * TILE;
+	long long rays = 0; /* a local count: the workers' slots share a cache line */
 	for (int y = y0; y < y0 + TILE && y < j->h; y++)
 		for (int x = x0; x < x0 + TILE && x < j->w; x++) {
 			struct eye_px px;
-			eye_pixel(j->ctx, j->x0 + x, j->y0 + y, &px, &j->rays[worker]);
+			eye_pixel(j->ctx, j->x0 + x, j->y0 + y, &px, &rays);
 			store(j, (size_t)y * (size_t)j->w + (size_t)x, &px);
 		}
+	j->rays[worker] += rays;
 	int d = atomic_fetch_add(&j->done, 1) + 1;
 	if (j->progress)
 		progress(j, d);
@@ -182,6 +184,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			continue;
 		out[n++] = r;
 		st->light_rays += ls.rays;
+		st->light_segments += ls.segments;
 		st->tol_estimate = fmax(st->tol_estimate, ls.tol_estimate);
 		st->tol_rounds = ls.tol_rounds > st->tol_rounds ? ls.tol_rounds : st->tol_rounds;
 		st->tol_rays = ls.tol_rays > st->tol_rays ? ls.tol_rays : st->tol_rays;
@@ -338,8 +341,8 @@ void render_print_stats(FILE *f, const struct render_stats *st)
 	fprintf(f, "arvo: threads          %d\n", st->threads);
 	fprintf(f, "arvo: rays traced      %lld\n", st->rays);
 	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
-	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %ld maps, %.1f MiB)\n", st->t_light,
-	        st->light_rays, st->maps, st->map_bytes / 1048576.0);
+	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %lld segments, %ld maps, %.1f MiB)\n",
+	        st->t_light, st->light_rays, st->light_segments, st->maps, st->map_bytes / 1048576.0);
 	if (st->tolerance > 0)
 		fprintf(f, "arvo: tolerance        %.3g asked, %.3g estimated (%d rounds, last %ld rays per light, "
 		        "finest map cell %.3g)\n", st->tolerance, st->tol_estimate, st->tol_rounds, st->tol_rays,

@@ -45,6 +45,7 @@ struct render_stats {
 	double t_setup;     /* seconds building the BVH and loading images */
 	double t_light;     /* seconds in the light pass */
 	long long light_rays; /* light rays shot (all passes) */
+	long long light_segments; /* ray segments traced by the light pass */
 	long maps;          /* surfaces with an illumination map */
 	size_t map_bytes;   /* memory held by the maps */
 	/* light-pass energy (W, summed over channels and passes): emitted toward

@@ -128,6 +128,7 @@ struct worker {
 	long long segments;
 	double emitted[3];
 	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
+	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
 
 static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
