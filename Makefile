@@ -39,10 +39,10 @@ VERSION  = 0.1.0
 CPPFLAGS += -D_DEFAULT_SOURCE -DARVO_VERSION='"$(VERSION)"' -MMD -MP
 CFLAGS   += -std=c11 $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
 CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS) -lstdc++ -lm -pthread
+LDLIBS   += $(PKG_LIBS) -lembree3 -lstdc++ -lm -pthread
 
 # Every .c under the source directories; main.c is the program's entry.
-SRCDIRS  = common lexer parser eval tracer
+SRCDIRS  = common lexer parser eval tracer tools
 LIB_C    = $(shell find $(SRCDIRS) -name '*.c' | sort)
 LIB_CXX  = $(shell find $(SRCDIRS) -name '*.cpp' | sort)
 LIB_OBJ  = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
@@ -131,7 +131,7 @@ fuzz: deps-fuzz all
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine
+           povray povray-includes povray-examples hyperfine libembree-dev
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \

@@ -2,6 +2,8 @@
 /* builtins.c: POV-Ray's built-in constants and functions, one table. */
 #include <ctype.h>
 #include <errno.h>
+#include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -475,34 +477,75 @@ static const struct builtin table[] = {
 	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vstr", 5, 5, f_vstr},
 };
 
-static int by_name(const void *key, const void *elem)
+/* Every built-in name (the functions above and the constants below) in one
+ * open-addressing hash table, made on first use: name lookups run on every
+ * #declare and every call, in the innermost loops of a scene. */
+static const char *const consts[] = {"pi", "tau", "true", "false", "yes", "no", "on", "off",
+	"x", "y", "z", "t", "u", "v", "clock", "clock_delta", "clock_on", "frame_number",
+	"initial_clock", "final_clock", "initial_frame", "final_frame", "image_width",
+	"image_height", "version", "defined"};
+
+#define NSLOTS 256 /* a power of two, well above the names' count */
+
+struct slot {
+	const char *name;        /* NULL: empty */
+	const struct builtin *b; /* NULL for a constant */
+};
+
+static struct slot slots[NSLOTS];
+static pthread_once_t slots_once = PTHREAD_ONCE_INIT;
+
+static uint32_t name_hash(const char *s)
 {
-	return strcmp(key, ((const struct builtin *)elem)->name);
+	uint32_t h = 2166136261u;
+	for (; *s; s++)
+		h = (h ^ (unsigned char)*s) * 16777619u;
+	return h;
 }
 
-/* The table is sorted by name: binary search (this runs on every #declare). */
+static void slot_put(const char *name, const struct builtin *b)
+{
+	uint32_t h = name_hash(name);
+	while (slots[h & (NSLOTS - 1)].name)
+		h++;
+	slots[h & (NSLOTS - 1)] = (struct slot){name, b};
+}
+
+static void make_slots(void)
+{
+	for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+		slot_put(table[i].name, &table[i]);
+	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++)
+		slot_put(consts[i], NULL);
+}
+
+/* The slot holding name, or NULL when it is not a built-in name. */
+static const struct slot *lookup(const char *name)
+{
+	pthread_once(&slots_once, make_slots);
+	for (uint32_t h = name_hash(name);; h++) {
+		const struct slot *sl = &slots[h & (NSLOTS - 1)];
+		if (!sl->name)
+			return NULL;
+		if (strcmp(sl->name, name) == 0)
+			return sl;
+	}
+}
+
 static const struct builtin *find(const char *name)
 {
-	return bsearch(name, table, sizeof table / sizeof table[0], sizeof table[0], by_name);
+	const struct slot *sl = lookup(name);
+	return sl ? sl->b : NULL;
 }
 
 bool builtin_is_name(const char *name)
 {
-	struct value v;
-	static const char *const consts[] = {"pi", "tau", "true", "false", "yes", "no", "on", "off",
-		"x", "y", "z", "t", "u", "v", "clock", "clock_delta", "clock_on", "frame_number",
-		"initial_clock", "final_clock", "initial_frame", "final_frame", "image_width",
-		"image_height", "version", "defined"};
-	(void)v;
-	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++)
-		if (strcmp(consts[i], name) == 0)
-			return true;
-	return find(name) != NULL;
+	return lookup(name) != NULL;
 }
 
 bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 {
-	if (strcmp(n->str, "defined") == 0) {
+	if (n->str[0] == 'd' && strcmp(n->str, "defined") == 0) {
 		if (n->nkids != 1 || !n->kids[0] || n->kids[0]->kind != N_IDENT)
 			eval_fail(E, n->loc, "defined() needs one identifier");
 		*out = val_float(env_lookup(E, n->kids[0]->str) != NULL || env_macro(E, n->kids[0]->str) != NULL);

@@ -8,6 +8,7 @@
 
 struct entry {
 	const char *name;         /* key (arena) */
+	uint32_t hash;            /* hash(name) */
 	struct value val;         /* identifier value */
 	const struct node *macro; /* N_MACRO when this is a macro */
 	struct entry *next;       /* chain */
@@ -69,12 +70,25 @@ void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
 
 void scope_pop(struct eval *E) { E->nscopes--; }
 
-static struct entry *find(struct scope *sc, const char *name)
+/* strcmp(a, b) == 0 for the short names of scenes, without a call. */
+static inline bool same(const char *a, const char *b)
 {
-	for (struct entry *e = sc->buckets[hash(name) & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
-		if (strcmp(e->name, name) == 0)
+	while (*a && *a == *b)
+		a++, b++;
+	return *a == *b;
+}
+
+static struct entry *find_h(struct scope *sc, const char *name, uint32_t h)
+{
+	for (struct entry *e = sc->buckets[h & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
+		if (e->hash == h && same(e->name, name))
 			return e;
 	return NULL;
+}
+
+static struct entry *find(struct scope *sc, const char *name)
+{
+	return find_h(sc, name, hash(name));
 }
 
 /* Doubles a scope's table when it gets crowded. */
@@ -85,7 +99,7 @@ static void grow(struct eval *E, struct scope *sc)
 	for (int i = 0; i < sc->nbuckets; i++) {
 		for (struct entry *e = sc->buckets[i], *next; e; e = next) {
 			next = e->next;
-			uint32_t h = hash(e->name) & (uint32_t)(nb - 1);
+			uint32_t h = e->hash & (uint32_t)(nb - 1);
 			e->next = b[h];
 			b[h] = e;
 		}
@@ -111,7 +125,8 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 		e = ARENA_NEW(&E->arena, struct entry);
 	}
 	e->name = name; /* names are AST or evaluator strings: they live as long */
-	uint32_t h = hash(name) & (uint32_t)(sc->nbuckets - 1);
+	e->hash = hash(name);
+	uint32_t h = e->hash & (uint32_t)(sc->nbuckets - 1);
 	e->next = sc->buckets[h];
 	sc->buckets[h] = e;
 	sc->count++;
@@ -120,8 +135,9 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 
 struct value *env_lookup(struct eval *E, const char *name)
 {
+	uint32_t h = hash(name);
 	for (int i = E->nscopes - 1; i >= 0; i--) {
-		struct entry *e = find(E->scopes[i], name);
+		struct entry *e = find_h(E->scopes[i], name, h);
 		if (e && !e->macro)
 			return &e->val;
 	}
@@ -142,8 +158,9 @@ struct value *env_declare(struct eval *E, const char *name, bool local)
 {
 	struct scope *sc = E->scopes[local ? E->nscopes - 1 : 0];
 	if (!local) {
+		uint32_t h = hash(name);
 		for (int i = E->nscopes - 1; i > 0; i--) {
-			struct entry *e = find(E->scopes[i], name);
+			struct entry *e = find_h(E->scopes[i], name, h);
 			if (e && !e->macro)
 				return &e->val;
 		}

@@ -185,8 +185,29 @@ static double srgb_to_linear(double c)
 	return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n);
+
+/* A colour expression: its prefix applied to its operand, then POV-Ray's
+ * trailing components (red/green/blue/filter/transmit value) in order. */
 static struct value colour_prefix(struct eval *E, const struct node *n)
+{
+	struct value v = n->a ? colour_base(E, n) : val_colour(c_rgb(0, 0, 0));
+	for (int i = 0; i < n->nkids; i++) {
+		const struct node *k = n->kids[i];
+		double f = eval_float(E, k->a);
+		switch (k->op) {
+		case TK_RED: v.v[0] = f; break;
+		case TK_GREEN: v.v[1] = f; break;
+		case TK_BLUE: v.v[2] = f; break;
+		case TK_FILTER: v.v[3] = f; break;
+		default: v.v[4] = f; break;
+		}
+	}
+	return v;
+}
+
+/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n)
 {
 	struct value a = eval_expr(E, n->a);
 	if (n->op == TK_COLOR || n->op == TK_COLOUR)
@@ -425,6 +446,8 @@ static struct value identifier(struct eval *E, const struct node *n)
 		return c;
 	if (env_macro(E, n->str))
 		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
+	if (tok_is_pov_word(n->str))
+		eval_fail(E, n->loc, "'%s' is not supported", n->str);
 	eval_fail(E, n->loc, "undeclared identifier '%s'", n->str);
 }
 
@@ -628,19 +651,28 @@ static int is_dir_prefix(const char *dir, const char *path)
  * directory, as given, where it was found. `what` names the file kind in errors. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
 {
-	const char *dirs[66];
+	const char *dirs[68];
 	int nd = 0;
 	dirs[nd++] = E->dir_stack[E->include_depth];
 	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
 		dirs[nd++] = E->opt->include_dirs[i];
-	if (E->opt->stdlib_dir)
-		dirs[nd++] = E->opt->stdlib_dir;
+	char libreal[PATH_MAX] = "";
+	if (E->opt->stdlib_dir && !realpath(dirs[nd++] = E->opt->stdlib_dir, libreal))
+		libreal[0] = '\0';
+	if (E->opt->pov_include_dir)
+		dirs[nd++] = E->opt->pov_include_dir;
+	/* a library file that includes its own name reads the next file of that
+	 * name on the path (as C's #include_next): arvo's glass.inc adds POV-Ray's */
+	const struct srcfile *from = srcfile_get(loc.file);
+	char self[PATH_MAX];
+	if (!from || !realpath(from->name, self))
+		self[0] = '\0';
 	if (name[0] == '/')
 		eval_fail(E, loc, "%s needs a relative path, found '%s'", what, name);
 	for (int i = 0; i < nd; i++) {
 		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
 		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
-		if (!realpath(cand, real) || !realpath(dirs[i], realdir))
+		if (!realpath(cand, real) || !realpath(dirs[i], realdir) || (strcmp(real, self) == 0 && strcmp(realdir, libreal) == 0))
 			continue;
 		if (!is_dir_prefix(realdir, real))
 			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
@@ -892,6 +924,8 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 		if (diag->errors == 0) {
 			scope_push(E, scope_new(E), srcloc_none());
 			E->dir_stack[0] = dir_of(E, path);
+			if (opt->pov_include_dir) /* arvo's library reads POV-Ray's files after itself */
+				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
 			for (int i = 0; i < opt->ndefines; i++)
 				declare_define(E, opt->defines[i]);
 			struct sink s;

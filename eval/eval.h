@@ -13,6 +13,7 @@ struct eval_options {
 	const char *const *include_dirs; /* -I directories, in order */
 	int ninclude;
 	const char *stdlib_dir;          /* stdlib-scenes/include (NULL: none) */
+	const char *pov_include_dir;     /* POV-Ray's include files (NULL: none) */
 	const char *const *defines;      /* -D NAME=VALUE strings */
 	int ndefines;
 	double clock;                    /* clock */

@@ -140,6 +140,12 @@ bool transform_of(struct eval *E, const struct node *n, struct xform *out);
 struct texture *texture_copy(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
+/* A transform old (NULL: identity) followed by X, in a slot of its own, since
+ * copied objects and textures may share old; NULL when it is the identity. */
+const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X);
+/* A finish { } block n on a texture's finish *f: it changes a copy, since
+ * textures share finishes (the default one, a declared texture's). */
+void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)

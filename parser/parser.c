@@ -291,8 +291,14 @@ static struct node *parse_postfix(struct parser *p, struct node *e)
 	}
 }
 
+static bool colour_component(enum tok k)
+{
+	return k == TK_RED || k == TK_GREEN || k == TK_BLUE || k == TK_FILTER || k == TK_TRANSMIT;
+}
+
 /* primary := number | string | ident [args] | '(' expr ')' | vector
- *          | colour-keyword expr | array */
+ *          | colour-keyword [expr] {('red'|'green'|'blue'|'filter'|'transmit') expr}
+ *          | array */
 static struct node *parse_primary(struct parser *p)
 {
 	struct token t = p->tok;
@@ -333,7 +339,16 @@ static struct node *parse_primary(struct parser *p)
 			leave(p);
 			return r;
 		}
-		n->a = parse_expr(p);
+		if (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind))
+			n->a = parse_expr(p); /* "color red 1 …" has none */
+		/* POV-Ray's trailing components: rgb 1 filter 0.5, color red 1 green 0.5 */
+		while (colour_component(p->tok.kind) && !p->panic) {
+			struct node *c = node(p, N_COLOUR, p->tok.loc);
+			c->op = p->tok.kind;
+			advance(p);
+			c->a = parse_expr(p);
+			ast_push(p->arena, n, c);
+		}
 		return n;
 	} else if (t.kind == TK_ARRAY) {
 		return parse_array(p);
@@ -463,8 +478,11 @@ static struct node *parse_keyword_item(struct parser *p)
 {
 	struct token t = p->tok;
 	enum kw_shape sh = tok_shape(t.kind);
-	if (sh == SH_PREFIX || sh == SH_VALUE)
-		return parse_expr(p);
+	if (sh == SH_PREFIX || sh == SH_VALUE) {
+		struct node *e = parse_expr(p);
+		accept(p, TK_COMMA); /* checker color A, color B */
+		return e;
+	}
 	advance(p);
 	struct node *n = node(p, N_MOD, t.loc);
 	n->op = t.kind;
@@ -539,21 +557,36 @@ static struct node *parse_declare(struct parser *p, struct token d)
 {
 	struct node *n = node(p, N_DECLARE, d.loc);
 	n->op = d.kind;
-	if (!check(p, TK_IDENT)) {
-		if (tok_is_keyword(p->tok.kind)) {
-			error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
-			advance(p); /* so resynchronising does not restart at it */
+	struct token name = p->tok;
+	bool have_name = false;
+	if (check(p, TK_IDENT) && p->tok.len == 10 && memcmp(p->tok.text, "deprecated", 10) == 0) {
+		advance(p);
+		if (check(p, TK_ONCE) || check(p, TK_STRING)) {
+			/* POV-Ray's #declare deprecated [once] "message" Name = … */
+			accept(p, TK_ONCE);
+			accept(p, TK_STRING);
 		} else {
-			expected(p, "an identifier");
+			have_name = true; /* a variable called deprecated */
 		}
-		return n;
 	}
-	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-	n->len = p->tok.len;
-	n->b = node(p, N_IDENT, p->tok.loc); /* where the name is */
+	if (!have_name) {
+		if (!check(p, TK_IDENT)) {
+			if (tok_is_keyword(p->tok.kind)) {
+				error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
+				advance(p); /* so resynchronising does not restart at it */
+			} else {
+				expected(p, "an identifier");
+			}
+			return n;
+		}
+		name = p->tok;
+		advance(p);
+	}
+	n->str = arena_strndup(p->arena, name.text, (size_t)name.len);
+	n->len = name.len;
+	n->b = node(p, N_IDENT, name.loc); /* where the name is */
 	n->b->str = n->str;
 	n->b->len = n->len;
-	advance(p);
 	while (check(p, TK_LBRACKET)) {
 		struct srcloc open = p->tok.loc;
 		advance(p);
@@ -788,6 +821,26 @@ static struct node *parse_directive_body(struct parser *p, struct token d)
 	}
 }
 
+/* A word arvo has no keyword for, followed by '{': POV-Ray's old
+ * `default { }` (#default), a `radiosity { }` block (ignored with a
+ * warning: the scene renders without it), or an error naming the word. */
+static struct node *word_block(struct parser *p, struct node *id)
+{
+	if (strcmp(id->str, "default") == 0) {
+		struct node *n = node(p, N_DEFAULT, id->loc);
+		n->op = TK_DIR_DEFAULT;
+		return parse_block_body(p, n);
+	}
+	skip_braces(p);
+	if (strcmp(id->str, "radiosity") == 0)
+		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
+	else if (tok_is_pov_word(id->str))
+		error_at(p, id->loc, "'%s' is not supported", id->str);
+	else
+		error_at(p, id->loc, "unknown keyword '%s' before '{'", id->str);
+	return NULL;
+}
+
 /* item := directive | keyword-item | '[' items ']' | expr [','] */
 static struct node *parse_item(struct parser *p)
 {
@@ -814,6 +867,8 @@ static struct node *parse_item(struct parser *p)
 	}
 	if (starts_expr(p)) {
 		struct node *e = parse_expr(p);
+		if (e && e->kind == N_IDENT && check(p, TK_LBRACE))
+			return word_block(p, e);
 		accept(p, TK_COMMA);
 		return e;
 	}

@@ -21,19 +21,24 @@ void scene_init(struct scene *s)
 	s->gs.illum.passes = PASSES_RGB;
 }
 
+/* POV-Ray's default finish, which every texture without a finish shares. */
+static const struct finish default_finish = {
+	.ambient = {0.1, 0.1, 0.1, 0, 0}, .diffuse = 0.6, .brilliance = 1, .roughness = 0.05,
+	.phong_size = 40, .refl_falloff = 1,
+};
+
 struct texture scene_default_texture(void)
 {
 	struct texture t;
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
-	t.pigment.xf = xf_identity();
+	t.pigment.xf = NULL;
 	t.pigment.axis = v3(0, 1, 0);
-	t.finish.ambient = c_rgb(0.1, 0.1, 0.1);
-	t.finish.diffuse = 0.6;
-	t.finish.brilliance = 1;
-	t.finish.roughness = 0.05;
-	t.finish.phong_size = 40;
-	t.finish.refl_falloff = 1;
+	t.pigment.frequency = 1;
+	t.pigment.exponent = 1;
+	t.pigment.brick_size = v3(8, 3, 4.5);
+	t.pigment.mortar = 0.5;
+	t.finish = &default_finish;
 	t.loc = (struct srcloc){-1, 0, 0};
 	return t;
 }
@@ -98,6 +103,14 @@ void scene_add_light(struct scene *s, const struct light *l)
 
 void scene_free(struct scene *s) { arena_free(&s->arena); }
 
+const char *scene_pov_view(const struct scene *s)
+{
+	if (!s->legacy_lights)
+		return NULL;
+	bool srgb = s->gs.gamma_given ? s->gs.assumed_gamma < 1.6 : s->version >= 3.7;
+	return srgb ? "Standard" : "Raw";
+}
+
 /* ==== --dump-scene ======================================================== */
 
 static const char *const kind_names[OBJ_KIND_COUNT] = {
@@ -130,7 +143,9 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
-	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map"};
+	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
 	switch (p->kind) {
@@ -138,7 +153,16 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
 	case PIG_GRADIENT: pv(o, p->axis); break;
 	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", p->image, p->interpolate, p->once); break;
+	case PIG_PATTERN: fputs(pats[p->pattern], o); break;
+	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputc(' ', o), pc(o, p->c[2]); break;
+	case PIG_BRICK:
+		pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputs(" brick_size ", o), pv(o, p->brick_size);
+		fprintf(o, " mortar %.6g", p->mortar);
+		break;
 	}
+	if ((p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN) &&
+	    (p->wave != WAVE_RAMP || p->frequency != 1 || p->phase != 0))
+		fprintf(o, " %s_wave %.6g frequency %.6g phase %.6g", waves[p->wave], p->exponent, p->frequency, p->phase);
 	fputc('\n', o);
 	for (int i = 0; i < p->nmap; i++) {
 		indent(o, d + 1);
@@ -146,7 +170,7 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 		pc(o, p->map[i].c);
 		fputs("]\n", o);
 	}
-	dump_xform(o, &p->xf, d + 1);
+	dump_xform(o, p->xf ? p->xf : &xf_ident, d + 1);
 }
 
 static void dump_finish(FILE *o, const struct finish *f, int d)
@@ -184,7 +208,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 	indent(o, d);
 	fprintf(o, "object %s @%d:%d\n", kind_names[ob->kind], ob->loc.line, ob->loc.col);
 	dump_geometry(o, ob, d + 1);
-	dump_xform(o, &ob->xf, d + 1);
+	dump_xform(o, obj_xf(ob), d + 1);
 	if (ob->flags) {
 		indent(o, d + 1);
 		fputs("flags", o);
@@ -197,7 +221,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		indent(o, d + 1);
 		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
-		dump_finish(o, &ob->tex->finish, d + 2);
+		dump_finish(o, ob->tex->finish, d + 2);
 	}
 	if (ob->interior) {
 		const struct interior *in = ob->interior;

@@ -18,7 +18,21 @@
 
 /* ---- materials ---------------------------------------------------------- */
 
-enum pigment_kind { PIG_SOLID, PIG_CHECKER, PIG_GRADIENT, PIG_IMAGE };
+enum pigment_kind {
+	PIG_SOLID, PIG_CHECKER, PIG_GRADIENT, PIG_IMAGE,
+	PIG_PATTERN,  /* a continuous pattern (enum pattern_kind) through the colour_map */
+	PIG_HEXAGON,  /* three colours on hexagons in the x-z plane */
+	PIG_BRICK,    /* mortar colour, brick colour */
+};
+
+/* POV-Ray's continuous patterns (tracer/pattern.c). */
+enum pattern_kind {
+	PAT_RADIAL, PAT_ONION, PAT_SPHERICAL, PAT_CYLINDRICAL, PAT_BOXED, PAT_PLANAR,
+	PAT_LEOPARD, PAT_KIND_COUNT
+};
+
+/* The wave a pattern's value goes through before the colour_map. */
+enum wave_kind { WAVE_RAMP, WAVE_TRIANGLE, WAVE_SINE, WAVE_SCALLOP, WAVE_CUBIC, WAVE_POLY };
 
 /* One entry of a colour_map: the colour at position pos in [0,1]. */
 struct map_entry {
@@ -28,8 +42,14 @@ struct map_entry {
 
 struct pigment {
 	enum pigment_kind kind;   /* which pattern */
-	struct colour c[2];       /* solid colour; checker's two colours */
+	struct colour c[3];       /* solid colour; checker's, brick's two, hexagon's three */
 	struct vec3 axis;         /* gradient direction */
+	enum pattern_kind pattern; /* PIG_PATTERN: which */
+	enum wave_kind wave;      /* gradient, PIG_PATTERN: ramp_wave (default) … */
+	double frequency, phase;  /* POV frequency (default 1) and phase (0) */
+	double exponent;          /* poly_wave exponent (default 1) */
+	struct vec3 brick_size;   /* brick: default <8, 3, 4.5> */
+	double mortar;            /* brick: default 0.5 */
 	struct map_entry *map;    /* gradient colour_map (NULL: black→white) */
 	int nmap;                 /* entries in map */
 	const char *image;        /* image_map file, resolved path */
@@ -37,7 +57,7 @@ struct pigment {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
-	struct xform xf;          /* pattern space → world */
+	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
 
 struct finish {
@@ -69,7 +89,7 @@ struct interior {
 
 struct texture {
 	struct pigment pigment;
-	struct finish finish;
+	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
 };
 
@@ -125,7 +145,7 @@ struct object {
 		struct { struct vec3 p[3]; } triangle;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
-	struct xform xf;             /* object frame → world */
+	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
 	unsigned flags;              /* enum object_flags */
@@ -133,6 +153,12 @@ struct object {
 	struct photon_spec photons;  /* photons { } */
 	bool has_photons;            /* a photons { } block was given */
 };
+
+/* The object's frame → world transform (the identity when it has none). */
+static inline const struct xform *obj_xf(const struct object *o)
+{
+	return o->xf ? o->xf : &xf_ident;
+}
 
 /* ---- lights and camera -------------------------------------------------- */
 
@@ -191,6 +217,7 @@ struct illum_settings {
 
 struct global_settings {
 	double assumed_gamma;      /* parsed, recorded (output is linear) */
+	bool gamma_given;          /* the scene set assumed_gamma */
 	int max_trace_level;       /* default 5 */
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
@@ -224,6 +251,11 @@ void scene_add_light(struct scene *s, const struct light *l);
 /* Stable text for golden tests (--dump-scene). */
 void scene_dump(FILE *out, const struct scene *s);
 const char *scene_object_kind_name(enum object_kind k);
+/* The OCIO view whose PNG matches POV-Ray's own for a #version 3.x scene
+ * (docs/design.md §6): "Standard" (sRGB) for assumed_gamma 1, "Raw" for
+ * POV-Ray's un-corrected output (assumed_gamma 2.2, or none before 3.7);
+ * NULL for arvo's own scenes. */
+const char *scene_pov_view(const struct scene *s);
 void scene_free(struct scene *s);
 
 #endif
