@@ -309,9 +309,9 @@ static struct value *index_slot(struct eval *E, const struct node *n)
 	for (int d = 0; d < k; d++) {
 		const struct node *ix = chain[k - 1 - d];
 		double f = eval_float(E, ix->b);
-		long i = (long)f;
-		if (f < 0 || i >= arr->dims[d])
+		if (!(f >= 0 && f < arr->dims[d])) /* compared as a double: no conversion out of range */
 			eval_fail(E, ix->b->loc, "array index %g out of range (0 to %d)", f, arr->dims[d] - 1);
+		long i = (long)f;
 		off = off * arr->dims[d] + i;
 	}
 	return &arr->items[off];
