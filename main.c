@@ -48,7 +48,7 @@ struct options {
 	int width, height, spp, threads;
 	double clock;
 	int frame;
-	long max_iterations, max_calls, max_objects; /* --max-iterations, --max-calls, --max-objects */
+	long max_iterations, max_calls, max_objects, max_steps; /* --max-iterations, -calls, -objects, -steps */
 	size_t max_memory;                           /* --max-memory (0: not given) */
 	int quiet, stats;
 	const char *display;         /* --display (PNG) */
@@ -97,6 +97,7 @@ static void usage(FILE *out)
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
 	      "  --max-calls N      limit on macro calls (default 1000000)\n"
 	      "  --max-objects N    limit on objects and lights (default 1000000)\n"
+	      "  --max-steps N      limit on evaluation steps (default 1000000000)\n"
 	      "  --max-memory SIZE  memory budget, e.g. 512M or 4G (default: half the machine's)\n"
 	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
@@ -378,11 +379,13 @@ static int parse_args(int argc, char **argv, struct options *o)
 			NEED_ARG();
 			if (!parse_double(next, &o->clock))
 				return usage_error("bad value for --clock: '%s'", next);
-		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects")) {
+		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects") ||
+		           !strcmp(a, "--max-steps")) {
 			NEED_ARG();
-			if (!parse_int(next, 1, 1L << 40, &v))
+			if (!parse_int(next, 1, 1L << 50, &v))
 				return usage_error("bad value for %s: '%s'", a, next);
-			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : &o->max_objects) = v;
+			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : a[6] == 'o' ? &o->max_objects
+			  : &o->max_steps) = v;
 		} else if (!strcmp(a, "--max-memory")) {
 			NEED_ARG();
 			o->max_memory = mem_parse_size(next);
@@ -643,7 +646,7 @@ int main(int argc, char **argv)
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
-	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000;
+	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000, o.max_steps = 1000000000;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
@@ -672,6 +675,7 @@ int main(int argc, char **argv)
 	eo.max_iterations = o.max_iterations;
 	eo.max_calls = o.max_calls;
 	eo.max_objects = o.max_objects;
+	eo.max_steps = o.max_steps;
 	struct deps deps = {NULL, 0};
 	if (o.depfile) {
 		eo.on_file = dep_add;

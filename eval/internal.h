@@ -60,6 +60,7 @@ struct eval {
 	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
 	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
 	long calls;                /* macro calls so far */
+	long steps;                /* item lists and expressions evaluated so far */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
