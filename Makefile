@@ -123,6 +123,7 @@ $(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_OBJ)
 unit: $(FUZZ_REPLAY)
 
 fuzz-build: $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/fuzz_%)
+.PRECIOUS: $(FUZZ_BUILD)/%.o
 
 fuzz: deps-fuzz all
 	$(Q)$(MAKE) --no-print-directory fuzz-build

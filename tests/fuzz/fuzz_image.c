@@ -17,6 +17,11 @@
 
 static void over_budget(size_t request) { (void)request; }
 
+static uint64_t be32(const uint8_t *p)
+{
+	return (uint64_t)p[0] << 24 | (uint64_t)p[1] << 16 | (uint64_t)p[2] << 8 | p[3];
+}
+
 /* The scene map files are loaded for; NULL when it cannot be read. */
 static struct scene *maps_scene(void)
 {
@@ -58,9 +63,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	 * allocates before reading them: arvo refuses it at its memory budget
 	 * (exit 70); here such inputs are skipped, as libFuzzer's malloc limit
 	 * would report them. */
-	if (size >= 24 && memcmp(data, "\x89PNG", 4) == 0 &&
-	    (uint64_t)(data[16] << 24 | data[17] << 16 | data[18] << 8 | data[19]) *
-	    (uint64_t)(data[20] << 24 | data[21] << 16 | data[22] << 8 | data[23]) > ((uint64_t)1 << 24))
+	if (size >= 24 && memcmp(data, "\x89PNG", 4) == 0 && be32(data + 16) * be32(data + 20) > ((uint64_t)1 << 24))
 		return 0;
 	const char *path = fuzz_file("fuzz.img", data, size);
 	struct img_opts opts = {NULL, NULL, 1}; /* raw: the readers, not OCIO */
