@@ -71,6 +71,7 @@ struct eval {
 	const char *dir_stack[MAX_INCLUDE_DEPTH + 2]; /* directory of each open file */
 	struct texture default_tex; /* #default */
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
+	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 };

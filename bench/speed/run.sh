@@ -53,7 +53,7 @@ stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[
 # arvo_eye N THREADS: median eye-pass seconds; rays of the last run in $tmp/rays
 arvo_eye() {
 	for i in $(seq "$RUNS"); do
-		"$ARVO" -q --stats --rays 0 --threads "$2" --spp 1 --width "$W" --height "$H" \
+		"$ARVO" -q --stats --max-objects 2000000 --rays 0 --threads "$2" --spp 1 --width "$W" --height "$H" \
 			-D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
 		stat_of "eye pass" "$tmp/a.log"
 	done | median
@@ -120,7 +120,7 @@ row light "segments/s/core" 1000000 2 "$rate" "" "" "segments/s/core" ">=1e7" "$
 # ---- front end: 1M spheres evaluated and bounded ----
 : > "$tmp/fa"; : > "$tmp/fp"
 for i in $(seq "$RUNS"); do
-	timed "$tmp/fa" "$ARVO" -q --rays 0 --threads "$THREADS" --width 1 --height 1 -o "$tmp/f.exr" \
+	timed "$tmp/fa" "$ARVO" -q --max-objects 2000000 --rays 0 --threads "$THREADS" --width 1 --height 1 -o "$tmp/f.exr" \
 		-D N="$FRONT_N" "$root/bench/frontend/loop1m.scn"
 	[ "$have_pov" = 1 ] && [ "$i" = 1 ] &&
 		(cd "$tmp" && timed "$tmp/fp" "$POVRAY" +I"$root/bench/frontend/loop1m.scn" +O"$tmp/f.png" -D +W1 +H1 -GA +WT1 Declare=N="$FRONT_N")
