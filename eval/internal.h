@@ -145,6 +145,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 /* A finish { } block n on a texture's finish *f: it changes a copy, since
  * textures share finishes (the default one, a declared texture's). */
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
+/* p's pattern settings, made its own to be written (pigments share them). */
+struct pattern *pat_w(struct eval *E, struct pigment *p);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)

@@ -55,17 +55,25 @@ void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
 		struct value v = arg1(E, n);
 		if (v.kind != V_STRING)
 			eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
-		p->image = image_path(E, n, v.p.s);
+		pat_w(E, p)->image = image_path(E, n, v.p.s);
 		return;
 	}
-	case TK_INTERPOLATE: p->interpolate = arg_int(E, n, 0, 4); return;
-	case TK_ONCE: p->once = true; return;
+	case TK_INTERPOLATE: pat_w(E, p)->interpolate = arg_int(E, n, 0, 4); return;
+	case TK_ONCE: pat_w(E, p)->once = true; return;
 	case TK_MAP_TYPE:
 		if (arg_int(E, n, 0, 7) != 0)
 			eval_fail(E, n->kids[0]->loc, "only map_type 0 (planar) is supported");
 		return;
 	default: misplaced(E, s, n);
 	}
+}
+
+struct pattern *pat_w(struct eval *E, struct pigment *p)
+{
+	struct pattern *c = NEW(E, struct pattern);
+	*c = *pig_pattern(p);
+	p->pat = c;
+	return c;
 }
 
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -90,21 +98,22 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (v_len(a) == 0)
 			eval_fail(E, n->kids[0]->loc, "gradient direction has zero length");
 		p->kind = PIG_GRADIENT;
-		p->axis = a;
+		pat_w(E, p)->axis = a;
 		return;
 	}
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: {
 		struct colour_map *m = colour_map_block(E, n);
-		p->map = m->e;
-		p->nmap = m->n;
+		struct pattern *pt = pat_w(E, p);
+		pt->map = m->e;
+		pt->nmap = m->n;
 		return;
 	}
 	case TK_IMAGE_MAP: {
 		struct sink sub;
 		p->kind = PIG_IMAGE;
-		p->interpolate = 0;
+		pat_w(E, p)->interpolate = 0;
 		run_block(E, n, SK_IMAGE_MAP, p, &sub);
-		if (!p->image)
+		if (!pig_pattern(p)->image)
 			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
 		return;
 	}
@@ -121,8 +130,9 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 		return;
 	}
 	if (v->kind == V_COLOUR_MAP && p->kind == PIG_GRADIENT) {
-		p->map = v->p.cmap->e;
-		p->nmap = v->p.cmap->n;
+		struct pattern *pt = pat_w(E, p);
+		pt->map = v->p.cmap->e;
+		pt->nmap = v->p.cmap->n;
 		return;
 	}
 	if (v->kind != V_COLOUR && v->kind != V_FLOAT && v->kind != V_VECTOR)

@@ -42,7 +42,7 @@ static const char *cache_add(struct mat_cache *c, const char *path, const char *
 static const char *load_tree(struct mat_cache *c, const struct object *o, const char *ocio)
 {
 	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
-		const char *err = cache_add(c, o->tex->pigment.image, ocio);
+		const char *err = cache_add(c, pig_pattern(&o->tex->pigment)->image, ocio);
 		if (err)
 			return err;
 	}
@@ -110,17 +110,18 @@ static struct colour c_lerp(struct colour a, struct colour b, double t)
  * without a map, black to white. */
 static struct colour colour_map(const struct pigment *pg, double v)
 {
-	if (!pg->map || pg->nmap == 0)
+	const struct pattern *pt = pig_pattern(pg);
+	if (!pt->map || pt->nmap == 0)
 		return c_rgb(v, v, v);
-	const struct map_entry *m = pg->map;
+	const struct map_entry *m = pt->map;
 	if (v <= m[0].pos)
 		return m[0].c;
-	for (int i = 1; i < pg->nmap; i++)
+	for (int i = 1; i < pt->nmap; i++)
 		if (v <= m[i].pos) {
 			double span = m[i].pos - m[i - 1].pos;
 			return span > 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
 		}
-	return m[pg->nmap - 1].c;
+	return m[pt->nmap - 1].c;
 }
 
 /* POV's checker: the parity of the unit cell containing q. */
@@ -134,7 +135,7 @@ static struct colour checker(const struct pigment *pg, struct vec3 q)
 /* POV's gradient: the ramp of q·axis, repeating every unit. */
 static struct colour gradient(const struct pigment *pg, struct vec3 q)
 {
-	double v = v_dot(q, pg->axis);
+	double v = v_dot(q, pig_pattern(pg)->axis);
 	v -= floor(v);
 	return colour_map(pg, v);
 }
@@ -155,15 +156,16 @@ static struct colour texel(const struct img *im, long x, long y)
  * bottom-left at the origin, repeating unless `once`. */
 static struct colour image_map(const struct mat_cache *c, const struct pigment *pg, struct vec3 q)
 {
-	const struct img *im = cache_find(c, pg->image ? pg->image : "");
+	const struct pattern *pt = pig_pattern(pg);
+	const struct img *im = cache_find(c, pt->image ? pt->image : "");
 	if (!im || im->w <= 0)
 		return c_rgb(1, 0, 1);
-	if (pg->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
+	if (pt->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
 		return (struct colour){0, 0, 0, 0, 1};
 	double u = q.x - floor(q.x), v = q.y - floor(q.y);
 	double fx = u * im->w, fy = (1 - v) * im->h;
 	struct colour out;
-	if (pg->interpolate == 2) {
+	if (pt->interpolate == 2) {
 		double x0 = floor(fx - 0.5), y0 = floor(fy - 0.5), tx = fx - 0.5 - x0, ty = fy - 0.5 - y0;
 		struct colour a = c_lerp(texel(im, (long)x0, (long)y0), texel(im, (long)x0 + 1, (long)y0), tx);
 		struct colour b = c_lerp(texel(im, (long)x0, (long)y0 + 1), texel(im, (long)x0 + 1, (long)y0 + 1), tx);
@@ -171,8 +173,6 @@ static struct colour image_map(const struct mat_cache *c, const struct pigment *
 	} else {
 		out = texel(im, (long)floor(fx), (long)floor(fy));
 	}
-	out.f += pg->filter_all.f;
-	out.t += pg->filter_all.t;
 	return out;
 }
 

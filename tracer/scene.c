@@ -27,13 +27,19 @@ static const struct finish default_finish = {
 	.phong_size = 40, .refl_falloff = 1,
 };
 
+static const struct pattern default_pattern = {.axis = {0, 1, 0}};
+
+const struct pattern *pig_pattern(const struct pigment *p)
+{
+	return p->pat ? p->pat : &default_pattern;
+}
+
 struct texture scene_default_texture(void)
 {
 	struct texture t;
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
-	t.pigment.axis = v3(0, 1, 0);
 	t.finish = &default_finish;
 	t.loc = (struct srcloc){-1, 0, 0};
 	return t;
@@ -145,14 +151,14 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	switch (p->kind) {
 	case PIG_SOLID: pc(o, p->c[0]); break;
 	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
-	case PIG_GRADIENT: pv(o, p->axis); break;
-	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", p->image, p->interpolate, p->once); break;
+	case PIG_GRADIENT: pv(o, pig_pattern(p)->axis); break;
+	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", pig_pattern(p)->image, pig_pattern(p)->interpolate, pig_pattern(p)->once); break;
 	}
 	fputc('\n', o);
-	for (int i = 0; i < p->nmap; i++) {
+	for (int i = 0; i < pig_pattern(p)->nmap; i++) {
 		indent(o, d + 1);
-		fprintf(o, "[%.6g ", p->map[i].pos);
-		pc(o, p->map[i].c);
+		fprintf(o, "[%.6g ", pig_pattern(p)->map[i].pos);
+		pc(o, pig_pattern(p)->map[i].c);
 		fputs("]\n", o);
 	}
 	dump_xform(o, p->xf ? p->xf : &xf_ident, d + 1);

@@ -26,19 +26,26 @@ struct map_entry {
 	struct colour c;  /* colour there */
 };
 
-struct pigment {
-	enum pigment_kind kind;   /* which pattern */
-	struct colour c[2];       /* solid colour; checker's two colours */
+/* What a pigment other than a plain colour needs: kept apart, so that a
+ * scene of many coloured objects stores only their colours. */
+struct pattern {
 	struct vec3 axis;         /* gradient direction */
 	struct map_entry *map;    /* gradient colour_map (NULL: black→white) */
 	int nmap;                 /* entries in map */
 	const char *image;        /* image_map file, resolved path */
-	int image_type;           /* image_map: 0 planar (map_type 0) */
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
-	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
+};
+
+struct pigment {
+	enum pigment_kind kind;   /* which pattern */
+	struct colour c[2];       /* solid colour; checker's two colours */
+	const struct pattern *pat; /* NULL: the defaults (pig_pattern) */
 	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
+
+/* The pattern settings of p (the defaults when it has none of its own). */
+const struct pattern *pig_pattern(const struct pigment *p);
 
 struct finish {
 	struct colour ambient; /* ambient colour (rgb) */
