@@ -27,7 +27,9 @@ static const struct finish default_finish = {
 	.phong_size = 40, .refl_falloff = 1,
 };
 
-static const struct pattern default_pattern = {.axis = {0, 1, 0}};
+static const struct pattern default_pattern = {
+	.axis = {0, 1, 0}, .frequency = 1, .exponent = 1, .brick_size = {8, 3, 4.5}, .mortar = 0.5,
+};
 
 const struct pattern *pig_pattern(const struct pigment *p)
 {
@@ -145,7 +147,9 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
-	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map"};
+	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
 	switch (p->kind) {
@@ -153,7 +157,16 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
 	case PIG_GRADIENT: pv(o, pig_pattern(p)->axis); break;
 	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", pig_pattern(p)->image, pig_pattern(p)->interpolate, pig_pattern(p)->once); break;
+	case PIG_PATTERN: fputs(pats[pig_pattern(p)->pattern], o); break;
+	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputc(' ', o), pc(o, p->c[2]); break;
+	case PIG_BRICK:
+		pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputs(" brick_size ", o), pv(o, pig_pattern(p)->brick_size);
+		fprintf(o, " mortar %.6g", pig_pattern(p)->mortar);
+		break;
 	}
+	if ((p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN) &&
+	    (pig_pattern(p)->wave != WAVE_RAMP || pig_pattern(p)->frequency != 1 || pig_pattern(p)->phase != 0))
+		fprintf(o, " %s_wave %.6g frequency %.6g phase %.6g", waves[pig_pattern(p)->wave], pig_pattern(p)->exponent, pig_pattern(p)->frequency, pig_pattern(p)->phase);
 	fputc('\n', o);
 	for (int i = 0; i < pig_pattern(p)->nmap; i++) {
 		indent(o, d + 1);
