@@ -86,16 +86,18 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK:
+	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK: {
 		/* POV-Ray's default colours: checker blue, green; hexagon blue,
 		 * green, red; brick grey mortar, red brick */
 		p->kind = n->op == TK_CHECKER ? PIG_CHECKER : n->op == TK_HEXAGON ? PIG_HEXAGON : PIG_BRICK;
 		p->c[0] = n->op == TK_BRICK ? c_rgb(0.5, 0.5, 0.5) : c_rgb(0, 0, 1);
-		p->c[1] = n->op == TK_BRICK ? c_rgb(0.6, 0.15, 0.15) : c_rgb(0, 1, 0);
-		p->c[2] = c_rgb(1, 0, 0);
+		struct pattern *pt = pat_w(E, p);
+		pt->more[0] = n->op == TK_BRICK ? c_rgb(0.6, 0.15, 0.15) : c_rgb(0, 1, 0);
+		pt->more[1] = c_rgb(1, 0, 0);
 		s->nparams = 0;
 		s->modified = 0;
 		return;
+	}
 	case TK_RADIAL: case TK_ONION: case TK_SPHERICAL: case TK_CYLINDRICAL: case TK_BOXED:
 	case TK_PLANAR: case TK_LEOPARD:
 		p->kind = PIG_PATTERN;
@@ -170,7 +172,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 		if (s->nparams >= most)
 			eval_fail(E, loc, "%s takes %s colours, found more", p->kind == PIG_HEXAGON ? "hexagon" :
 			          p->kind == PIG_BRICK ? "brick" : "checker", most == 3 ? "three" : "two");
-		p->c[s->nparams++] = c;
+		if (s->nparams == 0)
+			p->c[0] = c;
+		else
+			pat_w(E, p)->more[s->nparams - 1] = c;
+		s->nparams++;
 		return;
 	}
 	if (s->modified)

@@ -165,7 +165,7 @@ struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, s
 		return pg->c[0];
 	struct vec3 q = xf_inv_point(pg->xf ? pg->xf : &xf_ident, p);
 	switch (pg->kind) {
-	case PIG_CHECKER: case PIG_HEXAGON: case PIG_BRICK: return pg->c[pattern_block(pg, q)];
+	case PIG_CHECKER: case PIG_HEXAGON: case PIG_BRICK: return pig_colour(pg, pattern_block(pg, q));
 	case PIG_GRADIENT: case PIG_PATTERN: return colour_map(pg, pattern_value(pg, q));
 	case PIG_IMAGE: return image_map(c, pg, q);
 	default: return pg->c[0];

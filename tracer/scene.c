@@ -36,6 +36,11 @@ const struct pattern *pig_pattern(const struct pigment *p)
 	return p->pat ? p->pat : &default_pattern;
 }
 
+struct colour pig_colour(const struct pigment *p, int k)
+{
+	return k == 0 ? p->c[0] : pig_pattern(p)->more[k - 1];
+}
+
 struct texture scene_default_texture(void)
 {
 	struct texture t;
@@ -154,13 +159,13 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	fprintf(o, "pigment %s ", kinds[p->kind]);
 	switch (p->kind) {
 	case PIG_SOLID: pc(o, p->c[0]); break;
-	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
+	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)); break;
 	case PIG_GRADIENT: pv(o, pig_pattern(p)->axis); break;
 	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", pig_pattern(p)->image, pig_pattern(p)->interpolate, pig_pattern(p)->once); break;
 	case PIG_PATTERN: fputs(pats[pig_pattern(p)->pattern], o); break;
-	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputc(' ', o), pc(o, p->c[2]); break;
+	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)), fputc(' ', o), pc(o, pig_colour(p, 2)); break;
 	case PIG_BRICK:
-		pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputs(" brick_size ", o), pv(o, pig_pattern(p)->brick_size);
+		pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)), fputs(" brick_size ", o), pv(o, pig_pattern(p)->brick_size);
 		fprintf(o, " mortar %.6g", pig_pattern(p)->mortar);
 		break;
 	}

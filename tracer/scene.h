@@ -55,17 +55,20 @@ struct pattern {
 	const char *image;        /* image_map file, resolved path */
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
+	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
 };
 
 struct pigment {
 	enum pigment_kind kind;   /* which pattern */
-	struct colour c[3];       /* solid colour; checker's, brick's two, hexagon's three */
+	struct colour c[1];       /* solid colour; the first of checker's, brick's, hexagon's */
 	const struct pattern *pat; /* NULL: the defaults (pig_pattern) */
 	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
 
 /* The pattern settings of p (the defaults when it has none of its own). */
 const struct pattern *pig_pattern(const struct pigment *p);
+/* Colour k of a checker, brick or hexagon (0: c[0], then the pattern's). */
+struct colour pig_colour(const struct pigment *p, int k);
 
 struct finish {
 	struct colour ambient; /* ambient colour (rgb) */
