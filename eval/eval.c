@@ -603,6 +603,7 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			*found_dir = dirs[i];
 		return mem_strdup(real);
 	}
+	E->missing = 1;
 	eval_fail(E, loc, "cannot find %s '%s'", what, name);
 }
 
@@ -642,6 +643,7 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	if (!text) {
 		int err = errno;
 		free(real);
+		E->missing = 1;
 		eval_fail(E, n->loc, "cannot read include file '%s': %s", name, strerror(err));
 	}
 	if (E->opt->on_file)
@@ -817,7 +819,7 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 		}
 	}
 	if (diag->errors > 0)
-		rc = 65;
+		rc = E->missing ? 66 : 65;
 	free(E->rng);
 	arena_free(&E->arena);
 	free(E);

@@ -63,6 +63,7 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	int missing;               /* the error was a missing or unreadable file (exit 66) */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */
