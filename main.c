@@ -707,17 +707,16 @@ static int run_frame(const struct options *o, struct eval_options *eo, struct di
 	}
 	if (o->save_maps)
 		frame_name(o->save_maps, frame, 0, save, sizeof save);
-	if (o->load_maps) {
+	if (o->load_maps)
 		frame_name(o->load_maps, frame, 0, load, sizeof load);
-		if (eo->on_file)
-			eo->on_file(load, eo->on_file_ctx);
-	}
 	set_frame(o, eo, frame);
 	if (o->anim && !o->quiet && o->action == ACT_RENDER)
 		fprintf(stderr, "arvo: frame %ld (%ld to %ld), clock %g: %s\n", frame, o->sub_first, o->sub_last,
 		        eo->clock, names[0]);
 	struct scene scene;
 	int rc = eval_scene(o->scene, eo, dg, &scene);
+	if (o->load_maps && eo->on_file) /* after the scene: the depfile lists the scene first */
+		eo->on_file(load, eo->on_file_ctx);
 	if (rc == EX_OK) {
 		if (o->action == ACT_SCENE)
 			scene_dump(stdout, &scene);

@@ -13,6 +13,7 @@
 
 #include "../common/arena.h"
 #include "../common/diag.h"
+#include "../common/progress.h"
 #include "bvh.h"
 #include "eyepass.h"
 #include "light/lightpass.h"
@@ -32,8 +33,7 @@ struct eye_job {
 	atomic_int next;           /* next tile to render */
 	atomic_int done;           /* tiles finished */
 	atomic_llong rays;         /* rays traced by every thread */
-	int progress;              /* draw a progress bar on stderr */
-	pthread_mutex_t lock;      /* serialises the progress bar */
+	struct progress *progress; /* tiles done (common/progress.h) */
 };
 
 static double now(void)
@@ -58,18 +58,6 @@ static void store(struct eye_job *j, size_t i, const struct eye_px *px)
 		j->pl[k][i] = *src[k];
 }
 
-/* Redraws the progress bar after a tile (only when stderr is a terminal). */
-static void progress(struct eye_job *j, int done)
-{
-	int total = j->tx * j->ty, width = 40, fill = (int)((long)done * width / total);
-	pthread_mutex_lock(&j->lock);
-	fprintf(stderr, "\rarvo: eye pass [%.*s%*s] %3d%%", fill,
-	        "########################################", width - fill, "", done * 100 / total);
-	if (done == total)
-		fputc('\n', stderr);
-	pthread_mutex_unlock(&j->lock);
-}
-
 /* Renders one tile. */
 static void do_tile(struct eye_job *j, int t, long long *rays)
 {
@@ -91,9 +79,8 @@ static void *worker(void *arg)
 	int total = j->tx * j->ty, t;
 	while ((t = atomic_fetch_add(&j->next, 1)) < total) {
 		do_tile(j, t, &rays);
-		int d = atomic_fetch_add(&j->done, 1) + 1;
-		if (j->progress)
-			progress(j, d);
+		atomic_fetch_add(&j->done, 1);
+		progress_step(j->progress, 1);
 	}
 	atomic_fetch_add(&j->rays, rays);
 	return NULL;
@@ -101,7 +88,7 @@ static void *worker(void *arg)
 
 /* Runs the eye pass on nthreads threads (the caller's thread included). */
 static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads,
-                            int show, long long *rays)
+                            struct progress *show, long long *rays)
 {
 	struct eye_job j;
 	memset(&j, 0, sizeof j);
@@ -115,7 +102,7 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	atomic_init(&j.done, 0);
 	atomic_init(&j.rays, 0);
 	j.progress = show;
-	pthread_mutex_init(&j.lock, NULL);
+	progress_begin(show, "eye pass", (long)j.tx * j.ty);
 	pthread_t *th = mem_calloc((size_t)nthreads, sizeof *th);
 	int started = 0;
 	for (int i = 1; i < nthreads; i++, started++)
@@ -125,7 +112,7 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	for (int i = 1; i <= started; i++)
 		pthread_join(th[i], NULL);
 	free(th);
-	pthread_mutex_destroy(&j.lock);
+	progress_end(show);
 	*rays = atomic_load(&j.rays);
 	return NULL;
 }
@@ -143,7 +130,7 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
  * (a shaft's corners would part ways). With a tolerance each pass is
  * progressive (lp_run). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
-                      const struct render_opts *o, int threads, struct lp_result *out[3],
+                      const struct render_opts *o, int threads, struct progress *prog, struct lp_result *out[3],
                       struct render_stats *st)
 {
 	if (s->nlights == 0 || o->rays < 0)
@@ -154,7 +141,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		      : s->gs.illum.count > 0 ? s->gs.illum.count : 1000000,
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
-		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
+		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1, .progress = prog,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 	};
 	/* the image's pixel, so the maps need not be finer than it */
@@ -288,12 +275,14 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 
 	struct lp_result *maps[3] = {NULL, NULL, NULL};
 	int nmaps = 0, io;
+	struct progress prog; /* the light pass's and the eye pass's report */
+	progress_init(&prog, progress_mode_for(o->quiet), stderr);
 	if (o->load_maps) {
 		nmaps = lp_load(maps, s, o->load_maps, false, &err); /* isolated nodes were not saved */
 		if (nmaps < 0)
 			nmaps = 0;
 	} else {
-		nmaps = light_pass(s, b, &mats, o, st.threads, maps, &st);
+		nmaps = light_pass(s, b, &mats, o, st.threads, &prog, maps, &st);
 	}
 	if (!err && o->save_maps)
 		err = lp_save(maps, nmaps, s, o->save_maps, &io);
@@ -308,11 +297,12 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	ctx.ncaustics = nmaps;
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	if (!err)
-		err = eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
+		err = eye_pass(&ctx, fb, st.threads, &prog, &st.rays);
 	st.t_eye = now() - t2;
 	for (int i = 0; i < nmaps; i++)
 		lp_free(maps[i]);
 
+	progress_destroy(&prog);
 	bvh_free(b);
 	mat_cache_free(&mats);
 	struct rusage ru;

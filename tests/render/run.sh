@@ -162,6 +162,18 @@ check "--half --compression piz" $?
 grep -q 'rays traced' "$tmp/log" && grep -q 'peak memory' "$tmp/log" && grep -q 'eye pass' "$tmp/log"
 check "--stats prints rays, pass times and peak memory" $?
 "$ARVO" --width 8 --height 8 -o "$tmp/q.exr" "$T/flat.scn" > /dev/null 2> "$tmp/log"
-[ ! -s "$tmp/log" ]
-check "no progress bar when stderr is not a terminal" $?
+! grep -q "$(printf '\r')" "$tmp/log" && grep -q '^arvo: progress: eye pass done ([0-9.]* s)$' "$tmp/log" &&
+	[ "$(grep -c '^arvo: progress: ' "$tmp/log")" -eq "$(wc -l < "$tmp/log")" ]
+check "stderr not a terminal: plain progress lines, no bar" $?
+"$ARVO" --width 64 --height 64 -o "$tmp/q.exr" "$T/flat.scn" > /dev/null 2> "$tmp/log"
+[ "$(grep -c '^arvo: progress: eye pass [1-9]0% ([0-9.]* s, .* left)$' "$tmp/log")" -eq 9 ]
+check "plain progress lines at every tenth of the eye pass (16 tiles: 10% to 90%)" $?
+"$ARVO" --quiet --width 8 --height 8 -o "$tmp/q2.exr" "$T/flat.scn" > /dev/null 2> "$tmp/log"
+[ ! -s "$tmp/log" ] && [ -s "$tmp/q2.exr" ]
+check "--quiet: no progress at all" $?
+if command -v script > /dev/null 2>&1; then
+	script -qec "'$ARVO' --width 64 --height 64 -o '$tmp/tty.exr' '$T/flat.scn'" /dev/null > "$tmp/log" 2>&1
+	grep -q "$(printf '\r')arvo: eye pass *\[#*\] 100%" "$tmp/log" && cmp -s "$tmp/q.exr" "$tmp/tty.exr"
+	check "stderr a terminal: a progress bar redrawn in place; the same image as without it" $?
+fi
 echo "1..$n"

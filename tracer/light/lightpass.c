@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../common/progress.h"
 #include "../optics.h"
 #include "../sampler.h"
 #include "../shape.h"
@@ -787,6 +788,7 @@ static void *work(void *arg)
 			run_shafts(w, &J->items[k]);
 		else
 			run_item(w, &J->items[k]);
+		progress_step(J->o->progress, 1);
 	}
 }
 
@@ -1167,6 +1169,12 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
 	J.nitems = plan(&J);
 	atomic_init(&J.next, 0);
+	char what[64], round[32] = "";
+	if (o->tolerance > 0) /* a round of the progressive pass */
+		snprintf(round, sizeof round, ", %ld rays", o->rays);
+	snprintf(what, sizeof what, "light pass%s%s", o->channel < 0 ? "" : o->channel == 0 ? " R"
+	         : o->channel == 1 ? " G" : " B", round);
+	progress_begin(o->progress, what, J.nitems);
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	pthread_t *tids = mem_calloc((size_t)nt, sizeof *tids);
@@ -1179,6 +1187,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	for (int i = 1; i < nt; i++)
 		if (ws[i].job)
 			pthread_join(tids[i], NULL);
+	progress_end(o->progress);
 	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
