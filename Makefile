@@ -87,7 +87,7 @@ unit: $(UNIT_BIN)
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine
+           povray povray-includes povray-examples hyperfine parallel
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -106,8 +106,7 @@ test: check
 
 demo: deps
 	$(Q)$(MAKE) --no-print-directory all
-	./arvo -o demo.exr stdlib-scenes/demo.scn
-	./arvo -o demo.png stdlib-scenes/demo.scn
+	./arvo -o demo.exr -o demo.png stdlib-scenes/demo.scn
 
 bench: deps all
 	sh bench/run.sh
