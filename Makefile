@@ -53,7 +53,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check test unit deps install demo bench bench-accuracy lint
+.PHONY: all clean check test unit deps install demo bench bench-accuracy lint gallery
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -87,7 +87,7 @@ unit: $(UNIT_BIN)
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine parallel
+           povray povray-includes povray-examples hyperfine parallel time
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -110,6 +110,10 @@ demo: deps
 
 bench: deps all
 	sh bench/run.sh
+
+# the README gallery: every demo at its defaults, with its render time
+gallery: deps all
+	sh docs/gallery/make.sh
 
 # caustic error against time: arvo's light-pass methods and POV-Ray's photons
 # on the analytic references A, B, C (bench/results/accuracy.*, docs/accuracy.*)
