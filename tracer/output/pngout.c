@@ -182,6 +182,8 @@ static const char *make_proc(const struct out_png_opts *o, struct ocio_config **
 	const char *err = out_ocio_load(o->ocio_config, cfg);
 	if (!err)
 		err = out_ocio_pick_view(*cfg, o->display, o->view, &disp, &view);
+	if (!err && !o->view && o->scene_view && has_view(*cfg, disp, o->scene_view))
+		view = o->scene_view;
 	if (err)
 		return err;
 	*proc = ocio_proc_display(*cfg, o->source, disp, view, msg, sizeof msg);
@@ -192,7 +194,7 @@ static const char *make_proc(const struct out_png_opts *o, struct ocio_config **
 const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
                            unsigned char *rgb8)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL};
 	const struct out_png_opts *o = opts ? opts : &defaults;
 	if (!fb_find(fb, "R"))
 		return out_errorf("the image has no beauty channels (R, G, B)");
