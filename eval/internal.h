@@ -76,6 +76,7 @@ struct eval {
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	int missing;               /* the error was a missing or unreadable file (exit 66) */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */

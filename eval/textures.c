@@ -42,6 +42,8 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 const char *image_path(struct eval *E, const struct node *at, const char *name)
 {
 	char *real = eval_find_file(E, name, at->loc, "image file", NULL);
+	if (E->opt->on_file) /* -M: the image is a dependency */
+		E->opt->on_file(real, E->opt->on_file_ctx);
 	const char *r = arena_strndup(&SC(E)->arena, real, strlen(real));
 	free(real);
 	return r;
