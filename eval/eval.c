@@ -682,6 +682,7 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			*found_dir = dirs[i];
 		return mem_strdup(real);
 	}
+	E->missing = 1;
 	eval_fail(E, loc, "cannot find %s '%s'", what, name);
 }
 
@@ -721,6 +722,7 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	if (!text) {
 		int err = errno;
 		free(real);
+		E->missing = 1;
 		eval_fail(E, n->loc, "cannot read include file '%s': %s", name, strerror(err));
 	}
 	if (E->opt->on_file)
@@ -940,7 +942,7 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	mem_set_budget(mem_budget(), outer);
 	running = NULL;
 	if (diag->errors > 0)
-		rc = E->out_of_memory ? 70 : 65;
+		rc = E->out_of_memory ? 70 : E->missing ? 66 : 65;
 	free(E->rng);
 	arena_free(&E->arena);
 	free(E);
