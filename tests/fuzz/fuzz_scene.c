@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	static FILE *null;
 	if (!null) {
 		null = fopen("/dev/null", "w");
-		mem_set_budget((size_t)1536 << 20, over_budget);
+		mem_set_budget((size_t)512 << 20, over_budget);
 	}
 	const char *path = fuzz_file("fuzz.scn", data, size);
 	struct diag dg;
