@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_VALUE
 };
 
 #define SINK_MAX_PARAMS 8
@@ -181,6 +181,7 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
 void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
 
 /* ---- objects.c: entry points ---- */
 /* A keyword item (N_BLOCK, N_MOD, N_WORD, N_SKIPPED, N_ENTRY) in a sink. */

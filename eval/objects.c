@@ -258,6 +258,12 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		sc->background = val_want_colour(E, &sub.params[0], sub.ploc[0]);
 		return;
 	case TK_GLOBAL_SETTINGS: run_block(E, n, SK_GLOBAL, sc, &sub); return;
+	case TK_SKY_SPHERE:
+		sc->nsky = 0, sc->sky_xf = NULL; /* a later sky_sphere replaces an earlier one */
+		run_block(E, n, SK_SKY, sc, &sub);
+		if (sc->nsky == 0)
+			eval_fail(E, n->loc, "sky_sphere needs a pigment: sky_sphere { pigment { … } }");
+		return;
 	default: misplaced(E, s, n);
 	}
 }
@@ -316,6 +322,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_PHOTONS: photons_keyword(E, s, n); return;
 	case SK_ILLUM: illum_keyword(E, s, n); return;
 	case SK_ILLUM_MAP: illum_map_keyword(E, s, n); return;
+	case SK_SKY: sky_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {

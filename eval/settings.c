@@ -270,3 +270,23 @@ void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n)
 	default: misplaced(E, s, n);
 	}
 }
+
+/* sky_sphere { pigment { … } … [transforms] }: the pigments, evaluated at
+ * the direction of a ray that leaves the scene, bottom first. */
+void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct scene *sc = s->target;
+	struct xform X;
+	if (transform_of(E, n, &X)) {
+		sc->sky_xf = xform_then(E, sc->sky_xf, &X);
+		return;
+	}
+	if (n->op != TK_PIGMENT || n->kind != N_BLOCK)
+		misplaced(E, s, n);
+	struct value v = eval_block(E, n);
+	struct pigment *p = ARENA_ARRAY(&sc->arena, struct pigment, sc->nsky + 1);
+	if (sc->nsky)
+		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
+	p[sc->nsky++] = *v.p.pig;
+	sc->sky = p;
+}

@@ -329,6 +329,23 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	return v_add(out, specular(pa, &sf, v_norm(d), depth, weight, skip));
 }
 
+/* POV-Ray's sky_sphere along unit d: the pigments at d in the sky's
+ * frame, composited from the top one down through their filter and
+ * transmit; the background shows through what remains. */
+static struct vec3 sky(const struct eye_ctx *ctx, struct vec3 d)
+{
+	const struct scene *s = ctx->scene;
+	struct vec3 p = s->sky_xf ? v_norm(xf_inv_vector(s->sky_xf, d)) : d, out = v3(0, 0, 0);
+	double pass = 1;
+	for (int i = s->nsky - 1; i >= 0 && pass > 0; i--) {
+		struct colour c = mat_pigment(ctx->mats, &s->sky[i], p);
+		double through = c.f + c.t;
+		out = v_madd(out, col3(c), pass * (1 - through));
+		pass *= through;
+	}
+	return v_madd(out, col3(s->background), pass);
+}
+
 /* The radiance arriving along r: the background on a miss, else the shaded
  * hit, attenuated by the medium when the ray travelled inside an object. */
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
@@ -341,7 +358,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	struct hit h;
 	pa->rays++;
 	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))
-		return col3(s->background);
+		return s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
 	if (aov)
 		aov->z = h.t * v_len(r.d);
 	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);

@@ -290,6 +290,14 @@ void scene_dump(FILE *o, const struct scene *s)
 		fprintf(o, "  illumination tolerance %.6g\n", g->illum.tolerance);
 	fputs("background ", o);
 	pc(o, s->background);
+	if (s->nsky > 0) {
+		fprintf(o, "\nsky_sphere %d\n", s->nsky);
+		for (int i = 0; i < s->nsky; i++)
+			dump_pigment(o, &s->sky[i], 1);
+		if (s->sky_xf)
+			dump_xform(o, s->sky_xf, 1);
+		fputs("end sky_sphere", o);
+	}
 	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
 	        c->loc.line, c->loc.col);
 	pv(o, c->location);

@@ -232,6 +232,9 @@ struct scene {
 	struct camera camera;
 	bool has_camera;
 	struct colour background;
+	struct pigment *sky;       /* sky_sphere pigments, bottom first (NULL: none) */
+	int nsky;
+	const struct xform *sky_xf; /* sky_sphere's transforms; NULL: identity */
 	struct light *lights;
 	int nlights;
 	struct object **objects;   /* top-level objects */
