@@ -157,6 +157,14 @@ void camera_finish(struct eval *E, struct sink *s, struct camera *c)
 		c->direction = v_scale(v_norm(c->direction), v_len(c->right) / tan(c->angle * M_PI / 360) / 2);
 	if (s->pending & CAM_LOOK_AT)
 		camera_look_at(E, c, c->look_at, s->ploc[0]);
+	if ((s->pending & CAM_ANGLE) && c->kind == CAM_ORTHOGRAPHIC) {
+		/* POV-Ray 3.7: the view is as wide as a perspective camera's of that
+		 * angle at the look_at distance (else at the direction's length) */
+		double d = s->pending & CAM_LOOK_AT ? v_len(v_sub(c->look_at, c->location)) : v_len(c->direction);
+		double w = 2 * d * tan(c->angle * M_PI / 360), k = w / v_len(c->right);
+		c->right = v_scale(c->right, k);
+		c->up = v_scale(c->up, k);
+	}
 	if (s->pending & CAM_XF)
 		camera_transform(c, &s->pending_xf);
 }
