@@ -13,7 +13,7 @@ static void object_transform(struct eval *E, struct object *o, const struct xfor
 	o->xf = xform_then(E, o->xf, X);
 	if (o->tex) {
 		o->tex = texture_copy(E, o->tex);
-		o->tex->pigment.xf = xform_then(E, o->tex->pigment.xf, X);
+		texture_transform(E, o->tex, X);
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -68,12 +68,14 @@ static struct object *object_target(struct eval *E, struct sink *s, struct srclo
 static void object_material_block(struct eval *E, struct sink *s, struct object *o, const struct node *n)
 {
 	struct sink sub;
-	if (n->op == TK_PIGMENT || n->op == TK_FINISH) {
+	if (n->op == TK_PIGMENT || n->op == TK_FINISH || n->op == TK_NORMAL) {
 		o->tex = texture_copy(E, o->tex);
 		if (o->tex->loc.file < 0)
 			o->tex->loc = n->loc;
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
+		else if (n->op == TK_NORMAL)
+			o->tex->normal = normal_block(E, n);
 		else
 			finish_block(E, n, &o->tex->finish);
 	} else if (n->op == TK_INTERIOR) {
@@ -109,7 +111,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct object *o = object_target(E, s, n->loc);
 	s->modified = 1;
 	switch (n->op) {
-	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL:
+	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL: case TK_NORMAL:
 		object_material_block(E, s, o, n);
 		return;
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;

@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_VALUE
 };
 
 #define SINK_MAX_PARAMS 8
@@ -134,6 +134,8 @@ double arg_positive(struct eval *E, const struct node *n);
 int arg_int(struct eval *E, const struct node *n, int lo, int hi);
 /* translate/rotate/scale/matrix/transform item n into *out; false otherwise. */
 bool transform_of(struct eval *E, const struct node *n, struct xform *out);
+/* Moves a texture's pigment and normal by X (the normal is copied). */
+void texture_transform(struct eval *E, struct texture *t, const struct xform *X);
 /* A fresh scene copy of t (NULL: the #default texture). */
 struct texture *texture_copy(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
@@ -170,6 +172,11 @@ void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* normal { }: a fresh perturbation, or NULL when it uses what arvo lacks
+ * (warned once: the scene renders with the plain normal). */
+struct tnormal *normal_block(struct eval *E, const struct node *blk);
+void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
+void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */

@@ -128,6 +128,17 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
+{
+	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->normal) {
+		struct tnormal *nr = NEW(E, struct tnormal);
+		*nr = *t->normal;
+		nr->pat.xf = xform_then(E, nr->pat.xf, X);
+		t->normal = nr;
+	}
+}
+
 const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X)
 {
 	struct xform *x = NEW(E, struct xform);
@@ -155,8 +166,9 @@ struct value eval_block(struct eval *E, const struct node *blk)
 {
 	struct value v = {.kind = V_NONE};
 	struct sink s;
-	if (blk->kind == N_SKIPPED) {
+	if (blk->kind == N_SKIPPED || blk->op == TK_NORMAL) {
 		v.kind = V_SKIPPED;
+		v.p.nrm = blk->kind == N_SKIPPED ? NULL : normal_block(E, blk);
 		return v;
 	}
 	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
@@ -279,6 +291,8 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
 		finish_block(E, n, &t->finish);
+	else if (n->op == TK_NORMAL)
+		t->normal = normal_block(E, n);
 	else
 		misplaced(E, s, n);
 }
@@ -323,6 +337,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_ILLUM: illum_keyword(E, s, n); return;
 	case SK_ILLUM_MAP: illum_map_keyword(E, s, n); return;
 	case SK_SKY: sky_keyword(E, s, n); return;
+	case SK_NORMAL: normal_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
@@ -338,7 +353,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (transform_of(E, n, &X)) {
 			if (m->tex) {
 				m->tex = texture_copy(E, m->tex);
-				m->tex->pigment.xf = xform_then(E, m->tex->pigment.xf, &X);
+				texture_transform(E, m->tex, &X);
 			}
 			return;
 		}
@@ -371,6 +386,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 		return;
 	case SK_OBJECT: object_value(E, s, v, loc); return;
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
+	case SK_NORMAL: normal_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:
 		if (s->nparams >= SINK_MAX_PARAMS)

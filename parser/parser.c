@@ -25,6 +25,7 @@ struct parser {
 	int depth;           /* recursion depth (blocks, directives, expressions) */
 	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
+	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
 };
 
 static struct node *parse_expr(struct parser *p);
@@ -477,6 +478,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	switch (sh) {
 	case SH_BLOCK:
 		n->kind = N_BLOCK;
+		if (t.kind == TK_NORMAL) {
+			p->in_normal++;
+			parse_block_body(p, n);
+			p->in_normal--;
+			return n;
+		}
 		return parse_block_body(p, n);
 	case SH_BLOCK_OR_EXPR:
 		if (check(p, TK_LBRACE)) {
@@ -820,6 +827,8 @@ static struct node *word_block(struct parser *p, struct node *id)
 		return parse_block_body(p, n);
 	}
 	skip_braces(p);
+	if (p->in_normal && tok_is_pov_word(id->str))
+		return id; /* normal { slope_map { } }: the evaluator ignores the normal */
 	if (strcmp(id->str, "radiosity") == 0)
 		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
 	else if (tok_is_pov_word(id->str))

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "optics.h"
+#include "pattern.h"
 #include "sampler.h"
 #include "spectrum.h"
 #include "surface.h"
@@ -304,7 +305,10 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	const struct scene *s = pa->ctx->scene;
 	struct surf sf = {h, mat_texture(h->obj), {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
-	if (v_dot(sf.nf, sf.v) < 0)
+	bool back = v_dot(sf.nf, sf.v) < 0; /* decided by the true normal */
+	if (sf.tex->normal)
+		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
+	if (back)
 		sf.nf = v_neg(sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */

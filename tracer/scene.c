@@ -222,6 +222,11 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
 		dump_finish(o, ob->tex->finish, d + 2);
+		if (ob->tex->normal) {
+			indent(o, d + 2);
+			fprintf(o, "normal amount %.6g\n", ob->tex->normal->amount);
+			dump_pigment(o, &ob->tex->normal->pat, d + 3);
+		}
 	}
 	if (ob->interior) {
 		const struct interior *in = ob->interior;

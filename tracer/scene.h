@@ -87,8 +87,16 @@ struct interior {
 	double caustics;           /* POV's fake caustics value (parsed, unused) */
 };
 
+/* normal { pattern [amount] … }: POV-Ray's perturbation of the shading
+ * normal by the slope of a pattern (tracer/pattern.h). */
+struct tnormal {
+	struct pigment pat; /* the pattern, its wave and its transform */
+	double amount;      /* bump size (POV default 0.5) */
+};
+
 struct texture {
 	struct pigment pigment;
+	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
 };
