@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
 };
 
 #define SINK_MAX_PARAMS 8
@@ -72,6 +72,7 @@ struct eval {
 	struct texture default_tex; /* #default */
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	int warned_normal;         /* 'normal' ignored warning given */
+	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 };
 
@@ -189,6 +190,8 @@ void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
 void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
+void fog_keyword(struct eval *E, struct sink *s, const struct node *n);
+void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 
 /* ---- objects.c: entry points ---- */
 /* A keyword item (N_BLOCK, N_MOD, N_WORD, N_SKIPPED, N_ENTRY) in a sink. */

@@ -34,6 +34,8 @@ static const char *where(const struct sink *s)
 
 _Noreturn void misplaced(struct eval *E, const struct sink *s, const struct node *n)
 {
+	if (n->op == TK_TURBULENCE || n->op == TK_OCTAVES || n->op == TK_OMEGA || n->op == TK_LAMBDA)
+		eval_fail(E, n->loc, "%s is not supported", tok_name(n->op));
 	eval_fail(E, n->loc, "%s is not valid %s", tok_name(n->op), where(s));
 }
 
@@ -270,6 +272,14 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		sc->background = val_want_colour(E, &sub.params[0], sub.ploc[0]);
 		return;
 	case TK_GLOBAL_SETTINGS: run_block(E, n, SK_GLOBAL, sc, &sub); return;
+	case TK_FOG:
+		sc->fog = (struct fog){.type = 1, .up = v3(0, 1, 0)};
+		run_block(E, n, SK_FOG, &sc->fog, &sub);
+		if (!(sc->fog.distance > 0))
+			eval_fail(E, n->loc, "fog needs a positive distance: fog { distance 10 color rgb 0.5 }");
+		if (sc->fog.type == 2 && !(sc->fog.alt > 0))
+			eval_fail(E, n->loc, "a ground fog (fog_type 2) needs a positive fog_alt");
+		return;
 	case TK_SKY_SPHERE:
 		sc->nsky = 0, sc->sky_xf = NULL; /* a later sky_sphere replaces an earlier one */
 		run_block(E, n, SK_SKY, sc, &sub);
@@ -338,6 +348,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_ILLUM_MAP: illum_map_keyword(E, s, n); return;
 	case SK_SKY: sky_keyword(E, s, n); return;
 	case SK_NORMAL: normal_keyword(E, s, n); return;
+	case SK_FOG: fog_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
@@ -387,6 +398,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_OBJECT: object_value(E, s, v, loc); return;
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
 	case SK_NORMAL: normal_value(E, s, v, loc); return;
+	case SK_FOG: fog_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:
 		if (s->nparams >= SINK_MAX_PARAMS)

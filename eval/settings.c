@@ -298,3 +298,34 @@ void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
 	p[sc->nsky++] = *v.p.pig;
 	sc->sky = p;
 }
+
+/* fog { [fog_type 1|2] distance d colour c [fog_offset h fog_alt a up v] } */
+void fog_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct fog *f = s->target;
+	switch (n->op) {
+	case TK_FOG_TYPE: f->type = arg_int(E, n, 1, 2); return;
+	case TK_DISTANCE: f->distance = arg_positive(E, n); return;
+	case TK_FOG_OFFSET: f->offset = arg_float(E, n); return;
+	case TK_FOG_ALT: f->alt = arg_positive(E, n); return;
+	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA:
+		if (!E->warned_fog_turb++)
+			diag_warning(E->diag, n->loc, "%s in fog is not supported yet; the fog is even", tok_name(n->op));
+		return;
+	case TK_UP: {
+		struct vec3 u = arg_vec3(E, n);
+		if (v_len(u) == 0)
+			eval_fail(E, n->kids[0]->loc, "fog up vector has zero length");
+		f->up = v_norm(u);
+		return;
+	}
+	default: misplaced(E, s, n);
+	}
+}
+
+/* The fog's colour. */
+void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct fog *f = s->target;
+	f->c = val_want_colour(E, v, loc);
+}

@@ -289,6 +289,11 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 	switch (n->op) {
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: misplaced(E, s, n);
+	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA:
+		s->pending = 1; /* normal_block ignores this normal */
+		if (!E->warned_normal++)
+			diag_warning(E->diag, n->loc, "%s is not supported in 'normal' yet; the normal is ignored", tok_name(n->op));
+		return;
 	default: pigment_keyword(E, &sub, n);
 	}
 }

@@ -350,6 +350,32 @@ static struct vec3 sky(const struct eye_ctx *ctx, struct vec3 d)
 	return v_madd(out, col3(s->background), pass);
 }
 
+/* POV-Ray's fog over a ray segment from o along unit d of length len
+ * (a miss: far away): the share e^(-len·density/distance) of c passes,
+ * never less than the fog's transmit; the fog's colour fills the rest. A
+ * ground fog's density is 1 below fog_offset and 1/(1 + (h/fog_alt)²) at
+ * height h above it, averaged exactly along the segment. */
+static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double len, struct vec3 c)
+{
+	double density = 1;
+	if (f->type == 2) {
+		double y1 = v_dot(o, f->up) - f->offset, dy = v_dot(d, f->up) * len, a = f->alt;
+		/* ∫ density dy: y below 0 counts fully, above a·atan(y/a) */
+		double lo = fmin(y1, y1 + dy), hi = fmax(y1, y1 + dy);
+		if (hi - lo < 1e-9) {
+			density = lo <= 0 ? 1 : 1 / (1 + (lo / a) * (lo / a));
+		} else {
+			double below = fmin(hi, 0) - fmin(lo, 0);
+			double above = a * (atan(fmax(hi, 0) / a) - atan(fmax(lo, 0) / a));
+			density = (below + above) / (hi - lo);
+		}
+	}
+	double k = fmax(exp(-len * density / f->distance), f->c.t);
+	struct vec3 fc = col3(f->c);
+	struct vec3 mix = v_add(v_scale(fc, 1 - f->c.f), v_scale(v_mul(fc, c), f->c.f));
+	return v_add(v_scale(c, k), v_scale(mix, 1 - k));
+}
+
 /* The radiance arriving along r: the background on a miss, else the shaded
  * hit, attenuated by the medium when the ray travelled inside an object. */
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
@@ -361,13 +387,17 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		return v3(0, 0, 0);
 	struct hit h;
 	pa->rays++;
-	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))
-		return s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
+	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h)) {
+		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
+		return s->fog.type ? fog(&s->fog, r.o, v_norm(r.d), 1e7, bg) : bg;
+	}
 	if (aov)
 		aov->z = h.t * v_len(r.d);
 	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);
 	if (!h.entering)
 		c = v_mul(c, opt_fade(mat_interior(h.obj), h.t * v_len(r.d)));
+	if (s->fog.type)
+		c = fog(&s->fog, r.o, v_norm(r.d), h.t * v_len(r.d), c);
 	return c;
 }
 

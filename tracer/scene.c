@@ -303,6 +303,13 @@ void scene_dump(FILE *o, const struct scene *s)
 			dump_xform(o, s->sky_xf, 1);
 		fputs("end sky_sphere", o);
 	}
+	if (s->fog.type) {
+		const struct fog *f = &s->fog;
+		fprintf(o, "\nfog type %d distance %.6g offset %.6g alt %.6g up ", f->type, f->distance, f->offset, f->alt);
+		pv(o, f->up);
+		fputc(' ', o);
+		pc(o, f->c);
+	}
 	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
 	        c->loc.line, c->loc.col);
 	pv(o, c->location);

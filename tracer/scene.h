@@ -243,6 +243,13 @@ struct scene {
 	struct pigment *sky;       /* sky_sphere pigments, bottom first (NULL: none) */
 	int nsky;
 	const struct xform *sky_xf; /* sky_sphere's transforms; NULL: identity */
+	struct fog {
+		int type;           /* 0: none, 1: constant, 2: ground fog */
+		double distance;    /* where a constant fog lets e^-1 through */
+		double offset, alt; /* ground fog: full below offset, thinning above over alt */
+		struct vec3 up;     /* ground fog: the up direction (unit) */
+		struct colour c;    /* its colour; transmit: the least it lets through */
+	} fog;
 	struct light *lights;
 	int nlights;
 	struct object **objects;   /* top-level objects */
