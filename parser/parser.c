@@ -164,12 +164,17 @@ static struct node *parse_keyword_item(struct parser *p);
 
 /* A value where a block may stand too: array initialisers, macro arguments,
  * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
+static struct node *word_block(struct parser *p, struct node *id);
+
 static struct node *parse_value(struct parser *p)
 {
 	enum kw_shape sh = tok_shape(p->tok.kind);
 	if (tok_is_keyword(p->tok.kind) && (sh == SH_BLOCK || sh == SH_BLOCK_OR_EXPR || sh == SH_SKIP))
 		return parse_keyword_item(p);
-	return parse_expr(p);
+	struct node *e = parse_expr(p);
+	if (e && e->kind == N_IDENT && check(p, TK_LBRACE)) /* #declare T = text { … } */
+		return word_block(p, e);
+	return e;
 }
 
 /* Binary operator precedence; 0 when tok is not a binary operator here. */
@@ -384,10 +389,16 @@ static struct node *parse_unary(struct parser *p)
 static struct node *parse_binary(struct parser *p, int min_prec)
 {
 	struct node *left = parse_unary(p);
+	int chain = 0; /* each operator nests its left operand one level deeper */
 	for (;;) {
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
-			return left;
+			break;
+		if (p->depth >= MAX_DEPTH) {
+			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
+			break;
+		}
+		p->depth++, chain++;
 		struct node *n = node(p, N_BINARY, p->tok.loc);
 		n->op = p->tok.kind;
 		advance(p);
@@ -395,6 +406,8 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 		n->b = parse_binary(p, prec + 1);
 		left = n;
 	}
+	p->depth -= chain;
+	return left;
 }
 
 /* expr := binary ['?' expr ':' expr] */
@@ -426,9 +439,13 @@ static struct node *parse_block_body(struct parser *p, struct node *blk)
 		error_at(p, p->tok.loc, "expected '{' after %s, found %s", tok_name(blk->op), found(p));
 		return blk;
 	}
-	advance(p);
-	if (!enter(p))
+	if (p->depth >= MAX_DEPTH) { /* reported at the block's keyword */
+		error_at(p, blk->loc, "nesting too deep (more than %d levels)", MAX_DEPTH);
+		advance(p);
 		return blk;
+	}
+	enter(p);
+	advance(p);
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
 		long start = p->ntok;
 		struct node *it = parse_item(p);
@@ -475,6 +492,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	advance(p);
 	struct node *n = node(p, N_MOD, t.loc);
 	n->op = t.kind;
+	if (sh != SH_BLOCK && sh != SH_BLOCK_OR_EXPR && sh != SH_SKIP && check(p, TK_LBRACE)) {
+		/* a keyword arvo knows, in a block form it does not (media { }) */
+		skip_braces(p);
+		error_at(p, t.loc, "%s { } is not supported", tok_name(t.kind));
+		return n;
+	}
 	switch (sh) {
 	case SH_BLOCK:
 		n->kind = N_BLOCK;
