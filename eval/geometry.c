@@ -115,6 +115,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL: case TK_NORMAL:
 		object_material_block(E, s, o, n);
 		return;
+	case TK_BOUNDED_BY: return; /* POV-Ray's bounding hint: arvo bounds every object itself */
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;
 	case TK_NO_IMAGE: o->flags |= OF_NO_IMAGE; return;
 	case TK_NO_REFLECTION: o->flags |= OF_NO_REFLECTION; return;
