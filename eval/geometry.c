@@ -97,6 +97,30 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 	(void)s;
 }
 
+static void object_geometry(struct eval *E, struct sink *s, struct object *o);
+
+/* object { … clipped_by { A B … } … }: from here on the sink builds a clip
+ * node whose first child is the object so far (its geometry fixed now) and
+ * whose others are A, B …; later modifiers apply to the whole (csg.c). */
+static void clip(struct eval *E, struct sink *s, struct object *o, const struct node *n)
+{
+	if (s->kw != TK_OBJECT && o->kind < OBJ_FIRST_CSG)
+		object_geometry(E, s, o);
+	struct object tmp = {.kind = OBJ_UNION, .loc = n->loc};
+	struct sink sub;
+	sink_init(&sub, SK_OBJECT, TK_UNION, n->loc, &tmp);
+	eval_items(E, n, &sub);
+	if (tmp.g.csg.n == 0)
+		eval_fail(E, n->loc, "clipped_by needs an object: clipped_by { plane { y, 0 } }");
+	struct object *c = NEW(E, struct object);
+	c->kind = OBJ_CLIP;
+	c->loc = o->loc;
+	csg_add(E, c, o);
+	for (int i = 0; i < tmp.g.csg.n; i++)
+		csg_add(E, c, tmp.g.csg.kids[i]);
+	s->target = c;
+}
+
 void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct xform X;
@@ -116,6 +140,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		object_material_block(E, s, o, n);
 		return;
 	case TK_BOUNDED_BY: return; /* POV-Ray's bounding hint: arvo bounds every object itself */
+	case TK_CLIPPED_BY: clip(E, s, o, n); return;
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;
 	case TK_NO_IMAGE: o->flags |= OF_NO_IMAGE; return;
 	case TK_NO_REFLECTION: o->flags |= OF_NO_REFLECTION; return;

@@ -116,6 +116,7 @@ const char *scene_pov_view(const struct scene *s)
 static const char *const kind_names[OBJ_KIND_COUNT] = {
 #define PRIM(n, w) [OBJ_##n] = #w,
 #define CSG(n, w) [OBJ_##n] = #w,
+#define NODE(n, w) [OBJ_##n] = #w,
 #include "objects.def"
 };
 

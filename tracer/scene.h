@@ -107,6 +107,7 @@ struct texture {
 enum object_kind {
 #define PRIM(n, w) OBJ_##n,
 #define CSG(n, w) OBJ_##n,
+#define NODE(n, w) OBJ_##n,
 #include "objects.def"
 	OBJ_KIND_COUNT,
 	OBJ_FIRST_CSG = OBJ_UNION
