@@ -27,8 +27,8 @@ ifeq ($(SANITIZE),thread)
   OPT += -fsanitize=thread -fno-omit-frame-pointer
   LDSAN = -fsanitize=thread
 else ifdef SANITIZE
-  OPT += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-  LDSAN = -fsanitize=address,undefined
+  OPT += -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
+  LDSAN = -fsanitize=address,undefined,float-cast-overflow
 endif
 
 PKGS     = OpenEXR OpenColorIO libpng
@@ -57,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus
+.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus gallery
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -123,6 +123,7 @@ $(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_OBJ)
 unit: $(FUZZ_REPLAY)
 
 fuzz-build: $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/fuzz_%)
+.PRECIOUS: $(FUZZ_BUILD)/%.o
 
 fuzz: deps-fuzz all
 	$(Q)$(MAKE) --no-print-directory fuzz-build
@@ -131,7 +132,7 @@ fuzz: deps-fuzz all
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine libembree-dev
+           povray povray-includes povray-examples hyperfine libembree-dev parallel time
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -163,11 +164,14 @@ test: check
 
 demo: deps
 	$(Q)$(MAKE) --no-print-directory all
-	./arvo -o demo.exr stdlib-scenes/demo.scn
-	./arvo -o demo.png stdlib-scenes/demo.scn
+	./arvo -o demo.exr -o demo.png stdlib-scenes/demo.scn
 
 bench: deps all
 	sh bench/run.sh
+
+# the README gallery: every demo at its defaults, with its render time
+gallery: deps all
+	sh docs/gallery/make.sh
 
 # caustic error against time: arvo's light-pass methods and POV-Ray's photons
 # on the analytic references A, B, C (bench/results/accuracy.*, docs/accuracy.*)

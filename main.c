@@ -39,7 +39,8 @@ enum action { ACT_RENDER, ACT_CHECK, ACT_TOKENS, ACT_AST, ACT_SCENE };
 struct options {
 	enum action action;
 	const char *scene;           /* input file */
-	const char *output;          /* -o */
+	const char *outputs[16];     /* -o (several: one render, several files) */
+	int noutputs;
 	const char *depfile;         /* -M / --depfile */
 	const char *includes[64];    /* -I */
 	int ninclude;
@@ -48,7 +49,12 @@ struct options {
 	int width, height, spp, threads;
 	double clock;
 	int frame;
-	long max_iterations, max_calls, max_objects; /* --max-iterations, --max-calls, --max-objects */
+	int clock_given;             /* --clock, +K or --frame given: clock_on */
+	int anim;                    /* --frames or +KFF: the internal animation loop */
+	long first_frame, last_frame;   /* --frames A:B (+KFI, +KFF; default 1:1) */
+	double first_clock, last_clock; /* +KI, +KF (default 0, 1) */
+	long sub_first, sub_last;       /* --subset C:D (+SF, +EF; -1: the whole range) */
+	long max_iterations, max_calls, max_objects, max_steps; /* --max-iterations, -calls, -objects, -steps */
 	size_t max_memory;                           /* --max-memory (0: not given) */
 	int quiet, stats;
 	const char *display;         /* --display (PNG) */
@@ -74,7 +80,8 @@ struct options {
 static void usage(FILE *out)
 {
 	fputs("usage: arvo [options] scene.scn\n"
-	      "  -o FILE            output image (.exr or .png; default: scene name .exr)\n"
+	      "  -o FILE            output image (.exr or .png; default: scene name .exr); repeat\n"
+	      "                     -o to write several files from one render\n"
 	      "  --width W, --height H   image size (default 320x240); also +WW +HH\n"
 	      "  --spp N            samples per pixel (+A: 4);  --threads N  render threads (+WTN)\n"
 	      "  --half             16-bit half EXR (default float)\n"
@@ -94,11 +101,15 @@ static void usage(FILE *out)
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
+	      "  --frames A:B       render frames A to B in turn (+KFIA +KFFB); clock runs from\n"
+	      "                     0 to 1 (+KIx +KFy: from x to y); -o name.%04d.exr numbers them\n"
+	      "  --subset C:D       only frames C to D of the range (+SFC +EFD)\n"
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
 	      "  --max-calls N      limit on macro calls (default 1000000)\n"
 	      "  --max-objects N    limit on objects and lights (default 1000000)\n"
+	      "  --max-steps N      limit on evaluation steps (default 1000000000)\n"
 	      "  --max-memory SIZE  memory budget, e.g. 512M or 4G (default: half the machine's)\n"
-	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
+	      "  -M, --depfile FILE write Make dependencies: every file the render reads\n"
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
 	      "  --dump-tokens | --dump-ast | --dump-scene   print a stage's text and stop\n"
 	      "  --quiet, --stats, --help, --version\n"
@@ -198,6 +209,49 @@ done:
 		snprintf(o->stdlib_dir, sizeof o->stdlib_dir, "%s/include", o->data_dir);
 }
 
+/* -o and +O: one more output file (at most 16). */
+static int add_output(struct options *o, const char *path)
+{
+	if (o->noutputs >= 16)
+		return 0;
+	o->outputs[o->noutputs++] = path;
+	return 1;
+}
+
+/* POV-Ray's animation switches (s after the sign): +KFIn +KFFn (first and
+ * last frame), +KIn.n +KFn.n (clock at them), +SFn +EFn (a subset). */
+static int pov_anim_switch(struct options *o, const char *s)
+{
+	long v;
+	double f;
+	if (s[0] != 'K' && s[0] != 'S' && s[0] != 'E')
+		return 0;
+	if (!strncmp(s, "KFI", 3) && parse_int(s + 3, 0, 999999999, &v))
+		return o->first_frame = v, 1;
+	if (!strncmp(s, "KFF", 3) && parse_int(s + 3, 0, 999999999, &v))
+		return o->last_frame = v, o->anim = 1, 1;
+	if (!strncmp(s, "KI", 2) && parse_double(s + 2, &f))
+		return o->first_clock = f, 1;
+	if (!strncmp(s, "KF", 2) && parse_double(s + 2, &f))
+		return o->last_clock = f, 1;
+	if (!strncmp(s, "SF", 2) && parse_int(s + 2, 0, 999999999, &v))
+		return o->sub_first = v, 1;
+	if (!strncmp(s, "EF", 2) && parse_int(s + 2, 0, 999999999, &v))
+		return o->sub_last = v, 1;
+	return 0;
+}
+
+/* "A:B" with 0 <= A <= B: the frames of --frames and --subset. */
+static int parse_range(const char *s, long *a, long *b)
+{
+	char buf[64];
+	const char *colon = strchr(s, ':');
+	if (!colon || colon - s >= (long)sizeof buf)
+		return 0;
+	snprintf(buf, sizeof buf, "%.*s", (int)(colon - s), s);
+	return parse_int(buf, 0, 999999999, a) && parse_int(colon + 1, 0, 999999999, b) && *a <= *b;
+}
+
 #ifndef POVRAY_INCLUDE_DIR
 #define POVRAY_INCLUDE_DIR "/usr/share/povray-3.7/include" /* Debian's povray-includes */
 #endif
@@ -219,14 +273,11 @@ static const char *pov_unsupported(const char *a)
 	const char *s = a + 1;
 	if (!strncasecmp(s, "SR", 2) || !strncasecmp(s, "ER", 2) || !strncasecmp(s, "SC", 2) || !strncasecmp(s, "EC", 2))
 		return "POV-Ray's partial render switches (+SR +ER +SC +EC) are not supported: arvo renders the whole image";
-	if (!strncasecmp(s, "KFI", 3) || !strncasecmp(s, "KFF", 3) || !strncasecmp(s, "KI", 2) ||
-	    !strncasecmp(s, "KF", 2) || !strncasecmp(s, "KC", 2))
-		return "POV-Ray's animation switches (+KFI +KFF +KI +KF) are not supported: render each frame with "
-		       "--frame N and --clock C";
 	return NULL;
 }
 
-/* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K. */
+/* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K
+ * +KFI +KFF +KI +KF +SF +EF. */
 static int pov_switch(struct options *o, const char *a)
 {
 	long v;
@@ -240,18 +291,43 @@ static int pov_switch(struct options *o, const char *a)
 	if ((s[0] == 'H' || s[0] == 'h') && parse_int(s + 1, 1, 65536, &v))
 		return o->height = (int)v, 1;
 	if ((s[0] == 'O' || s[0] == 'o') && s[1] && sign == '+')
-		return o->output = s + 1, 1;
+		return add_output(o, s + 1);
 	if ((s[0] == 'I' || s[0] == 'i') && s[1] && sign == '+')
 		return o->scene = s + 1, 1;
 	if ((s[0] == 'L' || s[0] == 'l') && s[1] && sign == '+' && o->ninclude < 64)
 		return o->includes[o->ninclude++] = s + 1, 1;
+	if (pov_anim_switch(o, s))
+		return 1;
 	if ((s[0] == 'K' || s[0] == 'k') && parse_double(s + 1, &f))
-		return o->clock = f, 1;
+		return o->clock = f, o->clock_given = 1, 1;
 	if ((s[0] == 'A' || s[0] == 'a') && (s[1] == '\0' || parse_double(s + 1, &f)))
 		return o->spp = sign == '+' ? (o->spp > 1 ? o->spp : 4) : 1, 1;
 	if ((s[0] == 'D' || s[0] == 'd') && s[1] == '\0' && sign == '+')
 		return 1; /* +D display on: arvo has no preview window */
 	return 0;
+}
+
+/* The animation options agree: a subset inside the range, no --clock or
+ * --frame with --frames (the loop sets them). Returns -1 or EX_USAGE. */
+static int check_animation(struct options *o)
+{
+	if (!o->anim && (o->sub_first >= 0 || o->sub_last >= 0))
+		return usage_error("--subset (+SF, +EF) needs a frame range (--frames or +KFF)");
+	if (!o->anim)
+		return -1;
+	if (o->first_frame > o->last_frame)
+		return usage_error("the first frame (%ld) is after the last (%ld)", o->first_frame, o->last_frame);
+	if (o->clock_given)
+		return usage_error("--clock and --frame cannot be combined with a frame range (--frames, +KFF): "
+		                   "the range sets clock and frame_number");
+	if (o->sub_first < 0)
+		o->sub_first = o->first_frame;
+	if (o->sub_last < 0)
+		o->sub_last = o->last_frame;
+	if (o->sub_first < o->first_frame || o->sub_last > o->last_frame || o->sub_first > o->sub_last)
+		return usage_error("--subset %ld:%ld is not inside --frames %ld:%ld", o->sub_first, o->sub_last,
+		                   o->first_frame, o->last_frame);
+	return -1;
 }
 
 /* --region, --tile, --seed, --png-depth (value v): returns -1, or an exit code. */
@@ -356,7 +432,17 @@ static int parse_args(int argc, char **argv, struct options *o)
 				return usage_error("unknown compression '%s' (expected none, zip, zips, piz or rle)", next);
 		} else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
 			NEED_ARG();
-			o->output = next;
+			if (!add_output(o, next))
+				return usage_error("too many output files (at most %s)", "16");
+		} else if (!strcmp(a, "--frames") || !strcmp(a, "--subset")) {
+			NEED_ARG();
+			long fa, fb;
+			if (!parse_range(next, &fa, &fb))
+				return usage_error("bad value for %s: '%s' (expected FIRST:LAST, 0 <= FIRST <= LAST)", a, next);
+			if (a[2] == 'f')
+				o->first_frame = fa, o->last_frame = fb, o->anim = 1;
+			else
+				o->sub_first = fa, o->sub_last = fb;
 		} else if (!strcmp(a, "-M") || !strcmp(a, "--depfile")) {
 			NEED_ARG();
 			o->depfile = next;
@@ -390,15 +476,19 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if ((a[2] == 'w' || a[2] == 'h') && v > 65536)
 				return usage_error("image size too large: '%s' (at most 65536)", next);
 			*dst = (int)v;
+			o->clock_given |= dst == &o->frame;
 		} else if (!strcmp(a, "--clock")) {
 			NEED_ARG();
 			if (!parse_double(next, &o->clock))
 				return usage_error("bad value for --clock: '%s'", next);
-		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects")) {
+			o->clock_given = 1;
+		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects") ||
+		           !strcmp(a, "--max-steps")) {
 			NEED_ARG();
-			if (!parse_int(next, 1, 1L << 40, &v))
+			if (!parse_int(next, 1, 1L << 50, &v))
 				return usage_error("bad value for %s: '%s'", a, next);
-			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : &o->max_objects) = v;
+			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : a[6] == 'o' ? &o->max_objects
+			  : &o->max_steps) = v;
 		} else if (!strcmp(a, "--max-memory")) {
 			NEED_ARG();
 			o->max_memory = mem_parse_size(next);
@@ -428,7 +518,7 @@ static int parse_args(int argc, char **argv, struct options *o)
 	if ((long long)o->width * o->height > MAX_PIXELS)
 		return usage_error("image too large: %dx%d is %lld pixels (at most %lld)", o->width, o->height,
 		                   (long long)o->width * o->height, (long long)MAX_PIXELS);
-	return -1;
+	return check_animation(o);
 }
 
 /* -M: collects the files a scene reads. */
@@ -447,7 +537,22 @@ static void dep_add(const char *path, void *ctx)
 	d->files[d->n++] = mem_strdup(path);
 }
 
-static int write_depfile(const struct options *o, const struct deps *d, const char *target)
+/* Writes a path for make: spaces and '#' escaped with '\\', '$' doubled. */
+static void put_make_path(FILE *f, const char *p)
+{
+	for (; *p; p++) {
+		if (*p == ' ' || *p == '#' || *p == '\t')
+			fputc('\\', f);
+		else if (*p == '$')
+			fputc('$', f);
+		fputc(*p, f);
+	}
+}
+
+/* The depfile, like gcc -MMD -MP: "targets: the scene and every file it
+ * read", then an empty rule for each file but the scene, so make does not
+ * fail when one disappears. */
+static int write_depfile(const struct options *o, const struct deps *d, const struct deps *targets)
 {
 	char tmp[PATH_MAX + 16];
 	snprintf(tmp, sizeof tmp, "%s.tmp%ld", o->depfile, (long)getpid());
@@ -456,12 +561,22 @@ static int write_depfile(const struct options *o, const struct deps *d, const ch
 		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(errno));
 		return EX_CANTCREAT;
 	}
-	fprintf(f, "%s:", target);
-	for (int i = 0; i < d->n; i++)
-		fprintf(f, " %s", d->files[i]);
+	for (int i = 0; i < targets->n; i++) {
+		if (i)
+			fputc(' ', f);
+		put_make_path(f, targets->files[i]);
+	}
+	fputc(':', f);
+	for (int i = 0; i < d->n; i++) {
+		fputs(i % 4 == 3 ? " \\\n " : " ", f);
+		put_make_path(f, d->files[i]);
+	}
 	fputc('\n', f);
-	for (int i = 1; i < d->n; i++)
-		fprintf(f, "%s:\n", d->files[i]);
+	for (int i = 1; i < d->n; i++) {
+		fputc('\n', f);
+		put_make_path(f, d->files[i]);
+		fputs(":\n", f);
+	}
 	if (fclose(f) != 0 || rename(tmp, o->depfile) != 0) {
 		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(errno));
 		remove(tmp);
@@ -603,32 +718,132 @@ static void over_budget(size_t request)
 	exit(EX_SOFTWARE);
 }
 
-/* Render: the light pass and the eye pass into a framebuffer, then the EXR
- * or the PNG through OCIO. */
-static int render_and_write(struct options *o, const struct scene *scene, const char *output)
+/* Expands a frame pattern in a file name: %d, %Nd or %0Nd become the frame
+ * number, %% a '%'. In an animation (digits > 0) a name without a pattern
+ * gets POV-Ray's numbering: the number, zero-padded to digits, before the
+ * extension. Returns 0 for any other '%' or a name too long. */
+static int frame_name(const char *pat, long frame, int digits, char *buf, size_t size)
 {
-	int kind = output_kind(output);
-	if (!kind)
-		return usage_error("unknown output format '%s' (expected a .exr or .png name)", output);
-	int rc = resolve_region(o, kind);
-	if (rc >= 0)
-		return rc;
-	if (!can_create(output)) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", output, strerror(errno));
-		return EX_CANTCREAT;
+	size_t k = 0;
+	int pattern = 0;
+	for (const char *p = pat; *p; p++) {
+		char piece[32];
+		if (*p != '%') {
+			piece[0] = *p, piece[1] = '\0';
+		} else if (p[1] == '%') {
+			strcpy(piece, "%"), p++;
+		} else {
+			int zero = p[1] == '0', width = 0;
+			const char *q = p + 1 + zero;
+			while (*q >= '0' && *q <= '9' && width < 100)
+				width = width * 10 + (*q++ - '0');
+			if (*q != 'd')
+				return 0;
+			snprintf(piece, sizeof piece, zero ? "%0*ld" : "%*ld", width, frame);
+			p = q, pattern = 1;
+		}
+		size_t n = strlen(piece);
+		if (k + n >= size)
+			return 0;
+		memcpy(buf + k, piece, n + 1), k += n;
 	}
+	if (pattern || digits == 0)
+		return 1;
+	const char *slash = strrchr(buf, '/'), *dot = strrchr(buf, '.');
+	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - buf) : k;
+	char tail[PATH_MAX];
+	snprintf(tail, sizeof tail, "%s", buf + stem);
+	int n = snprintf(buf + stem, size - stem, "%0*ld%s", digits, frame, tail);
+	return n > 0 && (size_t)n < size - stem;
+}
+
+/* The digits of POV-Ray's frame numbering (those of the last frame), or 0
+ * when there is no animation. */
+static int frame_digits(const struct options *o)
+{
+	int d = 1;
+	if (!o->anim)
+		return 0;
+	for (long f = o->last_frame; f >= 10; f /= 10)
+		d++;
+	return d;
+}
+
+/* Checks the output names before any work: a known format, a valid frame
+ * pattern, and a pattern in --save-maps when several frames are rendered. */
+static int check_outputs(const struct options *o)
+{
+	char name[PATH_MAX], def[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1;
+	for (int i = 0; i < n; i++) {
+		const char *pat = o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def);
+		if (!frame_name(pat, 0, frame_digits(o), name, sizeof name))
+			return usage_error("bad frame pattern in '%s' (expected %%d, %%4d or %%04d; %%%% for a '%%')", pat);
+		if (o->action == ACT_RENDER && !output_kind(name))
+			return usage_error("unknown output format '%s' (expected a .exr or .png name)", pat);
+	}
+	const char *maps[2] = {o->save_maps, o->load_maps};
+	for (int i = 0; i < 2; i++)
+		if (maps[i] && !frame_name(maps[i], 0, 0, name, sizeof name))
+			return usage_error("bad frame pattern in '%s' (expected %%d, %%4d or %%04d; %%%% for a '%%')", maps[i]);
+	if (o->anim && o->sub_last > o->sub_first && o->save_maps && !strchr(o->save_maps, '%'))
+		return usage_error("--save-maps '%s' would be overwritten by every frame: give it a frame "
+		                   "pattern such as %%04d", o->save_maps);
+	return EX_OK;
+}
+
+/* Are all the outputs EXRs (a partial render needs it)? */
+static int all_exr(const struct options *o)
+{
+	char def[PATH_MAX];
+	for (int i = 0; i < (o->noutputs ? o->noutputs : 1); i++)
+		if (output_kind(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def)) != 'e')
+			return 0;
+	return 1;
+}
+
+/* Sets clock, frame_number and the animation constants for one frame, as
+ * POV-Ray 3.7 does: clock runs linearly from the first clock at the first
+ * frame to the last clock at the last frame, and clock_on is true in every
+ * frame of an animation (and whenever --clock or --frame is given). */
+static void set_frame(const struct options *o, struct eval_options *eo, long frame)
+{
+	eo->clock = o->clock;
+	eo->frame = o->frame;
+	eo->clock_on = o->clock_given;
+	if (!o->anim)
+		return;
+	long span = o->last_frame - o->first_frame;
+	eo->clock_on = 1;
+	eo->frame = (int)frame;
+	eo->initial_frame = (int)o->first_frame, eo->final_frame = (int)o->last_frame;
+	eo->initial_clock = o->first_clock, eo->final_clock = o->last_clock;
+	eo->clock_delta = span > 0 ? (o->last_clock - o->first_clock) / (double)span : 0;
+	eo->clock = o->first_clock + eo->clock_delta * (double)(frame - o->first_frame);
+}
+
+/* Render: the light pass and the eye pass into one framebuffer, then each
+ * output: the EXR, or the PNG through OCIO. */
+static int render_and_write(const struct options *o, const struct scene *scene, char (*outputs)[PATH_MAX],
+                            int noutputs, const char *save_maps, const char *load_maps)
+{
+	for (int i = 0; i < noutputs; i++)
+		if (!can_create(outputs[i])) {
+			fprintf(stderr, "arvo: error: cannot create '%s': %s\n", outputs[i], strerror(errno));
+			return EX_CANTCREAT;
+		}
 	struct stat sb;
 	if (o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
 		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
 		return EX_CANTCREAT;
 	}
-	if (o->save_maps && !can_create(o->save_maps)) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->save_maps, strerror(errno));
+	if (save_maps && !can_create(save_maps)) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", save_maps, strerror(errno));
 		return EX_CANTCREAT;
 	}
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes,
+	                         save_maps, load_maps, o->method, o->tolerance, o->passes,
 	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
 	struct render_stats st;
 	struct framebuffer *fb;
@@ -637,15 +852,17 @@ static int render_and_write(struct options *o, const struct scene *scene, const 
 		fprintf(stderr, "arvo: error: %s\n", err);
 		return EX_NOINPUT;
 	}
-	if (kind == 'e') {
-		static struct out_exr_meta meta;
-		exr_meta(o, scene, &meta);
-		struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
-		err = out_exr_write(fb, output, &eo);
-	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
-		                          o->png_depth};
-		err = out_png_write(fb, output, &po);
+	for (int i = 0; i < noutputs && !err; i++) {
+		if (output_kind(outputs[i]) == 'e') {
+			static struct out_exr_meta meta;
+			exr_meta(o, scene, &meta);
+			struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
+			err = out_exr_write(fb, outputs[i], &eo);
+		} else {
+			struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
+			                          o->png_depth};
+			err = out_png_write(fb, outputs[i], &po);
+		}
 	}
 	fb_free(fb);
 	if (err) {
@@ -657,6 +874,61 @@ static int render_and_write(struct options *o, const struct scene *scene, const 
 	return EX_OK;
 }
 
+/* One frame: evaluates the scene with this frame's clock, then dumps it or
+ * renders it into every output. The output names, with the frame number
+ * filled in, are added to targets (the depfile's targets). */
+static int run_frame(const struct options *o, struct eval_options *eo, struct diag *dg, long frame,
+                     struct deps *targets)
+{
+	char names[16][PATH_MAX], def[PATH_MAX], save[PATH_MAX], load[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1, digits = frame_digits(o);
+	for (int i = 0; i < n; i++) {
+		frame_name(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def), frame, digits,
+		           names[i], sizeof names[i]);
+		dep_add(names[i], targets);
+	}
+	if (o->save_maps)
+		frame_name(o->save_maps, frame, 0, save, sizeof save);
+	if (o->load_maps)
+		frame_name(o->load_maps, frame, 0, load, sizeof load);
+	set_frame(o, eo, frame);
+	if (o->anim && !o->quiet && o->action == ACT_RENDER)
+		fprintf(stderr, "arvo: frame %ld (%ld to %ld), clock %g: %s\n", frame, o->sub_first, o->sub_last,
+		        eo->clock, names[0]);
+	struct scene scene;
+	mem_phase = "reading the scene";
+	int rc = eval_scene(o->scene, eo, dg, &scene);
+	if (o->load_maps && eo->on_file) /* after the scene: the depfile lists the scene first */
+		eo->on_file(load, eo->on_file_ctx);
+	if (rc == EX_OK) {
+		if (o->action == ACT_SCENE)
+			scene_dump(stdout, &scene);
+		else if (o->action == ACT_RENDER) {
+			mem_phase = "rendering";
+			rc = render_and_write(o, &scene, names, n, o->save_maps ? save : NULL,
+			                      o->load_maps ? load : NULL);
+		}
+	}
+	scene_free(&scene);
+	return rc;
+}
+
+/* -M also names the OCIO config when the render reads it: for a PNG output
+ * or a PNG image_map. */
+static void dep_add_ocio(const struct options *o, const struct deps *targets, struct deps *deps)
+{
+	int png = 0;
+	for (int i = 0; i < targets->n; i++)
+		png |= output_kind(targets->files[i]) == 'p' && o->action == ACT_RENDER;
+	for (int i = 0; i < deps->n; i++)
+		png |= output_kind(deps->files[i]) == 'p';
+	const char *cfg = png ? out_ocio_config_path(o->ocio_config) : NULL;
+	if (cfg) {
+		char real[PATH_MAX];
+		dep_add(realpath(cfg, real) ? real : cfg, deps);
+	}
+}
+
 int main(int argc, char **argv)
 {
 	if (argc > 1 && (!strcmp(argv[1], "compare") || !strcmp(argv[1], "merge")))
@@ -664,7 +936,8 @@ int main(int argc, char **argv)
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
-	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000;
+	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000, o.max_steps = 1000000000;
+	o.first_frame = o.last_frame = 1, o.first_clock = 0, o.last_clock = 1, o.sub_first = o.sub_last = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
@@ -676,6 +949,11 @@ int main(int argc, char **argv)
 		srcfile_free_all();
 		return rc;
 	}
+	if ((rc = check_outputs(&o)) != EX_OK)
+		return rc;
+	if (o.action == ACT_RENDER && (rc = resolve_region(&o, all_exr(&o) ? 'e' : 'p')) >= 0)
+		return rc;
+	rc = EX_OK;
 	find_data_dir(&o);
 
 	struct eval_options eo;
@@ -686,38 +964,32 @@ int main(int argc, char **argv)
 	eo.pov_include_dir = pov_include_dir();
 	eo.defines = o.defines;
 	eo.ndefines = o.ndefines;
-	eo.clock = o.clock;
-	eo.frame = o.frame;
 	eo.width = o.width;
 	eo.height = o.height;
 	eo.max_iterations = o.max_iterations;
 	eo.max_calls = o.max_calls;
 	eo.max_objects = o.max_objects;
-	struct deps deps = {NULL, 0};
+	eo.max_steps = o.max_steps;
+	struct deps deps = {NULL, 0}, targets = {NULL, 0};
 	if (o.depfile) {
 		eo.on_file = dep_add;
 		eo.on_file_ctx = &deps;
 	}
-	struct scene scene;
-	rc = eval_scene(o.scene, &eo, &dg, &scene);
-	char outbuf[PATH_MAX];
-	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
-	if (rc == EX_OK && o.depfile)
-		rc = write_depfile(&o, &deps, output);
-	if (rc == EX_OK) {
-		if (o.action == ACT_SCENE) {
-			scene_dump(stdout, &scene);
-		} else if (o.action == ACT_RENDER) {
-			mem_phase = "rendering";
-			rc = render_and_write(&o, &scene, output);
-		}
+	long first = o.anim ? o.sub_first : 0, last = o.anim ? o.sub_last : 0;
+	for (long f = first; f <= last && rc == EX_OK; f++)
+		rc = run_frame(&o, &eo, &dg, f, &targets);
+	if (rc == EX_OK && o.depfile) {
+		dep_add_ocio(&o, &targets, &deps);
+		rc = write_depfile(&o, &deps, &targets);
 	}
 	if (fflush(stdout) != 0 && rc == EX_OK)
 		rc = EX_IOERR;
 	for (int i = 0; i < deps.n; i++)
 		free(deps.files[i]);
+	for (int i = 0; i < targets.n; i++)
+		free(targets.files[i]);
 	free(deps.files);
-	scene_free(&scene);
+	free(targets.files);
 	srcfile_free_all();
 	return rc;
 }

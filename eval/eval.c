@@ -468,6 +468,8 @@ static void enter(struct eval *E, struct srcloc loc)
 		          MAX_EVAL_DEPTH);
 	if ((size_t)(E->stack_base - &here) > E->stack_max)
 		eval_fail(E, loc, "nesting too deep (the evaluator's stack is used up)");
+	if (++E->steps > E->opt->max_steps) /* bounds the time any scene can take */
+		eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
 	E->depth++;
 }
 
@@ -680,6 +682,7 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			*found_dir = dirs[i];
 		return mem_strdup(real);
 	}
+	E->missing = 1;
 	eval_fail(E, loc, "cannot find %s '%s'", what, name);
 }
 
@@ -719,6 +722,7 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	if (!text) {
 		int err = errno;
 		free(real);
+		E->missing = 1;
 		eval_fail(E, n->loc, "cannot read include file '%s': %s", name, strerror(err));
 	}
 	if (E->opt->on_file)
@@ -854,6 +858,7 @@ void eval_default_options(struct eval_options *o)
 	o->height = 240;
 	o->max_iterations = 10000000;
 	o->max_calls = 1000000;
+	o->max_steps = 1000000000;
 	o->max_objects = 1000000;
 	o->debug_out = stdout;
 }
@@ -945,7 +950,7 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	mem_set_budget(mem_budget(), outer);
 	running = NULL;
 	if (diag->errors > 0)
-		rc = E->out_of_memory ? 70 : 65;
+		rc = E->out_of_memory ? 70 : E->missing ? 66 : 65;
 	free(E->rng);
 	arena_free(&E->arena);
 	free(E);

@@ -18,12 +18,18 @@ struct eval_options {
 	int ndefines;
 	double clock;                    /* clock */
 	int frame;                       /* frame_number */
+	/* animation (all 0 without one, as POV-Ray): clock_on, clock_delta,
+	 * initial_clock, final_clock, initial_frame, final_frame */
+	int clock_on;
+	double clock_delta, initial_clock, final_clock;
+	int initial_frame, final_frame;
 	int width, height;               /* image_width, image_height */
 	long max_iterations;             /* #while/#for iterations in total */
 	long max_calls;                  /* macro calls in total */
+	long max_steps;                  /* evaluation steps (item lists and expressions) in total */
 	long max_objects;                /* objects and lights in the scene */
 	FILE *debug_out;                 /* where #debug writes (stdout) */
-	/* Called for each file read (the scene and every include), for -M. */
+	/* Called for each file read (the scene, every include and image_map), for -M. */
 	void (*on_file)(const char *path, void *ctx);
 	void *on_file_ctx;
 };
@@ -31,7 +37,8 @@ struct eval_options {
 void eval_default_options(struct eval_options *o);
 /* Reads, parses and evaluates the scene file at path into *out (which
  * eval_scene initialises). Returns 0 on success, 65 when the scene has errors
- * (reported to diag), 66 when the file itself cannot be read. */
+ * (reported to diag), 66 when the file itself, an include or an image_map
+ * cannot be found or read (reported with its location). */
 int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out);
 
 #endif

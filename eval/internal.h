@@ -60,6 +60,7 @@ struct eval {
 	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
 	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
 	long calls;                /* macro calls so far */
+	long steps;                /* item lists and expressions evaluated so far */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
@@ -73,9 +74,11 @@ struct eval {
 	const char *dir_stack[MAX_INCLUDE_DEPTH + 2]; /* directory of each open file */
 	struct texture default_tex; /* #default */
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
+	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	int missing;               /* the error was a missing or unreadable file (exit 66) */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */
@@ -149,6 +152,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 /* A finish { } block n on a texture's finish *f: it changes a copy, since
  * textures share finishes (the default one, a declared texture's). */
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
+/* p's pattern settings, made its own to be written (pigments share them). */
+struct pattern *pat_w(struct eval *E, struct pigment *p);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
