@@ -182,7 +182,7 @@ bench-accuracy: deps all
 povray-compat: all
 	sh tests/povray-compat/compat.sh
 povray-corpus: all
-	sh tests/povray-compat/compat.sh --corpus
+	TIMEOUT=40 sh tests/povray-compat/compat.sh --corpus
 
 lint:
 	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5

@@ -266,6 +266,16 @@ static const char *pov_include_dir(void)
 	return access(POVRAY_INCLUDE_DIR, R_OK) == 0 ? POVRAY_INCLUDE_DIR : NULL;
 }
 
+/* POV-Ray switches arvo does not implement: the message naming what to
+ * use instead, or NULL. */
+static const char *pov_unsupported(const char *a)
+{
+	const char *s = a + 1;
+	if (!strncasecmp(s, "SR", 2) || !strncasecmp(s, "ER", 2) || !strncasecmp(s, "SC", 2) || !strncasecmp(s, "EC", 2))
+		return "POV-Ray's partial render switches (+SR +ER +SC +EC) are not supported: arvo renders the whole image";
+	return NULL;
+}
+
 /* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K
  * +KFI +KFF +KI +KF +SF +EF. */
 static int pov_switch(struct options *o, const char *a)
@@ -445,6 +455,8 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (o->ninclude >= 64)
 				return usage_error("too many -I directories (at most %s)", "64");
 			o->includes[o->ninclude++] = a + 2;
+		} else if (!strcmp(a, "-D") && !(next && strchr(next, '='))) {
+			continue; /* POV-Ray's -D: display off (arvo has no preview window) */
 		} else if (!strcmp(a, "-D") || !strncmp(a, "Declare=", 8) || !strncmp(a, "-D", 2)) {
 			if (!strcmp(a, "-D"))
 				NEED_ARG();
@@ -485,10 +497,15 @@ static int parse_args(int argc, char **argv, struct options *o)
 				                   next);
 		} else if ((a[0] == '+' || a[0] == '-') && a[1] && a[1] != '-' && pov_switch(o, a)) {
 			continue;
-		} else if (a[0] == '-' && a[1]) {
+		} else if (a[0] == '-' && a[1] && !pov_unsupported(a)) {
 			return usage_error("unknown option '%s'", a);
+		} else if ((a[0] == '+' || a[0] == '-') && pov_unsupported(a)) {
+			return usage_error("%s", pov_unsupported(a));
 		} else if (a[0] == '+' && a[1]) {
 			return usage_error("unknown or malformed POV-Ray switch '%s'", a);
+		} else if (strlen(a) > 4 && !strcasecmp(a + strlen(a) - 4, ".ini")) {
+			return usage_error("POV-Ray INI files are not read ('%s'): give its settings as options, e.g. "
+			                   "Width=640 Height=480 Antialias=on as --width 640 --height 480 --spp 4", a);
 		} else {
 			if (o->scene)
 				return usage_error("more than one scene file given ('%s')", a);

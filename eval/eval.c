@@ -837,6 +837,14 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 	}
 	default: break;
 	}
+	struct value ignored;
+	if (s->kind == SK_NORMAL && n->kind == N_IDENT && !env_lookup(E, n->str) &&
+	    !builtin_constant(E, n->str, &ignored) && tok_is_pov_word(n->str)) {
+		s->pending = 1; /* bumps, turbulence, slope_map …: normal_block ignores this normal */
+		if (!E->warned_normal++)
+			diag_warning(E->diag, n->loc, "'%s' is not supported in 'normal' yet; the normal is ignored", n->str);
+		return;
+	}
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
 }

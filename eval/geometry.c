@@ -13,7 +13,7 @@ static void object_transform(struct eval *E, struct object *o, const struct xfor
 	o->xf = xform_then(E, o->xf, X);
 	if (o->tex) {
 		o->tex = texture_copy(E, o->tex);
-		o->tex->pigment.xf = xform_then(E, o->tex->pigment.xf, X);
+		texture_transform(E, o->tex, X);
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -69,12 +69,14 @@ static struct object *object_target(struct eval *E, struct sink *s, struct srclo
 static void object_material_block(struct eval *E, struct sink *s, struct object *o, const struct node *n)
 {
 	struct sink sub;
-	if (n->op == TK_PIGMENT || n->op == TK_FINISH) {
+	if (n->op == TK_PIGMENT || n->op == TK_FINISH || n->op == TK_NORMAL) {
 		o->tex = texture_copy(E, o->tex);
 		if (o->tex->loc.file < 0)
 			o->tex->loc = n->loc;
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
+		else if (n->op == TK_NORMAL)
+			o->tex->normal = normal_block(E, n);
 		else
 			finish_block(E, n, &o->tex->finish);
 	} else if (n->op == TK_INTERIOR) {
@@ -95,6 +97,30 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 	(void)s;
 }
 
+static void object_geometry(struct eval *E, struct sink *s, struct object *o);
+
+/* object { … clipped_by { A B … } … }: from here on the sink builds a clip
+ * node whose first child is the object so far (its geometry fixed now) and
+ * whose others are A, B …; later modifiers apply to the whole (csg.c). */
+static void clip(struct eval *E, struct sink *s, struct object *o, const struct node *n)
+{
+	if (s->kw != TK_OBJECT && o->kind < OBJ_FIRST_CSG)
+		object_geometry(E, s, o);
+	struct object tmp = {.kind = OBJ_UNION, .loc = n->loc};
+	struct sink sub;
+	sink_init(&sub, SK_OBJECT, TK_UNION, n->loc, &tmp);
+	eval_items(E, n, &sub);
+	if (tmp.g.csg.n == 0)
+		eval_fail(E, n->loc, "clipped_by needs an object: clipped_by { plane { y, 0 } }");
+	struct object *c = NEW(E, struct object);
+	c->kind = OBJ_CLIP;
+	c->loc = o->loc;
+	csg_add(E, c, o);
+	for (int i = 0; i < tmp.g.csg.n; i++)
+		csg_add(E, c, tmp.g.csg.kids[i]);
+	s->target = c;
+}
+
 void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct xform X;
@@ -110,9 +136,11 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct object *o = object_target(E, s, n->loc);
 	s->modified = 1;
 	switch (n->op) {
-	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL:
+	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL: case TK_NORMAL:
 		object_material_block(E, s, o, n);
 		return;
+	case TK_BOUNDED_BY: return; /* POV-Ray's bounding hint: arvo bounds every object itself */
+	case TK_CLIPPED_BY: clip(E, s, o, n); return;
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;
 	case TK_NO_IMAGE: o->flags |= OF_NO_IMAGE; return;
 	case TK_NO_REFLECTION: o->flags |= OF_NO_REFLECTION; return;

@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
 };
 
 #define SINK_MAX_PARAMS 8
@@ -76,6 +76,7 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* the error was a missing or unreadable file (exit 66) */
 };
@@ -139,6 +140,8 @@ double arg_positive(struct eval *E, const struct node *n);
 int arg_int(struct eval *E, const struct node *n, int lo, int hi);
 /* translate/rotate/scale/matrix/transform item n into *out; false otherwise. */
 bool transform_of(struct eval *E, const struct node *n, struct xform *out);
+/* Moves a texture's pigment and normal by X (the normal is copied). */
+void texture_transform(struct eval *E, struct texture *t, const struct xform *X);
 /* A fresh scene copy of t (NULL: the #default texture). */
 struct texture *texture_copy(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
@@ -177,6 +180,11 @@ void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* normal { }: a fresh perturbation, or NULL when it uses what arvo lacks
+ * (warned once: the scene renders with the plain normal). */
+struct tnormal *normal_block(struct eval *E, const struct node *blk);
+void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
+void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */
@@ -188,6 +196,9 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
 void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
+void fog_keyword(struct eval *E, struct sink *s, const struct node *n);
+void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 
 /* ---- objects.c: entry points ---- */
 /* A keyword item (N_BLOCK, N_MOD, N_WORD, N_SKIPPED, N_ENTRY) in a sink. */

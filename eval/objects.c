@@ -34,6 +34,8 @@ static const char *where(const struct sink *s)
 
 _Noreturn void misplaced(struct eval *E, const struct sink *s, const struct node *n)
 {
+	if (n->op == TK_TURBULENCE || n->op == TK_OCTAVES || n->op == TK_OMEGA || n->op == TK_LAMBDA)
+		eval_fail(E, n->loc, "%s is not supported", tok_name(n->op));
 	eval_fail(E, n->loc, "%s is not valid %s", tok_name(n->op), where(s));
 }
 
@@ -149,6 +151,17 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
+{
+	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->normal) {
+		struct tnormal *nr = NEW(E, struct tnormal);
+		*nr = *t->normal;
+		nr->pat.xf = xform_then(E, nr->pat.xf, X);
+		t->normal = nr;
+	}
+}
+
 const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X)
 {
 	struct xform *x = NEW(E, struct xform);
@@ -182,8 +195,9 @@ struct value eval_block(struct eval *E, const struct node *blk)
 {
 	struct value v = {.kind = V_NONE};
 	struct sink s;
-	if (blk->kind == N_SKIPPED) {
+	if (blk->kind == N_SKIPPED || blk->op == TK_NORMAL) {
 		v.kind = V_SKIPPED;
+		v.p.nrm = blk->kind == N_SKIPPED ? NULL : normal_block(E, blk);
 		return v;
 	}
 	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
@@ -285,6 +299,20 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		sc->background = val_want_colour(E, &sub.params[0], sub.ploc[0]);
 		return;
 	case TK_GLOBAL_SETTINGS: run_block(E, n, SK_GLOBAL, sc, &sub); return;
+	case TK_FOG:
+		sc->fog = (struct fog){.type = 1, .up = v3(0, 1, 0)};
+		run_block(E, n, SK_FOG, &sc->fog, &sub);
+		if (!(sc->fog.distance > 0))
+			eval_fail(E, n->loc, "fog needs a positive distance: fog { distance 10 color rgb 0.5 }");
+		if (sc->fog.type == 2 && !(sc->fog.alt > 0))
+			eval_fail(E, n->loc, "a ground fog (fog_type 2) needs a positive fog_alt");
+		return;
+	case TK_SKY_SPHERE:
+		sc->nsky = 0, sc->sky_xf = NULL; /* a later sky_sphere replaces an earlier one */
+		run_block(E, n, SK_SKY, sc, &sub);
+		if (sc->nsky == 0)
+			eval_fail(E, n->loc, "sky_sphere needs a pigment: sky_sphere { pigment { … } }");
+		return;
 	default: misplaced(E, s, n);
 	}
 }
@@ -300,6 +328,8 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
 		finish_block(E, n, &t->finish);
+	else if (n->op == TK_NORMAL)
+		t->normal = normal_block(E, n);
 	else
 		misplaced(E, s, n);
 }
@@ -343,6 +373,9 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_PHOTONS: photons_keyword(E, s, n); return;
 	case SK_ILLUM: illum_keyword(E, s, n); return;
 	case SK_ILLUM_MAP: illum_map_keyword(E, s, n); return;
+	case SK_SKY: sky_keyword(E, s, n); return;
+	case SK_NORMAL: normal_keyword(E, s, n); return;
+	case SK_FOG: fog_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
@@ -359,7 +392,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (transform_of(E, n, &X)) {
 			if (m->tex) {
 				m->tex = texture_copy(E, m->tex);
-				m->tex->pigment.xf = xform_then(E, m->tex->pigment.xf, &X);
+				texture_transform(E, m->tex, &X);
 			}
 			return;
 		}
@@ -392,6 +425,8 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 		return;
 	case SK_OBJECT: object_value(E, s, v, loc); return;
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
+	case SK_NORMAL: normal_value(E, s, v, loc); return;
+	case SK_FOG: fog_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:
 		if (s->nparams >= SINK_MAX_PARAMS)

@@ -158,6 +158,14 @@ void camera_finish(struct eval *E, struct sink *s, struct camera *c)
 		c->direction = v_scale(v_norm(c->direction), v_len(c->right) / tan(c->angle * M_PI / 360) / 2);
 	if (s->pending & CAM_LOOK_AT)
 		camera_look_at(E, c, c->look_at, s->ploc[0]);
+	if ((s->pending & CAM_ANGLE) && c->kind == CAM_ORTHOGRAPHIC) {
+		/* POV-Ray 3.7: the view is as wide as a perspective camera's of that
+		 * angle at the look_at distance (else at the direction's length) */
+		double d = s->pending & CAM_LOOK_AT ? v_len(v_sub(c->look_at, c->location)) : v_len(c->direction);
+		double w = 2 * d * tan(c->angle * M_PI / 360), k = w / v_len(c->right);
+		c->right = v_scale(c->right, k);
+		c->up = v_scale(c->up, k);
+	}
 	if (s->pending & CAM_XF)
 		camera_transform(c, &s->pending_xf);
 }
@@ -270,4 +278,55 @@ void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_CELL: m->cell = arg_positive(E, n); return;
 	default: misplaced(E, s, n);
 	}
+}
+
+/* sky_sphere { pigment { … } … [transforms] }: the pigments, evaluated at
+ * the direction of a ray that leaves the scene, bottom first. */
+void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct scene *sc = s->target;
+	struct xform X;
+	if (transform_of(E, n, &X)) {
+		sc->sky_xf = xform_then(E, sc->sky_xf, &X);
+		return;
+	}
+	if (n->op != TK_PIGMENT || n->kind != N_BLOCK)
+		misplaced(E, s, n);
+	struct value v = eval_block(E, n);
+	struct pigment *p = ARENA_ARRAY(&sc->arena, struct pigment, sc->nsky + 1);
+	if (sc->nsky)
+		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
+	p[sc->nsky++] = *v.p.pig;
+	sc->sky = p;
+}
+
+/* fog { [fog_type 1|2] distance d colour c [fog_offset h fog_alt a up v] } */
+void fog_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct fog *f = s->target;
+	switch (n->op) {
+	case TK_FOG_TYPE: f->type = arg_int(E, n, 1, 2); return;
+	case TK_DISTANCE: f->distance = arg_positive(E, n); return;
+	case TK_FOG_OFFSET: f->offset = arg_float(E, n); return;
+	case TK_FOG_ALT: f->alt = arg_positive(E, n); return;
+	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA:
+		if (!E->warned_fog_turb++)
+			diag_warning(E->diag, n->loc, "%s in fog is not supported yet; the fog is even", tok_name(n->op));
+		return;
+	case TK_UP: {
+		struct vec3 u = arg_vec3(E, n);
+		if (v_len(u) == 0)
+			eval_fail(E, n->kids[0]->loc, "fog up vector has zero length");
+		f->up = v_norm(u);
+		return;
+	}
+	default: misplaced(E, s, n);
+	}
+}
+
+/* The fog's colour. */
+void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct fog *f = s->target;
+	f->c = val_want_colour(E, v, loc);
 }

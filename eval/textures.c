@@ -256,13 +256,73 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct sink sub;
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
-		t->pigment.xf = xform_then(E, t->pigment.xf, &X);
+		texture_transform(E, t, &X);
 		return;
 	}
-	if (n->op == TK_PIGMENT)
+	if (n->op == TK_NORMAL)
+		t->normal = normal_block(E, n);
+	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
 		finish_block(E, n, &t->finish);
 	else
 		misplaced(E, s, n);
+}
+
+/* ==== normal ============================================================== */
+
+struct tnormal *normal_block(struct eval *E, const struct node *blk)
+{
+	struct tnormal *t = NEW(E, struct tnormal);
+	struct sink s;
+	t->pat = scene_default_texture().pigment;
+	t->pat.kind = PIG_SOLID; /* no pattern yet */
+	t->amount = 0.5;
+	run_block(E, blk, SK_NORMAL, t, &s);
+	if (s.pending)
+		return NULL;
+	if (t->pat.kind == PIG_SOLID || t->pat.kind == PIG_IMAGE) {
+		if (!E->warned_normal++)
+			diag_warning(E->diag, blk->loc, "'normal' without a pattern arvo supports is ignored");
+		return NULL;
+	}
+	return t;
+}
+
+/* The pattern keywords of pigment, a bump size after the pattern (also
+ * `gradient x, 0.5`), transforms. */
+void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct tnormal *t = s->target;
+	struct sink sub;
+	sink_init(&sub, SK_PIGMENT, TK_NORMAL, s->loc, &t->pat);
+	if (n->op == TK_GRADIENT && n->nkids == 2) {
+		struct node one = *n;
+		one.nkids = 1;
+		t->amount = eval_float(E, n->kids[1]);
+		pigment_keyword(E, &sub, &one);
+		return;
+	}
+	switch (n->op) {
+	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: misplaced(E, s, n);
+	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA:
+		s->pending = 1; /* normal_block ignores this normal */
+		if (!E->warned_normal++)
+			diag_warning(E->diag, n->loc, "%s is not supported in 'normal' yet; the normal is ignored", tok_name(n->op));
+		return;
+	default: pigment_keyword(E, &sub, n);
+	}
+}
+
+void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct tnormal *t = s->target;
+	if (v->kind == V_SKIPPED) { /* a declared normal first */
+		if (v->p.nrm)
+			*t = *v->p.nrm;
+		else
+			s->pending = 1;
+		return;
+	}
+	t->amount = val_want_float(E, v, loc);
 }

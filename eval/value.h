@@ -52,6 +52,7 @@ struct value {
 		struct material *mat;
 		struct xform *xf;
 		struct colour_map *cmap;
+		struct tnormal *nrm; /* V_SKIPPED (a normal): NULL when ignored */
 	} p;
 };
 

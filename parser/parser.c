@@ -25,6 +25,7 @@ struct parser {
 	int depth;           /* recursion depth (blocks, directives, expressions) */
 	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
+	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
 };
 
 static struct node *parse_expr(struct parser *p);
@@ -163,12 +164,17 @@ static struct node *parse_keyword_item(struct parser *p);
 
 /* A value where a block may stand too: array initialisers, macro arguments,
  * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
+static struct node *word_block(struct parser *p, struct node *id);
+
 static struct node *parse_value(struct parser *p)
 {
 	enum kw_shape sh = tok_shape(p->tok.kind);
 	if (tok_is_keyword(p->tok.kind) && (sh == SH_BLOCK || sh == SH_BLOCK_OR_EXPR || sh == SH_SKIP))
 		return parse_keyword_item(p);
-	return parse_expr(p);
+	struct node *e = parse_expr(p);
+	if (e && e->kind == N_IDENT && check(p, TK_LBRACE)) /* #declare T = text { … } */
+		return word_block(p, e);
+	return e;
 }
 
 /* Binary operator precedence; 0 when tok is not a binary operator here. */
@@ -486,9 +492,21 @@ static struct node *parse_keyword_item(struct parser *p)
 	advance(p);
 	struct node *n = node(p, N_MOD, t.loc);
 	n->op = t.kind;
+	if (sh != SH_BLOCK && sh != SH_BLOCK_OR_EXPR && sh != SH_SKIP && check(p, TK_LBRACE)) {
+		/* a keyword arvo knows, in a block form it does not (media { }) */
+		skip_braces(p);
+		error_at(p, t.loc, "%s { } is not supported", tok_name(t.kind));
+		return n;
+	}
 	switch (sh) {
 	case SH_BLOCK:
 		n->kind = N_BLOCK;
+		if (t.kind == TK_NORMAL) {
+			p->in_normal++;
+			parse_block_body(p, n);
+			p->in_normal--;
+			return n;
+		}
 		return parse_block_body(p, n);
 	case SH_BLOCK_OR_EXPR:
 		if (check(p, TK_LBRACE)) {
@@ -832,6 +850,8 @@ static struct node *word_block(struct parser *p, struct node *id)
 		return parse_block_body(p, n);
 	}
 	skip_braces(p);
+	if (p->in_normal && tok_is_pov_word(id->str))
+		return id; /* normal { slope_map { } }: the evaluator ignores the normal */
 	if (strcmp(id->str, "radiosity") == 0)
 		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
 	else if (tok_is_pov_word(id->str))

@@ -10,6 +10,8 @@
  *   union         always kept (POV-Ray keeps the inner surfaces; merge does not)
  *   merge         kept when p is inside no other child
  *   intersection  kept when p is inside every other child
+ *   clip          child 0 (the object clipped_by the others): kept when p is
+ *                 inside every other child; the others are never surfaces
  *   difference    child 0: kept when p is inside none of the others;
  *                 child i > 0: kept when p is inside child 0 and no other
  *                 subtracted child — its normal is flipped (it faces into
@@ -27,8 +29,7 @@
 
 bool csg_is_csg(const struct object *o)
 {
-	return o->kind == OBJ_UNION || o->kind == OBJ_INTERSECTION || o->kind == OBJ_DIFFERENCE ||
-	       o->kind == OBJ_MERGE;
+	return o->kind >= OBJ_FIRST_CSG && o->kind < OBJ_KIND_COUNT;
 }
 
 /* Is p inside child j for some j ≥ from, j ≠ skip? */
@@ -57,6 +58,8 @@ static bool keeps(const struct object *o, int i, struct vec3 p)
 		return !inside_any(o, 0, i, p);
 	case OBJ_INTERSECTION:
 		return inside_all(o, i, p);
+	case OBJ_CLIP:
+		return i == 0 && inside_all(o, 0, p);
 	case OBJ_DIFFERENCE:
 		if (i == 0)
 			return !inside_any(o, 1, -1, p);
@@ -169,7 +172,7 @@ bool csg_inside(const struct object *o, struct vec3 p)
 	bool in;
 	int n = o->g.csg.n;
 	switch (o->kind) {
-	case OBJ_INTERSECTION:
+	case OBJ_INTERSECTION: case OBJ_CLIP:
 		in = n > 0 && inside_all(o, -1, p);
 		break;
 	case OBJ_DIFFERENCE:
@@ -207,7 +210,7 @@ static struct bbox solid_plain(const struct object *o)
 		return b;
 	if (o->kind == OBJ_DIFFERENCE)
 		return shape_solid_bounds(k[0]);
-	if (o->kind == OBJ_INTERSECTION) {
+	if (o->kind == OBJ_INTERSECTION || o->kind == OBJ_CLIP) {
 		b = infinite();
 		for (int i = 0; i < n; i++)
 			b = box_meet(b, shape_solid_bounds(k[i]));
@@ -228,9 +231,9 @@ struct bbox csg_solid_bounds(const struct object *o)
 struct bbox csg_bounds(const struct object *o)
 {
 	struct bbox b = bbox_empty();
-	for (int i = 0; i < o->g.csg.n; i++)
+	for (int i = 0; i < (o->kind == OBJ_CLIP ? 1 : o->g.csg.n); i++)
 		b = bbox_union(b, shape_bounds(o->g.csg.kids[i]));
-	if (o->kind == OBJ_INTERSECTION || o->kind == OBJ_DIFFERENCE)
+	if (o->kind == OBJ_INTERSECTION || o->kind == OBJ_DIFFERENCE || o->kind == OBJ_CLIP)
 		b = box_meet(b, solid_plain(o));
 	return b;
 }

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "optics.h"
+#include "pattern.h"
 #include "sampler.h"
 #include "spectrum.h"
 #include "surface.h"
@@ -317,7 +318,10 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	const struct scene *s = pa->ctx->scene;
 	struct surf sf = {h, mat_texture(h->obj), {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
-	if (v_dot(sf.nf, sf.v) < 0)
+	bool back = v_dot(sf.nf, sf.v) < 0; /* decided by the true normal */
+	if (sf.tex->normal)
+		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
+	if (back)
 		sf.nf = v_neg(sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
@@ -349,6 +353,49 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	return v_add(v_add(emis, diffuse), v_add(H, spec));
 }
 
+/* POV-Ray's sky_sphere along unit d: the pigments at d in the sky's
+ * frame, composited from the top one down through their filter and
+ * transmit; the background shows through what remains. */
+static struct vec3 sky(const struct eye_ctx *ctx, struct vec3 d)
+{
+	const struct scene *s = ctx->scene;
+	struct vec3 p = s->sky_xf ? v_norm(xf_inv_vector(s->sky_xf, d)) : d, out = v3(0, 0, 0);
+	double pass = 1;
+	for (int i = s->nsky - 1; i >= 0 && pass > 0; i--) {
+		struct colour c = mat_pigment(ctx->mats, &s->sky[i], p);
+		double through = c.f + c.t;
+		out = v_madd(out, col3(c), pass * (1 - through));
+		pass *= through;
+	}
+	return v_madd(out, col3(s->background), pass);
+}
+
+/* POV-Ray's fog over a ray segment from o along unit d of length len
+ * (a miss: far away): the share e^(-len·density/distance) of c passes,
+ * never less than the fog's transmit; the fog's colour fills the rest. A
+ * ground fog's density is 1 below fog_offset and 1/(1 + (h/fog_alt)²) at
+ * height h above it, averaged exactly along the segment. */
+static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double len, struct vec3 c)
+{
+	double density = 1;
+	if (f->type == 2) {
+		double y1 = v_dot(o, f->up) - f->offset, dy = v_dot(d, f->up) * len, a = f->alt;
+		/* ∫ density dy: y below 0 counts fully, above a·atan(y/a) */
+		double lo = fmin(y1, y1 + dy), hi = fmax(y1, y1 + dy);
+		if (hi - lo < 1e-9) {
+			density = lo <= 0 ? 1 : 1 / (1 + (lo / a) * (lo / a));
+		} else {
+			double below = fmin(hi, 0) - fmin(lo, 0);
+			double above = a * (atan(fmax(hi, 0) / a) - atan(fmax(lo, 0) / a));
+			density = (below + above) / (hi - lo);
+		}
+	}
+	double k = fmax(exp(-len * density / f->distance), f->c.t);
+	struct vec3 fc = col3(f->c);
+	struct vec3 mix = v_add(v_scale(fc, 1 - f->c.f), v_scale(v_mul(fc, c), f->c.f));
+	return v_add(v_scale(c, k), v_scale(mix, 1 - k));
+}
+
 /* The radiance arriving along r: the background on a miss, else the shaded
  * hit, attenuated by the medium when the ray travelled inside an object. */
 static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
@@ -361,9 +408,12 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	struct hit h;
 	pa->rays++;
 	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h)) {
+		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
+		if (s->fog.type)
+			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
 		if (aov)
-			aov->emis = col3(s->background);
-		return col3(s->background);
+			aov->emis = bg;
+		return bg;
 	}
 	if (aov)
 		aov->z = h.t * v_len(r.d);
@@ -377,6 +427,8 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 			aov->spec = v_mul(aov->spec, fade);
 		}
 	}
+	if (s->fog.type) /* the layers keep their unfogged values */
+		c = fog(&s->fog, r.o, v_norm(r.d), h.t * v_len(r.d), c);
 	return c;
 }
 

@@ -36,6 +36,8 @@ static double raw(const struct pigment *pg, struct vec3 q)
 {
 	if (pg->kind == PIG_GRADIENT)
 		return gradient_raw(pg, q);
+	if (pg->kind == PIG_CHECKER || pg->kind == PIG_HEXAGON || pg->kind == PIG_BRICK)
+		return pattern_block(pg, q); /* in a normal: the index, through the wave */
 	switch (pig_pattern(pg)->pattern) {
 	case PAT_RADIAL: return radial_raw(q);
 	case PAT_ONION: return sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
@@ -139,4 +141,26 @@ int pattern_block(const struct pigment *pg, struct vec3 q)
 		return (int)(s & 1);
 	}
 	}
+}
+
+struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 n)
+{
+	/* POV-Ray's tetrahedron, its spacing 0.02 and its gain −5 per unit of
+	 * bump size (the sum of the corners is zero, so a flat pattern tilts
+	 * nothing) */
+	static const struct vec3 corner[4] = {
+		{0.942809041, -0.333333333, 0}, {-0.471404521, -0.333333333, 0.816496581},
+		{-0.471404521, -0.333333333, -0.816496581}, {0, 1, 0}};
+	const double delta = 0.02;
+	const struct xform *X = t->pat.xf ? t->pat.xf : &xf_ident;
+	/* the normal into pattern space (the transpose of the linear part) */
+	const double (*m)[4] = X->m;
+	struct vec3 np = v_norm(v3(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
+	                           m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
+	                           m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z));
+	struct vec3 q = xf_inv_point(X, p);
+	double gain = -5 * t->amount;
+	for (int i = 0; i < 4; i++)
+		np = v_madd(np, corner[i], gain * pattern_value(&t->pat, v_madd(q, corner[i], delta)));
+	return v_norm(xf_normal(X, np));
 }

@@ -11,5 +11,9 @@
 double pattern_value(const struct pigment *pg, struct vec3 q);
 /* Which colour (0, 1, 2) of a block pattern (checker, hexagon, brick) q is in. */
 int pattern_block(const struct pigment *pg, struct vec3 q);
+/* The unit normal n at world point p perturbed as POV-Ray's normal { }
+ * does: in pattern space, the pattern's values at the four corners of a
+ * small tetrahedron around p, scaled by the bump size, tilt n. */
+struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 n);
 
 #endif

@@ -125,6 +125,7 @@ const char *scene_pov_view(const struct scene *s)
 static const char *const kind_names[OBJ_KIND_COUNT] = {
 #define PRIM(n, w) [OBJ_##n] = #w,
 #define CSG(n, w) [OBJ_##n] = #w,
+#define NODE(n, w) [OBJ_##n] = #w,
 #include "objects.def"
 };
 
@@ -231,6 +232,11 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
 		dump_finish(o, ob->tex->finish, d + 2);
+		if (ob->tex->normal) {
+			indent(o, d + 2);
+			fprintf(o, "normal amount %.6g\n", ob->tex->normal->amount);
+			dump_pigment(o, &ob->tex->normal->pat, d + 3);
+		}
 	}
 	if (ob->interior) {
 		const struct interior *in = ob->interior;
@@ -299,6 +305,21 @@ void scene_dump(FILE *o, const struct scene *s)
 		fprintf(o, "  illumination tolerance %.6g\n", g->illum.tolerance);
 	fputs("background ", o);
 	pc(o, s->background);
+	if (s->nsky > 0) {
+		fprintf(o, "\nsky_sphere %d\n", s->nsky);
+		for (int i = 0; i < s->nsky; i++)
+			dump_pigment(o, &s->sky[i], 1);
+		if (s->sky_xf)
+			dump_xform(o, s->sky_xf, 1);
+		fputs("end sky_sphere", o);
+	}
+	if (s->fog.type) {
+		const struct fog *f = &s->fog;
+		fprintf(o, "\nfog type %d distance %.6g offset %.6g alt %.6g up ", f->type, f->distance, f->offset, f->alt);
+		pv(o, f->up);
+		fputc(' ', o);
+		pc(o, f->c);
+	}
 	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
 	        c->loc.line, c->loc.col);
 	pv(o, c->location);

@@ -97,8 +97,16 @@ struct interior {
 	double caustics;           /* POV's fake caustics value (parsed, unused) */
 };
 
+/* normal { pattern [amount] … }: POV-Ray's perturbation of the shading
+ * normal by the slope of a pattern (tracer/pattern.h). */
+struct tnormal {
+	struct pigment pat; /* the pattern, its wave and its transform */
+	double amount;      /* bump size (POV default 0.5) */
+};
+
 struct texture {
 	struct pigment pigment;
+	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
 };
@@ -109,6 +117,7 @@ struct texture {
 enum object_kind {
 #define PRIM(n, w) OBJ_##n,
 #define CSG(n, w) OBJ_##n,
+#define NODE(n, w) OBJ_##n,
 #include "objects.def"
 	OBJ_KIND_COUNT,
 	OBJ_FIRST_CSG = OBJ_UNION
@@ -242,6 +251,16 @@ struct scene {
 	struct camera camera;
 	bool has_camera;
 	struct colour background;
+	struct pigment *sky;       /* sky_sphere pigments, bottom first (NULL: none) */
+	int nsky;
+	const struct xform *sky_xf; /* sky_sphere's transforms; NULL: identity */
+	struct fog {
+		int type;           /* 0: none, 1: constant, 2: ground fog */
+		double distance;    /* where a constant fog lets e^-1 through */
+		double offset, alt; /* ground fog: full below offset, thinning above over alt */
+		struct vec3 up;     /* ground fog: the up direction (unit) */
+		struct colour c;    /* its colour; transmit: the least it lets through */
+	} fog;
 	struct light *lights;
 	int nlights;
 	struct object **objects;   /* top-level objects */

@@ -82,7 +82,13 @@ run --width 0 --check $D/hello.scn
 want_rc 64; has err '^arvo: error: .*width'; report "--width 0: exit 64"
 
 run -D --check $D/hello.scn
-want_rc 64; has err '^arvo: error: '; report "-D without NAME=VALUE: exit 64"
+want_rc 0; has out '^hello$'; report "-D without NAME=VALUE is POV-Ray's display off: ignored"
+
+run +SR10 +ER20 --check $D/hello.scn
+want_rc 64; has err "^arvo: error: POV-Ray's partial render switches .* arvo renders the whole image"; report "+SR/+ER: exit 64 naming what arvo does"
+
+run render.ini --check $D/hello.scn
+want_rc 64; has err '^arvo: error: POV-Ray INI files are not read .*render.ini.*--width 640'; report "an INI file: exit 64 naming the options"
 
 run -D 9x=1 --check $D/hello.scn
 want_rc 64; has err '^arvo: error: .*9x'; report "-D with an invalid name: exit 64"

@@ -124,7 +124,7 @@ out=docs/povray-corpus.md
 	echo
 	echo "Written by \`make povray-corpus\` (tests/povray-compat/compat.sh --corpus) on $(date -u +%Y-%m-%d):"
 	echo "every scene of Debian's povray-examples, rendered by arvo and by POV-Ray"
-	echo "$(povray --version 2>&1 | awk 'NR == 1 { print $2 }') at ${W}x${H} without antialiasing. *Parsed*: \`arvo --check\`"
+	echo "$(povray --version 2>&1 | awk '/^POV-Ray [0-9]/ { print $2; exit }') at ${W}x${H} without antialiasing. *Parsed*: \`arvo --check\`"
 	echo "exits 0; *rendered*: arvo wrote the PNG within ${TIMEOUT} s; *matched*: the mean"
 	echo "absolute difference of the two 8-bit images is at most ${LIMIT} % of full scale."
 	echo

@@ -233,6 +233,29 @@ static void t_random_consistency(void)
 	CHECK(hits > 600);
 }
 
+/* A unit sphere clipped_by the half-space y < 0.3: a ray down the y axis
+ * passes the cut-off cap and the clipping plane (never a surface) and hits
+ * the sphere's bottom from inside, at t = 3; inside is the intersection. */
+static void t_clip(void)
+{
+	struct object s = sphere(v3(0, 0, 0), 1), pl = mk_obj(OBJ_PLANE);
+	pl.g.plane.n = v3(0, 1, 0);
+	pl.g.plane.d = 0.3;
+	struct object *kids[] = {&s, &pl};
+	struct object c = csg(OBJ_CLIP, kids, 2);
+	struct hit h;
+	CHECK(shape_intersect(&c, &(struct ray){v3(0, 2, 0), v3(0, -1, 0)}, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 3, 1e-9);
+	CHECK(h.obj == &s);
+	CHECK(shape_intersect(&c, &(struct ray){v3(0, 0, -2), v3(0, 0, 1)}, 0, INFINITY, &h));
+	CHECK_NEAR(h.t, 1, 1e-9); /* below the cut: the sphere as it is */
+	CHECK(!shape_intersect(&c, &(struct ray){v3(0, 0.5, -2), v3(0, 0, 1)}, 0, INFINITY, &h));
+	CHECK(shape_inside(&c, v3(0, 0, 0)) && !shape_inside(&c, v3(0, 0.5, 0)));
+	struct bbox b = shape_bounds(&c);
+	CHECK_NEAR(b.lo.y, -1, 1e-9); /* the sphere's bounds (a plane's half-space is unbounded) */
+	CHECK_NEAR(b.hi.y, 1, 1e-9);
+}
+
 int main(void)
 {
 	RUN(t_difference_box_sphere);
@@ -241,5 +264,6 @@ int main(void)
 	RUN(t_bounds);
 	RUN(t_large_merge);
 	RUN(t_random_consistency);
+	RUN(t_clip);
 	return test_done();
 }

@@ -90,10 +90,29 @@ static void t_blocks(void)
 	CHECK(pattern_block(&g, v3(-0.3, 4, 2)) == 1);      /* next course: offset by half a brick */
 }
 
+/* A linear pattern tilts the normal by −5·amount·0.02·(4/3) times its
+ * slope: gradient x with bump size 0.75 on a floor gives (−0.1, 1, 0). */
+static void t_perturb(void)
+{
+	struct tnormal t = {scene_default_texture().pigment, 0.75};
+	t.pat.kind = PIG_GRADIENT;
+	own(&t.pat)->axis = v3(1, 0, 0);
+	struct vec3 n = pattern_perturb(&t, v3(0.4, 0, 0.3), v3(0, 1, 0));
+	CHECK_NEAR(n.x / n.y, -0.1, 1e-7); /* POV-Ray's corners have 9 digits */
+	CHECK_NEAR(n.z, 0, 1e-12);
+	CHECK_NEAR(v_len(n), 1, 1e-12);
+	t.pat.kind = PIG_PATTERN; /* a bump size of 0 leaves n as it is */
+	own(&t.pat)->pattern = PAT_SPHERICAL;
+	t.amount = 0;
+	n = pattern_perturb(&t, v3(0, 0.5, 0), v3(0, 1, 0));
+	CHECK_NEAR(n.y, 1, 1e-12);
+}
+
 int main(void)
 {
 	RUN(t_continuous);
 	RUN(t_waves);
 	RUN(t_blocks);
+	RUN(t_perturb);
 	return test_done();
 }
