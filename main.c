@@ -3,6 +3,7 @@
  *   lex → parse (AST) → eval (scene) → render (light pass, eye pass) → output
  * and maps each stage's result to an exit code (docs/design.md §8). */
 #include <errno.h>
+#include <signal.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -17,7 +18,9 @@
 #include "lexer/lexer.h"
 #include "parser/parser.h"
 #include "tracer/output/exrout.h"
+#include "tracer/output/ocio_shim.h"
 #include "tracer/output/pngout.h"
+#include "tracer/output/tmpfile.h"
 #include "tracer/render.h"
 #include "tracer/scene.h"
 
@@ -37,6 +40,8 @@ struct options {
 	const char *depfile;         /* -M / --depfile */
 	const char *includes[64];    /* -I */
 	int ninclude;
+	const char *allow_read[64];  /* --allow-read */
+	int nallow;
 	const char *defines[256];    /* -D */
 	int ndefines;
 	int width, height, spp, threads;
@@ -78,6 +83,7 @@ static void usage(FILE *out)
 	      "  --passes rgb|spectral   dispersion by colour channel or by wavelength\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
+	      "  --allow-read DIR   let the scene read files below DIR too\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
 	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
@@ -280,6 +286,14 @@ static int parse_args(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "-M") || !strcmp(a, "--depfile")) {
 			NEED_ARG();
 			o->depfile = next;
+		} else if (!strcmp(a, "--allow-read")) {
+			NEED_ARG();
+			struct stat sb;
+			if (stat(next, &sb) != 0 || !S_ISDIR(sb.st_mode))
+				return usage_error("bad value for --allow-read: '%s' is not a directory", next);
+			if (o->nallow >= 64)
+				return usage_error("too many --allow-read directories (at most %s)", "64");
+			o->allow_read[o->nallow++] = next;
 		} else if (!strcmp(a, "-I")) {
 			NEED_ARG();
 			if (o->ninclude >= 64)
@@ -354,10 +368,13 @@ static void dep_add(const char *path, void *ctx)
 static int write_depfile(const struct options *o, const struct deps *d, const char *target)
 {
 	char tmp[PATH_MAX + 16];
-	snprintf(tmp, sizeof tmp, "%s.tmp%ld", o->depfile, (long)getpid());
-	FILE *f = fopen(tmp, "w");
+	int fd = out_tmp_create(o->depfile, tmp, sizeof tmp);
+	FILE *f = fd < 0 ? NULL : fdopen(fd, "w");
 	if (!f) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(errno));
+		int e = errno;
+		if (fd >= 0)
+			close(fd), out_tmp_finish(tmp, o->depfile, 0);
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(e));
 		return EX_CANTCREAT;
 	}
 	fprintf(f, "%s:", target);
@@ -366,9 +383,13 @@ static int write_depfile(const struct options *o, const struct deps *d, const ch
 	fputc('\n', f);
 	for (int i = 1; i < d->n; i++)
 		fprintf(f, "%s:\n", d->files[i]);
-	if (fclose(f) != 0 || rename(tmp, o->depfile) != 0) {
-		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(errno));
-		remove(tmp);
+	int bad = fflush(f) != 0 || ferror(f), e = errno;
+	if (fclose(f) != 0 && !bad)
+		bad = 1, e = errno;
+	if (out_tmp_finish(tmp, o->depfile, !bad) != 0)
+		bad = 1, e = errno;
+	if (bad) {
+		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(e));
 		return EX_IOERR;
 	}
 	return EX_OK;
@@ -423,62 +444,114 @@ static int output_kind(const char *path)
 	return 0;
 }
 
-/* Can a file be created in path's directory? */
-static int can_create(const char *path)
+/* Can path be written? Creates and removes a temporary beside it, as the
+ * writers will, so every reason (no directory, no permission, read-only
+ * file system) shows now, before any work. Reports and returns 73 if not. */
+static int check_creatable(const char *path)
 {
-	char dir[PATH_MAX];
-	const char *slash = strrchr(path, '/');
-	if (!slash)
-		return access(".", W_OK | X_OK) == 0;
-	snprintf(dir, sizeof dir, "%.*s", (int)(slash - path) + (slash == path), path);
-	return access(dir, W_OK | X_OK) == 0;
+	char tmp[PATH_MAX + 32];
+	struct stat sb;
+	if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) { /* a rename would replace a device or a directory */
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", path,
+		        S_ISDIR(sb.st_mode) ? strerror(EISDIR) : "not a regular file");
+		return EX_CANTCREAT;
+	}
+	int fd = out_tmp_create(path, tmp, sizeof tmp);
+	if (fd < 0) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", path, strerror(errno));
+		return EX_CANTCREAT;
+	}
+	close(fd);
+	out_tmp_finish(tmp, path, 0);
+	return EX_OK;
 }
 
-/* Render: the light pass and the eye pass into a framebuffer, then the EXR
- * or the PNG through OCIO. */
-static int render_and_write(const struct options *o, const struct scene *scene, const char *output)
+/* Checks everything a render will write or look up before any work: the
+ * output format (64), the OCIO config (66) and display/view (64) for PNG
+ * output or when named, every output path (73), the --load-maps file (66). */
+static int check_outputs(const struct options *o, const char *output, struct diag *dg)
 {
 	int kind = output_kind(output);
 	if (!kind)
 		return usage_error("unknown output format '%s' (expected a .exr or .png name)", output);
-	if (!can_create(output)) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", output, strerror(errno));
-		return EX_CANTCREAT;
+	if (kind == 'p' || o->ocio_config || o->display || o->view) {
+		struct ocio_config *cfg;
+		const char *disp, *view;
+		int rc = out_ocio_load(o->ocio_config, &cfg, dg);
+		if (rc)
+			return rc;
+		rc = out_ocio_pick_view(cfg, o->display, o->view, &disp, &view, dg);
+		ocio_config_free(cfg);
+		if (rc)
+			return rc;
 	}
+	int rc = check_creatable(output);
 	struct stat sb;
-	if (o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
+	if (!rc && o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
 		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
 		return EX_CANTCREAT;
 	}
-	if (o->save_maps && !can_create(o->save_maps)) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->save_maps, strerror(errno));
-		return EX_CANTCREAT;
+	if (!rc && o->dump_maps) {
+		char probe[PATH_MAX + 16];
+		snprintf(probe, sizeof probe, "%s/map", o->dump_maps);
+		rc = check_creatable(probe);
 	}
+	if (!rc && o->save_maps)
+		rc = check_creatable(o->save_maps);
+	if (!rc && o->depfile)
+		rc = check_creatable(o->depfile);
+	if (!rc && o->load_maps && access(o->load_maps, R_OK) != 0) {
+		fprintf(stderr, "arvo: error: cannot open '%s': %s\n", o->load_maps, strerror(errno));
+		return EX_NOINPUT;
+	}
+	return rc;
+}
+
+/* Render: the light pass and the eye pass into a framebuffer, then the EXR
+ * or the PNG through OCIO. Errors are reported to dg; the tracer's status
+ * is the exit code. */
+static int render_and_write(const struct options *o, const struct scene *scene, const char *output,
+                            struct diag *dg)
+{
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
 	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes};
 	struct render_stats st;
 	struct framebuffer *fb;
-	const char *err = render(scene, &ro, &fb, &st);
-	if (err) { /* an image_map that cannot be read: bad input */
-		fprintf(stderr, "arvo: error: %s\n", err);
-		return EX_NOINPUT;
-	}
-	if (kind == 'e') {
+	int rc = render(scene, &ro, dg, &fb, &st);
+	if (rc)
+		return rc;
+	if (output_kind(output) == 'e') {
 		struct out_exr_opts eo = {o->half, o->compression, scene->name};
-		err = out_exr_write(fb, output, &eo);
+		rc = out_exr_write(fb, output, &eo, dg);
 	} else {
 		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL};
-		err = out_png_write(fb, output, &po);
+		rc = out_png_write(fb, output, &po, dg);
 	}
 	fb_free(fb);
-	if (err) {
-		fprintf(stderr, "arvo: error: %s\n", err);
-		return EX_IOERR;
-	}
-	if (o->stats)
+	if (!rc && o->stats)
 		render_print_stats(stderr, &st);
-	return EX_OK;
+	return rc;
+}
+
+/* SIGINT, SIGTERM, SIGHUP: remove the temporaries being written (the files
+ * they would replace stay untouched) and exit 128 + the signal. */
+static void on_signal(int sig)
+{
+	out_tmp_remove_all();
+	_exit(128 + sig);
+}
+
+static void install_signals(void)
+{
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+	for (int i = 0; i < 3; i++)
+		sigaction(sigs[i], &sa, NULL);
+	signal(SIGXFSZ, SIG_IGN); /* past ulimit -f: write fails with EFBIG, exit 74 */
 }
 
 int main(int argc, char **argv)
@@ -491,6 +564,7 @@ int main(int argc, char **argv)
 		return rc;
 	struct diag dg;
 	diag_init(&dg, stderr);
+	install_signals();
 	if (o.action == ACT_TOKENS || o.action == ACT_AST) {
 		rc = dump_front(&o, &dg);
 		srcfile_free_all();
@@ -503,6 +577,8 @@ int main(int argc, char **argv)
 	eo.include_dirs = o.includes;
 	eo.ninclude = o.ninclude;
 	eo.stdlib_dir = o.stdlib_dir[0] ? o.stdlib_dir : NULL;
+	eo.allow_read = o.allow_read;
+	eo.nallow = o.nallow;
 	eo.defines = o.defines;
 	eo.ndefines = o.ndefines;
 	eo.clock = o.clock;
@@ -515,17 +591,21 @@ int main(int argc, char **argv)
 		eo.on_file = dep_add;
 		eo.on_file_ctx = &deps;
 	}
-	struct scene scene;
-	rc = eval_scene(o.scene, &eo, &dg, &scene);
 	char outbuf[PATH_MAX];
 	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
+	if (o.action == ACT_RENDER && (rc = check_outputs(&o, output, &dg)) != EX_OK) {
+		srcfile_free_all();
+		return rc;
+	}
+	struct scene scene;
+	rc = eval_scene(o.scene, &eo, &dg, &scene);
 	if (rc == EX_OK && o.depfile)
 		rc = write_depfile(&o, &deps, output);
 	if (rc == EX_OK) {
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);
 		} else if (o.action == ACT_RENDER) {
-			rc = render_and_write(&o, &scene, output);
+			rc = render_and_write(&o, &scene, output, &dg);
 		}
 	}
 	if (fflush(stdout) != 0 && rc == EX_OK)

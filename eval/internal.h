@@ -63,6 +63,7 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */
@@ -83,6 +84,7 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 void eval_items(struct eval *E, const struct node *list, struct sink *s);
 void eval_item(struct eval *E, const struct node *item, struct sink *s);
 char *eval_strdup(struct eval *E, const char *s, int len);
+/* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
 

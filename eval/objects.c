@@ -222,12 +222,13 @@ static void colour_map_entry(struct eval *E, struct colour_map *m, const struct 
 }
 
 /* Resolves an image file like an include: only allowed directories. */
-static const char *image_path(struct eval *E, const struct node *at, const char *name)
+static void set_image(struct eval *E, struct pigment *p, struct srcloc loc, const char *name)
 {
-	char *real = eval_find_file(E, name, at->loc, "image file", NULL);
-	const char *r = arena_strndup(&SC(E)->arena, real, strlen(real));
+	char *real = eval_find_file(E, name, loc, "image file", NULL);
+	p->image = arena_strndup(&SC(E)->arena, real, strlen(real));
+	p->image_name = arena_strndup(&SC(E)->arena, name, strlen(name));
+	p->image_loc = loc;
 	free(real);
-	return r;
 }
 
 static void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -238,7 +239,7 @@ static void image_map_keyword(struct eval *E, struct sink *s, const struct node 
 		struct value v = arg1(E, n);
 		if (v.kind != V_STRING)
 			eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
-		p->image = image_path(E, n, v.p.s);
+		set_image(E, p, n->loc, v.p.s);
 		return;
 	}
 	case TK_INTERPOLATE: p->interpolate = arg_int(E, n, 0, 4); return;
@@ -1162,7 +1163,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_IMAGE_MAP:
 		if (v->kind != V_STRING)
 			eval_fail(E, loc, "expected an image file name, found %s", val_type_name(v));
-		((struct pigment *)s->target)->image = image_path(E, &(struct node){.loc = loc}, v->p.s);
+		set_image(E, s->target, loc, v->p.s);
 		return;
 	default: break;
 	}

@@ -164,7 +164,7 @@ run +L$D/incdir --check $D/needs_inc.scn
 want_rc 0; is out "inc=5"; report "+LDIR (POV-Ray switch) adds an include directory"
 
 run --check $D/needs_inc.scn
-want_rc 65; has err "^$D/needs_inc.scn:2:1: error: .*cli_only.inc"; report "include not found without -I: exit 65 with location"
+want_rc 66; has err "^$D/needs_inc.scn:2:1: error: .*cli_only.inc"; report "include not found without -I: exit 66 (man arvo.1: missing input) with location"
 
 run --max-iterations 100 --check $D/loop.scn
 want_rc 65; has err "^$D/loop.scn:3:1: error: .*100"; report "--max-iterations stops a long loop"

@@ -17,8 +17,10 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "../optics.h"
+#include "../output/tmpfile.h"
 #include "../sampler.h"
 #include "../shape.h"
 #include "../spectrum.h"
@@ -1553,18 +1555,20 @@ static void count_node(void *ctx, const struct illum_node *n)
 		(*(long long *)ctx)++;
 }
 
-const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, int *failed_io)
+int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, struct diag *dg)
 {
-	static _Thread_local char err[512];
 	struct prims P = scene_prims(s);
 	char tmp[4096];
-	snprintf(tmp, sizeof tmp, "%s.tmp", path);
-	FILE *f = fopen(tmp, "wb");
-	*failed_io = 1;
+	int fd = out_tmp_create(path, tmp, sizeof tmp);
+	FILE *f = fd < 0 ? NULL : fdopen(fd, "wb");
 	if (!f) {
+		int e = errno;
+		if (fd >= 0) {
+			close(fd);
+			out_tmp_finish(tmp, path, 0);
+		}
 		free(P.o);
-		snprintf(err, sizeof err, "cannot create '%s': %s", path, strerror(errno));
-		return err;
+		return diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(e));
 	}
 	int32_t hdr[2] = {npasses, P.n};
 	fwrite("ARVOMAP1", 8, 1, f);
@@ -1593,28 +1597,45 @@ const char *lp_save(struct lp_result *const *r, int npasses, const struct scene 
 		}
 	}
 	free(P.o);
-	if (ferror(f) | (fclose(f) != 0) || rename(tmp, path) != 0) {
-		remove(tmp);
-		snprintf(err, sizeof err, "cannot write '%s': %s", path, strerror(errno));
-		return err;
-	}
-	*failed_io = 0;
-	return NULL;
+	int bad = fflush(f) != 0 || ferror(f);
+	int e = errno;
+	if (fclose(f) != 0 && !bad)
+		bad = 1, e = errno;
+	if (out_tmp_finish(tmp, path, !bad) != 0)
+		bad = 1, e = errno;
+	if (bad)
+		return diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path,
+		                 e ? strerror(e) : "write error");
+	return 0;
+}
+
+/* Is a node saved in a map file one the map can hold? Bounded axes have
+ * nodes 0..n-1; unbounded ones stay within the reach of int tile indices. */
+static bool node_ok(const struct illum_map *m, int64_t i, int64_t j, const double e[3])
+{
+	long nu, nv;
+	illum_grid(m, &nu, &nv, NULL, NULL);
+	const int64_t reach = (int64_t)1 << 30;
+	if (nu > 0 ? (i < 0 || i >= nu) : (i < -reach || i > reach))
+		return false;
+	if (nv > 0 ? (j < 0 || j >= nv) : (j < -reach || j > reach))
+		return false;
+	for (int c = 0; c < 3; c++)
+		if (!(e[c] >= 0 && e[c] <= 1e30))
+			return false;
+	return true;
 }
 
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
-            const char **errmsg)
+            struct diag *dg)
 {
-	static _Thread_local char err[512];
 	struct prims P = scene_prims(s);
 	FILE *f = fopen(path, "rb");
 	int n = 0;
-	*errmsg = NULL;
 	if (!f) {
-		snprintf(err, sizeof err, "cannot open '%s': %s", path, strerror(errno));
-		*errmsg = err;
+		int e = errno;
 		free(P.o);
-		return -1;
+		return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot open '%s': %s", path, strerror(e));
 	}
 	char magic[8];
 	int32_t hdr[2];
@@ -1637,7 +1658,7 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 			int64_t nodes;
 			if (fread(&idx, sizeof idx, 1, f) != 1 || fread(&res, sizeof res, 1, f) != 1 ||
 			    fread(&cell, sizeof cell, 1, f) != 1 || fread(&nodes, sizeof nodes, 1, f) != 1 ||
-			    idx < 0 || idx >= P.n || nodes < 0)
+			    idx < 0 || idx >= P.n || nodes < 0 || !(cell >= 0 && cell < 1e30))
 				goto bad;
 			r->n = k + 1;
 			r->objs[k] = P.o[idx];
@@ -1649,7 +1670,8 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 			for (int64_t q = 0; q < nodes; q++) {
 				int64_t ij[2];
 				double e[3], u, v;
-				if (fread(ij, sizeof ij, 1, f) != 1 || fread(e, sizeof e, 1, f) != 1)
+				if (fread(ij, sizeof ij, 1, f) != 1 || fread(e, sizeof e, 1, f) != 1 ||
+				    !node_ok(r->maps[k], ij[0], ij[1], e))
 					goto bad;
 				illum_node_uv(r->maps[k], (long)ij[0], (long)ij[1], &u, &v);
 				illum_deposit(r->maps[k], u, v, e);
@@ -1668,7 +1690,5 @@ bad:
 	free(P.o);
 	for (int i = 0; i < n; i++)
 		lp_free(out[i]);
-	snprintf(err, sizeof err, "'%s' is not a map file saved for this scene", path);
-	*errmsg = err;
-	return -1;
+	return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "'%s' is not a map file saved for this scene", path);
 }

@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 
+#include "../../common/diag.h"
 #include "../bvh.h"
 #include "illum.h"
 #include "../material.h"
@@ -101,13 +102,13 @@ double lp_finest_cell(const struct lp_result *r);
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);
 void lp_free(struct lp_result *r);
-/* --save-maps: writes the passes' maps to path (temp file + rename); NULL on
- * success, else a message (*failed_io set when the file could not be written). */
-const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path,
-                    int *failed_io);
+/* --save-maps: writes the passes' maps to path (temp file + rename). Returns
+ * 0, FAIL_CREATE or FAIL_WRITE (reported to dg). */
+int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, struct diag *dg);
 /* --load-maps: reads maps saved for the same scene into out[0..2]; returns the
- * number of passes, or -1 with *err set (missing file, or not for this scene). */
+ * number of passes, or -FAIL_INPUT after reporting a missing, truncated,
+ * corrupt or foreign file (or one saved for another scene). */
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
-            const char **err);
+            struct diag *dg);
 
 #endif
