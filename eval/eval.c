@@ -443,6 +443,8 @@ struct value eval_expr(struct eval *E, const struct node *n)
 		struct value r;
 		if (builtin_call(E, n, &r))
 			return r;
+		if (strcmp(n->str, "file_exists") == 0) /* POV-Ray's; a scene may not probe files */
+			eval_fail(E, n->loc, "file_exists() is not supported: a scene cannot look for files");
 		eval_fail(E, n->loc, "undeclared macro or function '%s'", n->str);
 	}
 	case N_MEMBER: return member(E, n);

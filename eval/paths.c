@@ -50,9 +50,9 @@ static int normalize(const char *dir, const char *name, char *out, size_t size)
 		size_t cl = (size_t)(next - p);
 		if (cl == 0 || (cl == 1 && p[0] == '.'))
 			continue;
-		if (cl == 2 && p[0] == '.' && p[1] == '.') {
-			while (len > 0 && out[len] != '/')
-				len--;
+		if (cl == 2 && p[0] == '.' && p[1] == '.') { /* back to the previous '/' ("/.." is "/") */
+			while (len > 0 && out[--len] != '/')
+				;
 			continue;
 		}
 		if (len + 1 + cl + 1 > size)
@@ -99,9 +99,9 @@ static int readable(struct eval *E, const char *path)
  * the file being read, then each -I directory, then the standard library
  * (an absolute name is looked for as it is). Returns a malloc'd real path,
  * and in *found_dir (if not NULL) the directory, as given, where it was
- * found. `what` names the file kind in errors. A name that is found nowhere
- * sets E->missing (exit 66); one that is only found outside the roots is
- * refused (exit 65). */
+ * found. `what` names the file kind in errors. A name that would lead
+ * outside the roots from every directory searched is refused (exit 65);
+ * one that is found nowhere sets E->missing (exit 66). */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
 {
 	const char *dirs[68];
@@ -115,14 +115,15 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 		if (E->opt->stdlib_dir)
 			dirs[nd++] = E->opt->stdlib_dir;
 	}
-	int refused = 0;
+	int refused = 0, tried = 0;
 	for (int i = 0; i < nd; i++) {
 		char cand[PATH_MAX], real[PATH_MAX];
 		struct stat sb;
 		if (normalize(dirs[i], name, cand, sizeof cand) != 0)
 			continue;
+		tried++;
 		if (!readable(E, cand)) {
-			refused = 1; /* not even looked at: a scene may not probe outside */
+			refused++; /* not even looked at: a scene may not probe outside */
 			continue;
 		}
 		if (stat(cand, &sb) != 0 || S_ISDIR(sb.st_mode) || !realpath(cand, real))
@@ -131,7 +132,7 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			*found_dir = name[0] == '/' ? "/" : dirs[i];
 		return mem_strdup(real);
 	}
-	if (refused)
+	if (refused > 0 && refused == tried)
 		eval_fail(E, loc, "%s '%s' is outside the directories this scene may read (its own, -I "
 		          "directories and the library); --allow-read DIR grants more", what, name);
 	E->missing = 1;
