@@ -20,6 +20,9 @@
 # directory, `ulimit -f`, a signal). Run as `sh NAME.sh "$ARVO" "$TMP"` with
 # its own empty $TMP; it prints one TAP line "ok - ..." or "not ok - ...".
 #
+# Only files directly under tests/hostile are cases; tests/hostile/data/
+# holds small inputs and the helpers the io-*.sh cases source.
+#
 # Environment: ARVO (the binary; default ./arvo), TIMEOUT (seconds, 20).
 set -u
 cd "$(dirname "$0")/../.." || exit 2
@@ -29,7 +32,7 @@ export ARVO
 root=$(mktemp -d "${TMPDIR:-/tmp}/arvo-hostile.XXXXXX") || exit 2
 trap 'chmod -R u+w "$root" 2>/dev/null; rm -rf "$root"' EXIT INT TERM
 
-[ $# -gt 0 ] || set -- $(find tests/hostile -name '*.scn' -o -name '*.sh' | grep -v '/run\.sh$' | LC_ALL=C sort)
+[ $# -gt 0 ] || set -- $(find tests/hostile -maxdepth 1 \( -name '*.scn' -o -name '*.sh' \) ! -name run.sh | LC_ALL=C sort)
 
 n=0
 # fresh: empties the case directory $TMP (a case may have made it read-only).
