@@ -53,7 +53,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check test unit deps install demo bench bench-accuracy lint
+.PHONY: all clean check test unit deps install demo bench bench-accuracy lint povray-compat povray-corpus
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -116,6 +116,12 @@ bench: deps all
 # on the analytic references A, B, C (bench/results/accuracy.*, docs/accuracy.*)
 bench-accuracy: deps all
 	sh bench/accuracy/run.sh
+
+# POV-Ray's example scenes through arvo and POV-Ray 3.7 (tests/povray-compat/)
+povray-compat: all
+	sh tests/povray-compat/compat.sh
+povray-corpus: all
+	sh tests/povray-compat/compat.sh --corpus
 
 lint:
 	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* internal.h: the evaluator's state, shared by eval.c, env.c, builtins.c and objects.c. */
+/* internal.h: the evaluator's state, shared by eval.c, env.c, builtins.c and
+ * the block builders (objects.c, geometry.c, textures.c, settings.c). */
 #ifndef ARVO_EVAL_INTERNAL_H
 #define ARVO_EVAL_INTERNAL_H
 
@@ -107,8 +108,63 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out);
 bool builtin_call(struct eval *E, const struct node *call, struct value *out);
 bool builtin_is_name(const char *name);
 
-/* ---- objects.c ---- */
+/* ---- objects.c: dispatch, and the helpers the builders share ---- */
 void sink_init(struct sink *s, enum sink_kind kind, enum tok kw, struct srcloc loc, void *target);
+/* "<keyword> is not valid <where s is>" at n. */
+_Noreturn void misplaced(struct eval *E, const struct sink *s, const struct node *n);
+/* The single argument of a keyword item like `translate <1,0,0>`, converted. */
+struct value arg1(struct eval *E, const struct node *n);
+double arg_float(struct eval *E, const struct node *n);
+struct vec3 arg_vec3(struct eval *E, const struct node *n);
+struct colour arg_colour(struct eval *E, const struct node *n);
+bool arg_bool(struct eval *E, const struct node *n);     /* `kw`, `kw on`, `kw off` */
+double arg_positive(struct eval *E, const struct node *n);
+int arg_int(struct eval *E, const struct node *n, int lo, int hi);
+/* translate/rotate/scale/matrix/transform item n into *out; false otherwise. */
+bool transform_of(struct eval *E, const struct node *n, struct xform *out);
+/* A fresh scene copy of t (NULL: the #default texture). */
+struct texture *texture_copy(struct eval *E, const struct texture *t);
+/* Evaluates a block's items into a fresh sink of the given kind. */
+void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
+
+#define SC(E) ((E)->scene)
+#define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
+
+/* ---- geometry.c: objects ---- */
+bool is_object_kw(enum tok kw); /* sphere … merge, object */
+void object_keyword(struct eval *E, struct sink *s, const struct node *n);
+void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+struct value object_block(struct eval *E, const struct node *blk);
+/* Children without their own texture, interior or photons { } take the
+ * parent's; the visibility flags pass down too. */
+void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
+               const struct object *parent);
+
+/* ---- textures.c: pigments, colour maps, finishes, interiors, textures ---- */
+struct colour_map *colour_map_block(struct eval *E, const struct node *blk);
+void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n); /* [pos colour] */
+/* Resolves an image file like an include: only allowed directories. */
+void image_set(struct eval *E, struct pigment *p, struct srcloc loc, const char *name);
+void image_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void pigment_keyword(struct eval *E, struct sink *s, const struct node *n);
+void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
+void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
+void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
+void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+
+/* ---- settings.c: lights, camera, global settings ---- */
+void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */
+void light_keyword(struct eval *E, struct sink *s, const struct node *n);
+void light_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* Applies angle, look_at and the transforms once the camera block ended. */
+void camera_finish(struct eval *E, struct sink *s, struct camera *c);
+void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
+void global_keyword(struct eval *E, struct sink *s, const struct node *n);
+void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
+void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+
+/* ---- objects.c: entry points ---- */
 /* A keyword item (N_BLOCK, N_MOD, N_WORD, N_SKIPPED, N_ENTRY) in a sink. */
 void sink_keyword(struct eval *E, struct sink *s, const struct node *item);
 /* An expression's value in a sink. */

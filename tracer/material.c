@@ -46,7 +46,7 @@ static int load_tree(struct mat_cache *c, const struct object *o, const char *oc
 		if (err)
 			return err;
 	}
-	if (o->kind >= OBJ_UNION && o->kind <= OBJ_MERGE)
+	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++) {
 			int err = load_tree(c, o->g.csg.kids[i], ocio, dg);
 			if (err)

@@ -13,6 +13,7 @@
 
 #include "../common/arena.h"
 #include "../common/diag.h"
+#include "../common/pool.h"
 #include "bvh.h"
 #include "eyepass.h"
 #include "light/lightpass.h"
@@ -20,7 +21,7 @@
 
 #define TILE 16 /* tile edge in pixels */
 
-/* The eye pass's shared state: tiles are handed out by an atomic counter and
+/* The eye pass's shared state: tiles are handed out by parallel_for and
  * each pixel's result goes to its own slot, so scheduling cannot change the
  * image. */
 struct eye_job {
@@ -28,9 +29,8 @@ struct eye_job {
 	struct framebuffer *fb;    /* output planes */
 	float *pl[16];             /* R G B, direct RGB, albedo RGB, N XYZ, Z, caustic RGB */
 	int tx, ty;                /* tiles across and down */
-	atomic_int next;           /* next tile to render */
 	atomic_int done;           /* tiles finished */
-	atomic_llong rays;         /* rays traced by every thread */
+	long long *rays;           /* rays traced, per worker */
 	int progress;              /* draw a progress bar on stderr */
 	pthread_mutex_t lock;      /* serialises the progress bar */
 };
@@ -69,33 +69,21 @@ static void progress(struct eye_job *j, int done)
 	pthread_mutex_unlock(&j->lock);
 }
 
-/* Renders one tile. */
-static void do_tile(struct eye_job *j, int t, long long *rays)
+/* Renders tile t (a parallel_for item). */
+static void do_tile(void *arg, long t, int worker)
 {
-	int x0 = (t % j->tx) * TILE, y0 = (t / j->tx) * TILE;
+	struct eye_job *j = arg;
+	int x0 = (int)(t % j->tx) * TILE, y0 = (int)(t / j->tx) * TILE;
 	int w = j->ctx->w, h = j->ctx->h;
 	for (int y = y0; y < y0 + TILE && y < h; y++)
 		for (int x = x0; x < x0 + TILE && x < w; x++) {
 			struct eye_px px;
-			eye_pixel(j->ctx, x, y, &px, rays);
+			eye_pixel(j->ctx, x, y, &px, &j->rays[worker]);
 			store(j, (size_t)y * (size_t)w + (size_t)x, &px);
 		}
-}
-
-/* A worker: takes tiles until none are left. */
-static void *worker(void *arg)
-{
-	struct eye_job *j = arg;
-	long long rays = 0;
-	int total = j->tx * j->ty, t;
-	while ((t = atomic_fetch_add(&j->next, 1)) < total) {
-		do_tile(j, t, &rays);
-		int d = atomic_fetch_add(&j->done, 1) + 1;
-		if (j->progress)
-			progress(j, d);
-	}
-	atomic_fetch_add(&j->rays, rays);
-	return NULL;
+	int d = atomic_fetch_add(&j->done, 1) + 1;
+	if (j->progress)
+		progress(j, d);
 }
 
 /* Runs the eye pass on nthreads threads (the caller's thread included). */
@@ -110,22 +98,16 @@ static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthr
 		j.pl[k] = fb_plane(fb, plane_names[k]);
 	j.tx = (ctx->w + TILE - 1) / TILE;
 	j.ty = (ctx->h + TILE - 1) / TILE;
-	atomic_init(&j.next, 0);
 	atomic_init(&j.done, 0);
-	atomic_init(&j.rays, 0);
+	j.rays = mem_calloc((size_t)nthreads, sizeof *j.rays);
 	j.progress = show;
 	pthread_mutex_init(&j.lock, NULL);
-	pthread_t *th = mem_calloc((size_t)nthreads, sizeof *th);
-	int started = 0;
-	for (int i = 1; i < nthreads; i++, started++)
-		if (pthread_create(&th[i], NULL, worker, &j) != 0)
-			break;
-	worker(&j);
-	for (int i = 1; i <= started; i++)
-		pthread_join(th[i], NULL);
-	free(th);
+	parallel_for((long)j.tx * j.ty, nthreads, do_tile, &j);
 	pthread_mutex_destroy(&j.lock);
-	*rays = atomic_load(&j.rays);
+	*rays = 0;
+	for (int i = 0; i < nthreads; i++)
+		*rays += j.rays[i];
+	free(j.rays);
 }
 
 /* The passes in force: --passes, else the scene's illumination { passes }. */
@@ -249,15 +231,6 @@ static int dump_maps(struct lp_result *const *maps, int n, const char *dir, stru
 	return d.err;
 }
 
-/* The number of threads to use: the option, else one per online CPU. */
-static int thread_count(int requested)
-{
-	if (requested > 0)
-		return requested;
-	long n = sysconf(_SC_NPROCESSORS_ONLN);
-	return n > 0 ? (n > 256 ? 256 : (int)n) : 1;
-}
-
 int render(const struct scene *s, const struct render_opts *o, struct diag *dg, struct framebuffer **out,
            struct render_stats *stats)
 {
@@ -274,7 +247,7 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 	}
 	struct bvh *b = bvh_build(s->objects, s->nobjects);
 	struct framebuffer *fb = fb_new(o->width, o->height);
-	st.threads = thread_count(o->threads);
+	st.threads = pool_threads(o->threads);
 	double t1 = now();
 	st.t_setup = t1 - t0;
 

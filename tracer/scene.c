@@ -4,6 +4,8 @@
 
 #include <string.h>
 
+#include "shape.h"
+
 void scene_init(struct scene *s)
 {
 	memset(s, 0, sizeof *s);
@@ -99,8 +101,9 @@ void scene_free(struct scene *s) { arena_free(&s->arena); }
 /* ==== --dump-scene ======================================================== */
 
 static const char *const kind_names[OBJ_KIND_COUNT] = {
-	"sphere", "plane", "box", "disc", "cylinder", "cone", "torus", "triangle",
-	"union", "intersection", "difference", "merge",
+#define PRIM(n, w) [OBJ_##n] = #w,
+#define CSG(n, w) [OBJ_##n] = #w,
+#include "objects.def"
 };
 
 const char *scene_object_kind_name(enum object_kind k) { return kind_names[k]; }
@@ -169,29 +172,8 @@ static void dump_object(FILE *o, const struct object *ob, int d);
 static void dump_geometry(FILE *o, const struct object *ob, int d)
 {
 	indent(o, d);
-	switch (ob->kind) {
-	case OBJ_SPHERE: fputs("center ", o), pv(o, ob->g.sphere.c), fprintf(o, " radius %.6g", ob->g.sphere.r); break;
-	case OBJ_PLANE: fputs("normal ", o), pv(o, ob->g.plane.n), fprintf(o, " distance %.6g", ob->g.plane.d); break;
-	case OBJ_BOX: fputs("corner1 ", o), pv(o, ob->g.box.lo), fputs(" corner2 ", o), pv(o, ob->g.box.hi); break;
-	case OBJ_DISC:
-		fputs("center ", o), pv(o, ob->g.disc.c), fputs(" normal ", o), pv(o, ob->g.disc.n);
-		fprintf(o, " radius %.6g hole %.6g", ob->g.disc.r, ob->g.disc.hole);
-		break;
-	case OBJ_CYLINDER:
-		fputs("base ", o), pv(o, ob->g.cylinder.a), fputs(" cap ", o), pv(o, ob->g.cylinder.b);
-		fprintf(o, " radius %.6g", ob->g.cylinder.r);
-		break;
-	case OBJ_CONE:
-		fputs("base ", o), pv(o, ob->g.cone.a), fprintf(o, " radius %.6g cap ", ob->g.cone.ra);
-		pv(o, ob->g.cone.b), fprintf(o, " radius %.6g", ob->g.cone.rb);
-		break;
-	case OBJ_TORUS: fprintf(o, "major %.6g minor %.6g", ob->g.torus.major, ob->g.torus.minor); break;
-	case OBJ_TRIANGLE:
-		for (int i = 0; i < 3; i++)
-			fputs(i ? " " : "", o), pv(o, ob->g.triangle.p[i]);
-		break;
-	default: fprintf(o, "children %d", ob->g.csg.n); break;
-	}
+	if (!shape_dump(ob, o))
+		fprintf(o, "children %d", ob->g.csg.n);
 	fputc('\n', o);
 }
 
@@ -235,7 +217,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		fprintf(o, "photons target %d spacing %.6g refraction %d reflection %d collect %d pass_through %d\n",
 		        p->target, p->spacing, p->refraction, p->reflection, p->collect, p->pass_through);
 	}
-	if (ob->kind >= OBJ_UNION)
+	if (ob->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < ob->g.csg.n; i++)
 			dump_object(o, ob->g.csg.kids[i], d + 1);
 }

@@ -77,11 +77,13 @@ struct texture {
 
 /* ---- objects ------------------------------------------------------------ */
 
+/* The kinds, from objects.def: every primitive, then every CSG kind. */
 enum object_kind {
-	OBJ_SPHERE, OBJ_PLANE, OBJ_BOX, OBJ_DISC, OBJ_CYLINDER, OBJ_CONE,
-	OBJ_TORUS, OBJ_TRIANGLE,
-	OBJ_UNION, OBJ_INTERSECTION, OBJ_DIFFERENCE, OBJ_MERGE,
-	OBJ_KIND_COUNT
+#define PRIM(n, w) OBJ_##n,
+#define CSG(n, w) OBJ_##n,
+#include "objects.def"
+	OBJ_KIND_COUNT,
+	OBJ_FIRST_CSG = OBJ_UNION
 };
 
 enum object_flags {

@@ -9,10 +9,8 @@
 
 /* The primitive table, indexed by enum object_kind (NULL for CSG kinds). */
 static const struct prim_ops *const ops_of[OBJ_KIND_COUNT] = {
-	[OBJ_SPHERE] = &shape_sphere_ops,     [OBJ_PLANE] = &shape_plane_ops,
-	[OBJ_BOX] = &shape_box_ops,           [OBJ_DISC] = &shape_disc_ops,
-	[OBJ_CYLINDER] = &shape_cylinder_ops, [OBJ_CONE] = &shape_cone_ops,
-	[OBJ_TORUS] = &shape_torus_ops,       [OBJ_TRIANGLE] = &shape_triangle_ops,
+#define PRIM(n, w) [OBJ_##n] = &shape_##w##_ops,
+#include "objects.def"
 };
 
 static const struct prim_ops *ops(const struct object *o)
@@ -101,6 +99,15 @@ struct bbox shape_solid_bounds(const struct object *o)
 }
 
 bool shape_bounded(const struct object *o) { return bbox_finite(shape_bounds(o)); }
+
+bool shape_dump(const struct object *o, FILE *out)
+{
+	const struct prim_ops *ps = ops(o);
+	if (!ps)
+		return false;
+	ps->dump(o, out);
+	return true;
+}
 
 /* ==== parametrisation ===================================================== */
 

@@ -57,6 +57,8 @@ struct bbox shape_bounds(const struct object *o);
 struct bbox shape_solid_bounds(const struct object *o);
 /* Are all of shape_bounds(o)'s components finite? */
 bool shape_bounded(const struct object *o);
+/* Writes a primitive's geometry for --dump-scene; false for CSG kinds. */
+bool shape_dump(const struct object *o, FILE *out);
 
 /* T(u,v): the world point and world partials at (u,v). Outside the domain the
  * same formulas extend the surface (periodic parameters wrap). Returns false

@@ -74,7 +74,7 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 /* Can o, or a part of it, pass light straight through? */
 static bool straight_in(const struct scene *s, const struct object *o)
 {
-	if (o->kind >= OBJ_UNION) {
+	if (o->kind >= OBJ_FIRST_CSG) {
 		for (int i = 0; i < o->g.csg.n; i++)
 			if (straight_in(s, o->g.csg.kids[i]))
 				return true;

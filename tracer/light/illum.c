@@ -9,11 +9,11 @@
 
 #include <limits.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../../common/arena.h"
+#include "../../common/pool.h"
 #include "../output/exrout.h"
 #include "../output/framebuffer.h"
 #include "polygon.h"
@@ -543,24 +543,6 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 	illum_free(src);
 }
 
-/* Runs fn on each of the n (≤ 64) jobs at jobs, `size` bytes apart: the
- * first on this thread, the others on threads of their own (or here, when a
- * thread cannot be made); returns when all are done. */
-static void run_jobs(void *(*fn)(void *), void *jobs, size_t size, int n)
-{
-	pthread_t tids[64];
-	bool started[64] = {false};
-	for (int b = 1; b < n; b++)
-		started[b] = pthread_create(&tids[b], NULL, fn, (char *)jobs + (size_t)b * size) == 0;
-	fn(jobs);
-	for (int b = 1; b < n; b++) {
-		if (started[b])
-			pthread_join(tids[b], NULL);
-		else
-			fn((char *)jobs + (size_t)b * size);
-	}
-}
-
 struct band_job {
 	struct illum_map *part;
 	const struct illum_splat *s;
@@ -568,12 +550,13 @@ struct band_job {
 	int band, nb;
 };
 
-static void *band_work(void *arg)
+/* Job k of the array at ctx (a parallel_for item). */
+static void band_work(void *ctx, long k, int worker)
 {
-	struct band_job *b = arg;
+	(void)worker;
+	struct band_job *b = (struct band_job *)ctx + k;
 	for (long i = 0; i < b->n; i++)
 		deposit_band(b->part, b->s[i].u, b->s[i].v, b->s[i].e, b->band, b->nb);
-	return NULL;
 }
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
@@ -591,7 +574,7 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	struct band_job jobs[64];
 	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct band_job){illum_new_like(m), s, n, b, nb};
-	run_jobs(band_work, jobs, sizeof *jobs, nb);
+	parallel_for(nb, nb, band_work, jobs);
 	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
 		adopt(m, jobs[b].part);
 }
@@ -1065,12 +1048,13 @@ struct poly_job {
 	int band, nb;
 };
 
-static void *poly_work(void *arg)
+/* Job k of the array at ctx (a parallel_for item). */
+static void poly_work(void *ctx, long k, int worker)
 {
-	struct poly_job *b = arg;
+	(void)worker;
+	struct poly_job *b = (struct poly_job *)ctx + k;
 	for (long i = 0; i < b->n; i++)
 		poly_band(b->part, b->p[i].uv, b->p[i].n, b->p[i].e, b->band, b->nb);
-	return NULL;
 }
 
 void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)
@@ -1088,7 +1072,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 	struct poly_job jobs[64];
 	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct poly_job){illum_new_like(m), p, n, b, nb};
-	run_jobs(poly_work, jobs, sizeof *jobs, nb);
+	parallel_for(nb, nb, poly_work, jobs);
 	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
 		adopt(m, jobs[b].part);
 }
@@ -1186,9 +1170,11 @@ struct finish_job {
 	struct fx rem[3]; /* energy the isolated rule removed (exact) */
 };
 
-static void *finish_work(void *arg)
+/* Job k of the array at ctx (a parallel_for item). */
+static void finish_work(void *ctx, long job, int worker)
 {
-	struct finish_job *J = arg;
+	(void)worker;
+	struct finish_job *J = (struct finish_job *)ctx + job;
 	const struct illum_map *m = J->m;
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
@@ -1218,7 +1204,6 @@ static void *finish_work(void *arg)
 			}
 		}
 	}
-	return NULL;
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
@@ -1236,7 +1221,7 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
 		                              {{0, 0}, {0, 0}, {0, 0}}};
-	run_jobs(finish_work, jobs, sizeof *jobs, nb);
+	parallel_for(nb, nb, finish_work, jobs);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
 	for (int b = 0; b < nb; b++) {
 		for (int c = 0; c < 3; c++)

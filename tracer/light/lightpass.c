@@ -13,12 +13,11 @@
 #include "lightpass.h"
 
 #include <errno.h>
-#include <pthread.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "../../common/pool.h"
 #include "../optics.h"
 #include "../output/tmpfile.h"
 #include "../sampler.h"
@@ -85,7 +84,6 @@ struct job {
 	int *ntargets;              /* per light */
 	struct item *items;
 	long nitems;
-	atomic_long next;           /* next item to take */
 	const struct object *clipped; /* see lp_stats */
 	struct band band;           /* the light this pass carries */
 };
@@ -142,7 +140,7 @@ static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
  * bent (a straight transmitter's light is the shadow rays', surface.h). */
 static bool is_specular(const struct scene *s, const struct object *o)
 {
-	if (o->kind >= OBJ_UNION) {
+	if (o->kind >= OBJ_FIRST_CSG) {
 		for (int i = 0; i < o->g.csg.n; i++)
 			if (is_specular(s, o->g.csg.kids[i]))
 				return true;
@@ -166,7 +164,7 @@ bool lp_dispersive(const struct scene *s)
 			const struct object *o = stack[--n];
 			if (o->interior && o->interior->dispersion != 1)
 				return true;
-			if (o->kind >= OBJ_UNION)
+			if (o->kind >= OBJ_FIRST_CSG)
 				for (int k = 0; k < o->g.csg.n && n < 64; k++)
 					stack[n++] = o->g.csg.kids[k];
 		}
@@ -777,19 +775,16 @@ static void run_item(struct worker *w, const struct item *it)
 	}
 }
 
-static void *work(void *arg)
+/* Work item k on the worker's own buffers (a parallel_for item; ctx is the
+ * workers' array). */
+static void work(void *ctx, long k, int worker)
 {
-	struct worker *w = arg;
+	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
-	for (;;) {
-		long k = atomic_fetch_add_explicit(&J->next, 1, memory_order_relaxed);
-		if (k >= J->nitems)
-			return NULL;
-		if (J->o->shafts)
-			run_shafts(w, &J->items[k]);
-		else
-			run_item(w, &J->items[k]);
-	}
+	if (J->o->shafts)
+		run_shafts(w, &J->items[k]);
+	else
+		run_item(w, &J->items[k]);
 }
 
 /* ==== maps =============================================================== */
@@ -1168,19 +1163,11 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	J.targets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.targets);
 	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
 	J.nitems = plan(&J);
-	atomic_init(&J.next, 0);
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
-	pthread_t *tids = mem_calloc((size_t)nt, sizeof *tids);
-	for (int i = 0; i < nt; i++) {
+	for (int i = 0; i < nt; i++)
 		ws[i].job = &J;
-		if (i > 0 && pthread_create(&tids[i], NULL, work, &ws[i]) != 0)
-			ws[i].job = NULL; /* fewer threads: the others take its share */
-	}
-	work(&ws[0]);
-	for (int i = 1; i < nt; i++)
-		if (ws[i].job)
-			pthread_join(tids[i], NULL);
+	parallel_for(J.nitems, nt, work, ws);
 	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
@@ -1222,7 +1209,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
-	free(bufs), free(ws), free(tids), free(J.items), free(J.targets), free(J.ntargets);
+	free(bufs), free(ws), free(J.items), free(J.targets), free(J.ntargets);
 	return r;
 }
 
@@ -1515,7 +1502,7 @@ struct prims {
 
 static void collect(struct prims *p, const struct object *o)
 {
-	if (o->kind >= OBJ_UNION) {
+	if (o->kind >= OBJ_FIRST_CSG) {
 		for (int i = 0; i < o->g.csg.n; i++)
 			collect(p, o->g.csg.kids[i]);
 		return;

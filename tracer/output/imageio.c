@@ -39,6 +39,14 @@ static void on_warning(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
+/* libpng read callback: says "truncated" where libpng's own says "Read Error". */
+static void read_data(png_structp png, png_bytep data, size_t len)
+{
+	FILE *fp = png_get_io_ptr(png);
+	if (fread(data, 1, len, fp) != len)
+		png_error(png, feof(fp) ? "the file ends early (truncated)" : "read error");
+}
+
 /* Sets up transforms so every PNG decodes to RGB or RGBA, 8 or 16 bits. */
 static void set_transforms(png_structp png, png_infop info)
 {
@@ -81,7 +89,7 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 		return -1;
 	}
 	png_set_user_limits(png, 1u << 15, 1u << 15);
-	png_init_io(png, fp);
+	png_set_read_fn(png, fp, read_data);
 	png_read_info(png, info);
 	set_transforms(png, info);
 	int depth = png_get_bit_depth(png, info);

@@ -173,6 +173,11 @@ static double bx_cell_area(const struct object *o, double u0, double u1, double 
 	return sum;
 }
 
+static void bx_dump(const struct object *o, FILE *out)
+{
+	fputs("corner1 ", out), prim_dump_vec(out, o->g.box.lo), fputs(" corner2 ", out), prim_dump_vec(out, o->g.box.hi);
+}
+
 const struct prim_ops shape_box_ops = {
-	bx_intersect, bx_inside, bx_bounds, bx_uv_point, bx_uv_range, bx_cell_area,
+	bx_intersect, bx_inside, bx_bounds, bx_uv_point, bx_uv_range, bx_cell_area, bx_dump,
 };

@@ -259,6 +259,12 @@ static double kn_cell_area(const struct object *o, double u0, double u1, double 
 	return sum;
 }
 
+static void kn_dump(const struct object *o, FILE *out)
+{
+	fputs("base ", out), prim_dump_vec(out, o->g.cone.a), fprintf(out, " radius %.6g cap ", o->g.cone.ra);
+	prim_dump_vec(out, o->g.cone.b), fprintf(out, " radius %.6g", o->g.cone.rb);
+}
+
 const struct prim_ops shape_cone_ops = {
-	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area,
+	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area, kn_dump,
 };

@@ -227,6 +227,12 @@ static double cy_cell_area(const struct object *o, double u0, double u1, double 
 	return sum;
 }
 
+static void cy_dump(const struct object *o, FILE *out)
+{
+	fputs("base ", out), prim_dump_vec(out, o->g.cylinder.a), fputs(" cap ", out), prim_dump_vec(out, o->g.cylinder.b);
+	fprintf(out, " radius %.6g", o->g.cylinder.r);
+}
+
 const struct prim_ops shape_cylinder_ops = {
-	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area,
+	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area, cy_dump,
 };

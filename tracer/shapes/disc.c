@@ -123,6 +123,12 @@ static double dc_cell_area(const struct object *o, double u0, double u1, double 
 	return local * shape_planar_scale(o, f.n);
 }
 
+static void dc_dump(const struct object *o, FILE *out)
+{
+	fputs("center ", out), prim_dump_vec(out, o->g.disc.c), fputs(" normal ", out), prim_dump_vec(out, o->g.disc.n);
+	fprintf(out, " radius %.6g hole %.6g", o->g.disc.r, o->g.disc.hole);
+}
+
 const struct prim_ops shape_disc_ops = {
-	dc_intersect, dc_inside, dc_bounds, dc_uv_point, dc_uv_range, dc_cell_area,
+	dc_intersect, dc_inside, dc_bounds, dc_uv_point, dc_uv_range, dc_cell_area, dc_dump,
 };

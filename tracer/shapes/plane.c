@@ -94,6 +94,11 @@ static double pl_cell_area(const struct object *o, double u0, double u1, double 
 	return (u1 - u0) * (v1 - v0) * shape_planar_scale(o, o->g.plane.n);
 }
 
+static void pl_dump(const struct object *o, FILE *out)
+{
+	fputs("normal ", out), prim_dump_vec(out, o->g.plane.n), fprintf(out, " distance %.6g", o->g.plane.d);
+}
+
 const struct prim_ops shape_plane_ops = {
-	pl_intersect, pl_inside, pl_bounds, pl_uv_point, pl_uv_range, pl_cell_area,
+	pl_intersect, pl_inside, pl_bounds, pl_uv_point, pl_uv_range, pl_cell_area, pl_dump,
 };

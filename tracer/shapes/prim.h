@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "../shape.h"
 
@@ -38,10 +39,13 @@ struct prim_ops {
 	struct uv_range (*uv_range)(const struct object *o);
 	/* World area over the cell (see shape_cell_area). */
 	double (*cell_area)(const struct object *o, double u0, double u1, double v0, double v1);
+	/* The geometry on one line of --dump-scene, without the newline. */
+	void (*dump)(const struct object *o, FILE *out);
 };
 
-extern const struct prim_ops shape_sphere_ops, shape_plane_ops, shape_box_ops, shape_disc_ops,
-	shape_cylinder_ops, shape_cone_ops, shape_torus_ops, shape_triangle_ops;
+#define PRIM(n, w) extern const struct prim_ops shape_##w##_ops;
+#include "../objects.def"
+
 
 /* ---- helpers shared by the primitives (shape.c) ------------------------- */
 
@@ -90,6 +94,12 @@ static inline double prim_turns(double y, double x)
 {
 	double a = atan2(y, x) / (2 * M_PI);
 	return a < 0 ? (a + 1 < 1 ? a + 1 : 0) : a;
+}
+
+/* A vector as --dump-scene writes it. */
+static inline void prim_dump_vec(FILE *out, struct vec3 v)
+{
+	fprintf(out, "<%.6g, %.6g, %.6g>", v.x + 0.0, v.y + 0.0, v.z + 0.0);
 }
 
 /* An infinite box. */

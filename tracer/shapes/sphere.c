@@ -125,6 +125,11 @@ static double sph_cell_area(const struct object *o, double u0, double u1, double
 	return s2 * 2 * M_PI * S_R(o) * S_R(o) * (u1 - u0) * cos_diff(v0, v1);
 }
 
+static void sph_dump(const struct object *o, FILE *out)
+{
+	fputs("center ", out), prim_dump_vec(out, o->g.sphere.c), fprintf(out, " radius %.6g", o->g.sphere.r);
+}
+
 const struct prim_ops shape_sphere_ops = {
-	sph_intersect, sph_inside, sph_bounds, sph_uv_point, sph_uv_range, sph_cell_area,
+	sph_intersect, sph_inside, sph_bounds, sph_uv_point, sph_uv_range, sph_cell_area, sph_dump,
 };

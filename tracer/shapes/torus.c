@@ -238,6 +238,11 @@ static double to_cell_area(const struct object *o, double u0, double u1, double 
 	return sum;
 }
 
+static void to_dump(const struct object *o, FILE *out)
+{
+	fprintf(out, "major %.6g minor %.6g", o->g.torus.major, o->g.torus.minor);
+}
+
 const struct prim_ops shape_torus_ops = {
-	to_intersect, to_inside, to_bounds, to_uv_point, to_uv_range, to_cell_area,
+	to_intersect, to_inside, to_bounds, to_uv_point, to_uv_range, to_cell_area, to_dump,
 };

@@ -117,6 +117,12 @@ static double tr_cell_area(const struct object *o, double u0, double u1, double 
 	return clipped_area(u0, u1, v0, v1) * jac;
 }
 
+static void tr_dump(const struct object *o, FILE *out)
+{
+	for (int i = 0; i < 3; i++)
+		fputs(i ? " " : "", out), prim_dump_vec(out, o->g.triangle.p[i]);
+}
+
 const struct prim_ops shape_triangle_ops = {
-	tr_intersect, tr_inside, tr_bounds, tr_uv_point, tr_uv_range, tr_cell_area,
+	tr_intersect, tr_inside, tr_bounds, tr_uv_point, tr_uv_range, tr_cell_area, tr_dump,
 };

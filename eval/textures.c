@@ -1,0 +1,224 @@
+/* SPDX-License-Identifier: MIT */
+/* textures.c: pigments, colour maps, image maps, finishes, interiors and
+ * textures, built into the scene model by the sinks of objects.c. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+struct colour_map *colour_map_block(struct eval *E, const struct node *blk)
+{
+	struct colour_map *m = NEW(E, struct colour_map);
+	struct sink s;
+	run_block(E, blk, SK_COLOUR_MAP, m, &s);
+	if (m->n == 0)
+		eval_fail(E, blk->loc, "colour_map needs at least one entry [position colour]");
+	return m;
+}
+
+/* [position colour] of a colour_map. */
+void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n)
+{
+	struct sink s;
+	sink_init(&s, SK_ENTRY, TK_COLOR_MAP, n->loc, NULL);
+	eval_items(E, n, &s);
+	if (s.nparams != 2)
+		eval_fail(E, n->loc, "a colour_map entry is [position colour], found %d value%s", s.nparams, s.nparams == 1 ? "" : "s");
+	double pos = val_want_float(E, &s.params[0], s.ploc[0]);
+	if (pos < 0 || pos > 1)
+		eval_fail(E, s.ploc[0], "colour_map position must be 0 to 1, found %g", pos);
+	if (m->n > 0 && pos < m->e[m->n - 1].pos)
+		eval_fail(E, s.ploc[0], "colour_map positions must not decrease (%g after %g)", pos, m->e[m->n - 1].pos);
+	if (m->n >= 256)
+		eval_fail(E, n->loc, "colour_map has more than 256 entries");
+	struct map_entry *e = ARENA_ARRAY(&SC(E)->arena, struct map_entry, m->n + 1);
+	if (m->n)
+		memcpy(e, m->e, sizeof *e * (size_t)m->n);
+	e[m->n++] = (struct map_entry){pos, val_want_colour(E, &s.params[1], s.ploc[1])};
+	m->e = e;
+}
+
+/* Resolves an image file like an include (only allowed directories) into
+ * the pigment, keeping the name as written and where, for the tracer's
+ * messages. */
+void image_set(struct eval *E, struct pigment *p, struct srcloc loc, const char *name)
+{
+	char *real = eval_find_file(E, name, loc, "image file", NULL);
+	p->image = arena_strndup(&SC(E)->arena, real, strlen(real));
+	p->image_name = arena_strndup(&SC(E)->arena, name, strlen(name));
+	p->image_loc = loc;
+	free(real);
+}
+
+void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct pigment *p = s->target;
+	switch (n->op) {
+	case TK_PNG: case TK_EXR: {
+		struct value v = arg1(E, n);
+		if (v.kind != V_STRING)
+			eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
+		image_set(E, p, n->loc, v.p.s);
+		return;
+	}
+	case TK_INTERPOLATE: p->interpolate = arg_int(E, n, 0, 4); return;
+	case TK_ONCE: p->once = true; return;
+	case TK_MAP_TYPE:
+		if (arg_int(E, n, 0, 7) != 0)
+			eval_fail(E, n->kids[0]->loc, "only map_type 0 (planar) is supported");
+		return;
+	default: misplaced(E, s, n);
+	}
+}
+
+void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct pigment *p = s->target;
+	struct xform X;
+	s->modified = 1;
+	if (transform_of(E, n, &X)) {
+		p->xf = xf_then(p->xf, X);
+		return;
+	}
+	switch (n->op) {
+	case TK_CHECKER:
+		p->kind = PIG_CHECKER;
+		p->c[0] = c_rgb(0, 0, 1);
+		p->c[1] = c_rgb(0, 1, 0);
+		s->nparams = 0;
+		s->modified = 0;
+		return;
+	case TK_GRADIENT: {
+		struct vec3 a = arg_vec3(E, n);
+		if (v_len(a) == 0)
+			eval_fail(E, n->kids[0]->loc, "gradient direction has zero length");
+		p->kind = PIG_GRADIENT;
+		p->axis = a;
+		return;
+	}
+	case TK_COLOR_MAP: case TK_COLOUR_MAP: {
+		struct colour_map *m = colour_map_block(E, n);
+		p->map = m->e;
+		p->nmap = m->n;
+		return;
+	}
+	case TK_IMAGE_MAP: {
+		struct sink sub;
+		p->kind = PIG_IMAGE;
+		p->interpolate = 0;
+		run_block(E, n, SK_IMAGE_MAP, p, &sub);
+		if (!p->image)
+			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
+		return;
+	}
+	default: misplaced(E, s, n);
+	}
+}
+
+void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct pigment *p = s->target;
+	if (v->kind == V_PIGMENT && s->nparams == 0 && !s->modified) {
+		*p = *v->p.pig;
+		s->modified = 1;
+		return;
+	}
+	if (v->kind == V_COLOUR_MAP && p->kind == PIG_GRADIENT) {
+		p->map = v->p.cmap->e;
+		p->nmap = v->p.cmap->n;
+		return;
+	}
+	if (v->kind != V_COLOUR && v->kind != V_FLOAT && v->kind != V_VECTOR)
+		eval_fail(E, loc, "expected a colour in pigment, found %s", val_type_name(v));
+	struct colour c = val_want_colour(E, v, loc);
+	if (p->kind == PIG_CHECKER) {
+		if (s->nparams >= 2)
+			eval_fail(E, loc, "checker takes two colours, found a third");
+		p->c[s->nparams++] = c;
+		return;
+	}
+	if (s->modified)
+		eval_fail(E, loc, "a colour must come first in a pigment");
+	p->kind = PIG_SOLID;
+	p->c[0] = c;
+	s->modified = 1;
+}
+
+void reflection_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct finish *f = s->target;
+	switch (n->op) {
+	case TK_FRESNEL: f->refl_fresnel = arg_bool(E, n); return;
+	case TK_FALLOFF: f->refl_falloff = arg_positive(E, n); return;
+	case TK_METALLIC: f->refl_metallic = arg_bool(E, n); return;
+	default: misplaced(E, s, n);
+	}
+}
+
+void finish_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct finish *f = s->target;
+	s->modified = 1;
+	switch (n->op) {
+	case TK_AMBIENT: f->ambient = arg_colour(E, n); f->ambient.f = f->ambient.t = 0; return;
+	case TK_DIFFUSE: f->diffuse = arg_float(E, n); return;
+	case TK_BRILLIANCE: f->brilliance = arg_float(E, n); return;
+	case TK_SPECULAR: f->specular = arg_float(E, n); return;
+	case TK_ROUGHNESS: f->roughness = arg_positive(E, n); return;
+	case TK_PHONG: f->phong = arg_float(E, n); return;
+	case TK_PHONG_SIZE: f->phong_size = arg_float(E, n); return;
+	case TK_METALLIC: arg_bool(E, n); return;
+	case TK_CONSERVE_ENERGY: f->conserve_energy = arg_bool(E, n); return;
+	case TK_EMISSION: f->emission = arg_colour(E, n); return;
+	case TK_REFLECTION:
+		if (n->kind == N_BLOCK) {
+			struct sink r;
+			f->refl_min = f->refl_max = c_rgb(0, 0, 0);
+			run_block(E, n, SK_REFLECTION, f, &r);
+			if (r.nparams == 0)
+				eval_fail(E, n->loc, "reflection { } needs a value: reflection { 0.5 } or { min, max }");
+			f->refl_min = val_want_colour(E, &r.params[0], r.ploc[0]);
+			f->refl_max = r.nparams > 1 ? val_want_colour(E, &r.params[1], r.ploc[1]) : f->refl_min;
+			f->refl_min.f = f->refl_min.t = f->refl_max.f = f->refl_max.t = 0;
+		} else {
+			f->refl_min = f->refl_max = arg_colour(E, n);
+			f->refl_min.f = f->refl_min.t = f->refl_max.f = f->refl_max.t = 0;
+		}
+		return;
+	default: misplaced(E, s, n);
+	}
+}
+
+void interior_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct interior *in = s->target;
+	s->modified = 1;
+	switch (n->op) {
+	case TK_IOR: in->ior = arg_positive(E, n); return;
+	case TK_DISPERSION: in->dispersion = arg_positive(E, n); return;
+	case TK_DISPERSION_SAMPLES: in->dispersion_samples = arg_int(E, n, 2, 1000); return;
+	case TK_FADE_DISTANCE: in->fade_distance = arg_float(E, n); return;
+	case TK_FADE_POWER: in->fade_power = arg_float(E, n); return;
+	case TK_FADE_COLOR: case TK_FADE_COLOUR: in->fade_color = arg_colour(E, n); return;
+	case TK_CAUSTICS: in->caustics = arg_float(E, n); return;
+	default: misplaced(E, s, n);
+	}
+}
+
+void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct texture *t = s->target;
+	struct xform X;
+	struct sink sub;
+	s->modified = 1;
+	if (transform_of(E, n, &X)) {
+		t->pigment.xf = xf_then(t->pigment.xf, X);
+		return;
+	}
+	if (n->op == TK_PIGMENT)
+		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
+	else if (n->op == TK_FINISH)
+		run_block(E, n, SK_FINISH, &t->finish, &sub);
+	else
+		misplaced(E, s, n);
+}
