@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* paths.c: which files a scene may read (docs/design.md §8, "Files").
+/* paths.c: which files a scene may read (docs/design.md §9, "Files").
  *
  * A scene reads only below its roots: the scene file's directory, the -I
  * directories, the standard library and the --allow-read directories.

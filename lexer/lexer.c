@@ -295,7 +295,7 @@ static enum tok scan_punct(const char *p, const char *end, int *len)
 }
 
 /* POV-Ray's directives that reach outside the scene (file I/O) and the
- * shell-outs other tools have: refused by name (docs/design.md §8). */
+ * shell-outs other tools have: refused by name (docs/design.md §9, "Files"). */
 static int file_directive(const char *w, int len)
 {
 	static const char *const names[] = {"fopen", "fclose", "read", "write", "system", "exec", "shell"};

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* exrout.c: scanline EXR writer and reader on OpenEXRCore (docs/design.md §7). */
+/* exrout.c: scanline EXR writer and reader on OpenEXRCore (docs/design.md §6). */
 #include "exrout.h"
 
 #include <errno.h>

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* tmpfile.h: every output file is written to a temporary file beside it and
- * renamed into place only when complete (docs/design.md §8, "Output"), so a
- * failed or interrupted run never leaves a half-written file and never
- * touches an earlier file of that name.
+ * renamed into place only when complete (docs/design.md §6, "No partial
+ * files"), so a failed or interrupted run never leaves a half-written file
+ * and never touches an earlier file of that name.
  *
  * Open temporaries are registered, so that a signal handler can remove them
  * all with out_tmp_remove_all() before the process exits. */
