@@ -96,6 +96,8 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 	im->w = (int)png_get_image_width(png, info);
 	im->h = (int)png_get_image_height(png, info);
 	im->nch = png_get_channels(png, info);
+	if ((size_t)im->w * (size_t)im->h * (size_t)im->nch > ((size_t)1 << 28)) /* 1 GiB of floats, as EXR */
+		png_error(png, "image too large (more than 2^28 samples)");
 	size_t stride = png_get_rowbytes(png, info);
 	r->data = mem_alloc(stride * (size_t)im->h);
 	r->rows = mem_alloc((size_t)im->h * sizeof *r->rows);
