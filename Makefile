@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 # arvo: a plain Makefile. `make` builds ./arvo; `make check` runs every suite.
-#   MODE=release (default) | debug        SANITIZE=1  (ASan + UBSan)
+#   MODE=release (default) | debug        SANITIZE=1  (ASan + UBSan) | thread (TSan)
+#   make fuzz FUZZ_SECONDS=N   runs the libFuzzer targets (clang; make deps-fuzz)
 #   make deps      installs the Debian packages arvo needs (as root)
 #   make install PREFIX=/usr/local DESTDIR=
 
@@ -9,7 +10,7 @@ PREFIX   ?= /usr/local
 DESTDIR  ?=
 CC       ?= cc
 CXX      ?= c++
-BUILD    ?= build/$(MODE)$(if $(SANITIZE),-san)
+BUILD    ?= build/$(MODE)$(if $(SANITIZE),-$(if $(filter thread,$(SANITIZE)),tsan,san))
 
 # The warning list (after Lua's makefile): everything below must stay silent.
 WARN = -Wall -Wextra -Wpedantic -Wshadow -Wundef -Wpointer-arith -Wcast-align \
@@ -22,7 +23,10 @@ ifeq ($(MODE),debug)
 else
   OPT = -O2 -g
 endif
-ifdef SANITIZE
+ifeq ($(SANITIZE),thread)
+  OPT += -fsanitize=thread -fno-omit-frame-pointer
+  LDSAN = -fsanitize=thread
+else ifdef SANITIZE
   OPT += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
   LDSAN = -fsanitize=address,undefined
 endif
@@ -35,7 +39,7 @@ VERSION  = 0.1.0
 CPPFLAGS += -D_DEFAULT_SOURCE -DARVO_VERSION='"$(VERSION)"' -MMD -MP
 CFLAGS   += -std=c11 $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
 CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
-LDLIBS   += $(PKG_LIBS) -lstdc++ -lm -pthread
+LDLIBS   += $(PKG_LIBS) -lembree3 -lstdc++ -lm -pthread
 
 # Every .c under the source directories; main.c is the program's entry.
 SRCDIRS  = common lexer parser eval tracer
@@ -53,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check test unit deps install demo bench bench-accuracy lint povray-compat povray-corpus
+.PHONY: all clean check test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -84,10 +88,50 @@ $(BUILD)/tests/%: tests/unit/%.c $(BUILD)/libarvo.a
 
 unit: $(UNIT_BIN)
 
+# Fuzzing (tests/fuzz, docs/design.md §8): each target's LLVMFuzzerTestOneInput
+# is linked with a replay driver by the normal compiler (make check replays
+# tests/fuzz/<target>/), and with libFuzzer by clang (make fuzz).
+FUZZ_TARGETS = scene image
+FUZZ_REPLAY  = $(FUZZ_TARGETS:%=$(BUILD)/fuzz/replay_%)
+FUZZ_SECONDS ?= 60
+FUZZ_CC      ?= clang
+FUZZ_CXX     ?= clang++
+FUZZ_BUILD   = build/fuzz
+FUZZ_SAN     = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+FUZZ_OBJ     = $(LIB_C:%.c=$(FUZZ_BUILD)/%.o) $(LIB_CXX:%.cpp=$(FUZZ_BUILD)/%.o) $(FUZZ_BUILD)/tests/fuzz/fuzz_common.o
+
+$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz_common.c $(BUILD)/libarvo.a
+	@mkdir -p $(dir $@)
+	@echo "  CC      $@"
+	$(Q)$(CC) $(CPPFLAGS) $(CFLAGS) -MF $@.d -o $@ tests/fuzz/fuzz_$*.c tests/fuzz/replay.c tests/fuzz/fuzz_common.c \
+	    $(BUILD)/libarvo.a $(LDSAN) $(LDLIBS)
+
+$(FUZZ_BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	@echo "  CC      $< (fuzz)"
+	$(Q)$(FUZZ_CC) $(CPPFLAGS) -std=c11 -O1 -g $(WARN) -pthread $(PKG_CFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer-no-link -c -o $@ $<
+
+$(FUZZ_BUILD)/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	@echo "  CXX     $< (fuzz)"
+	$(Q)$(FUZZ_CXX) $(CPPFLAGS) -std=c++14 -O1 -g $(CXXWARN) $(PKG_CFLAGS) $(FUZZ_SAN) -fno-sanitize=vptr -c -o $@ $<
+
+$(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_OBJ)
+	@echo "  LD      $@"
+	$(Q)$(FUZZ_CC) -pthread $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $(filter %.o,$^) $(LDLIBS)
+
+unit: $(FUZZ_REPLAY)
+
+fuzz-build: $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/fuzz_%)
+
+fuzz: deps-fuzz all
+	$(Q)$(MAKE) --no-print-directory fuzz-build
+	$(Q)sh tests/fuzz/fuzz.sh $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine
+           povray povray-includes povray-examples hyperfine libembree-dev
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -97,6 +141,11 @@ deps:
 	  $$SUDO apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+
+# deps-fuzz: clang and its libFuzzer runtime, for make fuzz only.
+DEB_PKGS_FUZZ = clang libclang-rt-14-dev
+deps-fuzz:
+	@$(MAKE) --no-print-directory deps DEB_PKGS="$(DEB_PKGS_FUZZ)"
 
 check: deps
 	$(Q)$(MAKE) --no-print-directory all unit

@@ -5,7 +5,9 @@
 #include <errno.h>
 #include <signal.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -31,6 +33,8 @@
 enum { EX_OK = 0, EX_USAGE = 64, EX_DATAERR = 65, EX_NOINPUT = 66, EX_SOFTWARE = 70,
        EX_CANTCREAT = 73, EX_IOERR = 74 };
 
+#define MAX_PIXELS (16384LL * 16384) /* width x height */
+
 enum action { ACT_RENDER, ACT_CHECK, ACT_TOKENS, ACT_AST, ACT_SCENE };
 
 struct options {
@@ -47,7 +51,8 @@ struct options {
 	int width, height, spp, threads;
 	double clock;
 	int frame;
-	long max_iterations;
+	long max_iterations, max_calls, max_objects; /* --max-iterations, --max-calls, --max-objects */
+	size_t max_memory;                           /* --max-memory (0: not given) */
 	int quiet, stats;
 	const char *display;         /* --display (PNG) */
 	const char *view;            /* --view (PNG) */
@@ -86,6 +91,9 @@ static void usage(FILE *out)
 	      "  --allow-read DIR   let the scene read files below DIR too\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
+	      "  --max-calls N      limit on macro calls (default 1000000)\n"
+	      "  --max-objects N    limit on objects and lights (default 1000000)\n"
+	      "  --max-memory SIZE  memory budget, e.g. 512M or 4G (default: half the machine's)\n"
 	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
 	      "  --dump-tokens | --dump-ast | --dump-scene   print a stage's text and stop\n"
@@ -124,7 +132,7 @@ static int parse_double(const char *s, double *out)
 	char *end;
 	errno = 0;
 	double v = strtod(s, &end);
-	if (errno || end == s || *end)
+	if (errno || end == s || *end || !isfinite(v))
 		return 0;
 	*out = v;
 	return 1;
@@ -183,6 +191,20 @@ static void find_data_dir(struct options *o)
 done:
 	if (o->data_dir[0])
 		snprintf(o->stdlib_dir, sizeof o->stdlib_dir, "%s/include", o->data_dir);
+}
+
+#ifndef POVRAY_INCLUDE_DIR
+#define POVRAY_INCLUDE_DIR "/usr/share/povray-3.7/include" /* Debian's povray-includes */
+#endif
+
+/* POV-Ray's include directory: $ARVO_POVRAY_INCLUDE (empty: none), else
+ * POVRAY_INCLUDE_DIR when it exists. */
+static const char *pov_include_dir(void)
+{
+	const char *env = getenv("ARVO_POVRAY_INCLUDE");
+	if (env)
+		return *env ? env : NULL;
+	return access(POVRAY_INCLUDE_DIR, R_OK) == 0 ? POVRAY_INCLUDE_DIR : NULL;
 }
 
 /* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K. */
@@ -326,11 +348,17 @@ static int parse_args(int argc, char **argv, struct options *o)
 			NEED_ARG();
 			if (!parse_double(next, &o->clock))
 				return usage_error("bad value for --clock: '%s'", next);
-		} else if (!strcmp(a, "--max-iterations")) {
+		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects")) {
 			NEED_ARG();
 			if (!parse_int(next, 1, 1L << 40, &v))
-				return usage_error("bad value for --max-iterations: '%s'", next);
-			o->max_iterations = v;
+				return usage_error("bad value for %s: '%s'", a, next);
+			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : &o->max_objects) = v;
+		} else if (!strcmp(a, "--max-memory")) {
+			NEED_ARG();
+			o->max_memory = mem_parse_size(next);
+			if (o->max_memory < ((size_t)16 << 20))
+				return usage_error("bad value for --max-memory: '%s' (expected a size of at least 16M, e.g. 512M or 4G)",
+				                   next);
 		} else if ((a[0] == '+' || a[0] == '-') && a[1] && a[1] != '-' && pov_switch(o, a)) {
 			continue;
 		} else if (a[0] == '-' && a[1]) {
@@ -346,6 +374,9 @@ static int parse_args(int argc, char **argv, struct options *o)
 	}
 	if (!o->scene)
 		return usage_error("no scene file given");
+	if ((long long)o->width * o->height > MAX_PIXELS)
+		return usage_error("image too large: %dx%d is %lld pixels (at most %lld)", o->width, o->height,
+		                   (long long)o->width * o->height, (long long)MAX_PIXELS);
 	return -1;
 }
 
@@ -466,6 +497,23 @@ static int check_creatable(const char *path)
 	return EX_OK;
 }
 
+/* Over the --max-memory budget after the scene is built: the light pass's
+ * maps, the acceleration structure or the framebuffer. Exit status 70,
+ * after removing any temporary being written. */
+static void render_over_budget(size_t request)
+{
+	static atomic_int once;
+	char size[32];
+	if (atomic_exchange(&once, 1)) /* another thread is reporting it */
+		for (;;)
+			pause();
+	mem_format_size(size, sizeof size, mem_budget());
+	fprintf(stderr, "arvo: error: out of memory: rendering needs more than the %s that --max-memory allows "
+	        "(allocating %zu bytes)\n", size, request);
+	out_tmp_remove_all();
+	exit(EX_SOFTWARE);
+}
+
 /* Checks everything a render will write or look up before any work: the
  * output format (64), the OCIO config (66) and display/view (64) for PNG
  * output or when named, every output path (73), the --load-maps file (66). */
@@ -525,7 +573,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		struct out_exr_opts eo = {o->half, o->compression, scene->name};
 		rc = out_exr_write(fb, output, &eo, dg);
 	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL};
+		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene)};
 		rc = out_png_write(fb, output, &po, dg);
 	}
 	fb_free(fb);
@@ -558,10 +606,12 @@ int main(int argc, char **argv)
 {
 	struct options o;
 	memset(&o, 0, sizeof o);
-	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.max_iterations = 10000000, o.rays = -1;
+	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
+	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
+	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), render_over_budget);
 	struct diag dg;
 	diag_init(&dg, stderr);
 	install_signals();
@@ -577,6 +627,7 @@ int main(int argc, char **argv)
 	eo.include_dirs = o.includes;
 	eo.ninclude = o.ninclude;
 	eo.stdlib_dir = o.stdlib_dir[0] ? o.stdlib_dir : NULL;
+	eo.pov_include_dir = pov_include_dir();
 	eo.allow_read = o.allow_read;
 	eo.nallow = o.nallow;
 	eo.defines = o.defines;
@@ -586,6 +637,8 @@ int main(int argc, char **argv)
 	eo.width = o.width;
 	eo.height = o.height;
 	eo.max_iterations = o.max_iterations;
+	eo.max_calls = o.max_calls;
+	eo.max_objects = o.max_objects;
 	struct deps deps = {NULL, 0};
 	if (o.depfile) {
 		eo.on_file = dep_add;

@@ -2,10 +2,12 @@
 /* arena.c: allocation wrapper (with fault injection) and bump arenas. */
 #include "arena.h"
 
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 struct arena_block {
 	struct arena_block *next; /* older block */
@@ -35,8 +37,93 @@ static int inject(void)
 	return fail_at > 0 && ++calls == fail_at;
 }
 
+static size_t budget;                     /* bytes; 0: none */
+static mem_over_fn budget_over;
+static atomic_size_t since_check;         /* bytes requested since the last look */
+
+mem_over_fn mem_set_budget(size_t bytes, mem_over_fn over)
+{
+	mem_over_fn old = budget_over;
+	budget = bytes;
+	budget_over = over;
+	atomic_store(&since_check, 0);
+	return old;
+}
+
+size_t mem_parse_size(const char *s)
+{
+	char *end;
+	if (*s < '0' || *s > '9')
+		return 0;
+	unsigned long long v = strtoull(s, &end, 10);
+	int shift = 0;
+	if (*end) {
+		const char *units = "KMGT", *u = strchr(units, end[0] & ~0x20);
+		if (!u || !*u || (end[1] && strcmp(end + 1, "iB") && strcmp(end + 1, "B")))
+			return 0;
+		shift = 10 * (int)(u - units + 1);
+	}
+	if (v == 0 || v > (SIZE_MAX >> shift))
+		return 0;
+	return (size_t)v << shift;
+}
+
+void mem_format_size(char *buf, size_t len, size_t bytes)
+{
+	static const char *const units[] = {"KiB", "MiB", "GiB", "TiB"};
+	int u = -1;
+	size_t v = bytes;
+	while (u < 3 && v >= 1024 && v % 1024 == 0)
+		v /= 1024, u++;
+	if (u < 0)
+		snprintf(buf, len, "%zu bytes", bytes);
+	else
+		snprintf(buf, len, "%zu %s", v, units[u]);
+}
+
+size_t mem_budget(void) { return budget; }
+
+size_t mem_resident(void)
+{
+	FILE *f = fopen("/proc/self/statm", "r");
+	unsigned long size, resident;
+	int ok = f && fscanf(f, "%lu %lu", &size, &resident) == 2;
+	if (f)
+		fclose(f);
+	return ok ? (size_t)resident * (size_t)sysconf(_SC_PAGESIZE) : 0;
+}
+
+size_t mem_default_budget(void)
+{
+	long pages = sysconf(_SC_PHYS_PAGES), psize = sysconf(_SC_PAGESIZE);
+	size_t total = pages > 0 && psize > 0 ? (size_t)pages * (size_t)psize : (size_t)1 << 32;
+	FILE *f = fopen("/sys/fs/cgroup/memory.max", "r"); /* a container's limit, if lower */
+	unsigned long long lim;
+	if (f) {
+		if (fscanf(f, "%llu", &lim) == 1 && lim > 0 && lim < total)
+			total = (size_t)lim;
+		fclose(f);
+	}
+	return total / 2;
+}
+
+/* Looks at the resident size when due; calls the handler past the budget. */
+static void budget_check(size_t n)
+{
+	if (!budget)
+		return;
+	size_t seen = atomic_fetch_add_explicit(&since_check, n, memory_order_relaxed) + n;
+	if (n < MEM_CHECK_BYTES && seen < MEM_CHECK_BYTES)
+		return;
+	atomic_store_explicit(&since_check, 0, memory_order_relaxed);
+	size_t rss = mem_resident();
+	if (n > budget || rss > budget - n)
+		budget_over(n);
+}
+
 void *mem_realloc(void *p, size_t n)
 {
+	budget_check(n);
 	void *q = inject() ? NULL : realloc(p, n ? n : 1);
 	if (!q) {
 		oom_handler(n);

@@ -15,6 +15,27 @@ char *mem_strdup(const char *s);
 char *mem_strndup(const char *s, size_t n);
 void mem_set_oom(void (*handler)(size_t));
 
+/* The memory budget (--max-memory; docs/design.md §8). With a budget set,
+ * every allocation of at least MEM_CHECK_BYTES, and every MEM_CHECK_BYTES
+ * allocated in total, compares the process's resident size plus the request
+ * with the budget; crossing it calls the handler, which exits or longjmps out
+ * of the evaluator (when it returns, the allocation goes ahead).
+ * Thread-safe. 0: no budget. */
+#define MEM_CHECK_BYTES ((size_t)4 << 20)
+typedef void (*mem_over_fn)(size_t request);
+/* Sets the budget and its handler; returns the handler it replaces. */
+mem_over_fn mem_set_budget(size_t bytes, mem_over_fn over);
+size_t mem_budget(void);
+/* The process's resident set size in bytes (/proc/self/statm); 0 if unknown. */
+size_t mem_resident(void);
+/* Half the machine's memory (or of a cgroup limit below it): the default budget. */
+size_t mem_default_budget(void);
+/* Reads a size: a whole number of bytes with an optional K, M, G or T
+ * (binary multiples); 0 when malformed. */
+size_t mem_parse_size(const char *s);
+/* Writes a size as "512 MiB", "4 GiB" (exact multiples) or "N bytes". */
+void mem_format_size(char *buf, size_t len, size_t bytes);
+
 struct arena_block;
 
 /* A chained bump allocator: one lifetime for everything allocated in it.

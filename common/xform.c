@@ -50,6 +50,9 @@ static bool mat_inverse(double r[3][4], double a[3][4])
 	return true;
 }
 
+const struct xform xf_ident = {{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}},
+                                {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+
 struct xform xf_identity(void)
 {
 	struct xform x;

@@ -14,6 +14,8 @@ struct xform {
 };
 
 struct xform xf_identity(void);
+/* The identity, for frames that need no transform. */
+extern const struct xform xf_ident;
 struct xform xf_translate(struct vec3 t);
 struct xform xf_scale(struct vec3 s);
 /* POV-Ray's rotate <a,b,c>: degrees about x, then y, then z. */

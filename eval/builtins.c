@@ -2,6 +2,8 @@
 /* builtins.c: POV-Ray's built-in constants and functions, one table. */
 #include <ctype.h>
 #include <errno.h>
+#include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -259,47 +261,71 @@ static struct value f_concat(struct call *c)
 }
 
 /* Formats a float as POV-Ray's str(): width |L| (zero padded when L < 0),
- * P digits after the point (P < 0: six). */
+ * P digits after the point (P < 0: six). The caller has checked L and P
+ * (str_format_args), so the text fits STR_FLOAT_MAX bytes: 309 integer
+ * digits at most for a finite double, a sign, a point and 60 decimals, or
+ * 255 of padding. */
+#define STR_FLOAT_MAX 400
 static int format_float(char *buf, size_t size, double f, double L, double P)
 {
 	int w = (int)fabs(L), p = P < 0 ? 6 : (int)P;
-	if (w > 255)
-		w = 255;
-	if (p > 60)
-		p = 60;
 	return snprintf(buf, size, L < 0 ? "%0*.*f" : "%*.*f", w, p, f);
+}
+
+/* Checks str()'s and vstr()'s width and precision: out of range or NaN is an
+ * error at the argument, never a conversion out of range. */
+static void str_format_args(struct call *c, int li, int pi)
+{
+	double L = F(c, li), P = F(c, pi);
+	if (!(L >= -255 && L <= 255))
+		domain(c, li, "the width must be -255 to 255");
+	if (!(P >= -1 && P <= 60))
+		domain(c, pi, "the precision must be -1 to 60");
 }
 
 static struct value f_str(struct call *c)
 {
-	char buf[512];
+	char buf[STR_FLOAT_MAX];
+	str_format_args(c, 1, 2);
 	int n = format_float(buf, sizeof buf, F(c, 0), F(c, 1), F(c, 2));
 	return str_value(c->E, buf, (size_t)n, c->n->loc);
 }
 
-/* vstr(N, V, Sep, L, P): the first N components of V. */
+/* vstr(N, V, Sep, L, P): the first N components of V, each formatted into
+ * its own buffer and joined in one sized for them (never truncated). */
 static struct value f_vstr(struct call *c)
 {
-	int n = (int)F(c, 0), seplen;
+	double fn = F(c, 0);
+	int seplen;
 	const char *sep = S(c, 2, &seplen);
 	const struct value *v = &c->a[1];
 	if (v->kind != V_VECTOR && v->kind != V_COLOUR && v->kind != V_FLOAT)
 		eval_fail(c->E, c->n->kids[1]->loc, "argument 2 of vstr() must be a vector, found %s", val_type_name(v));
-	if (n < 2 || n > 5)
+	if (!(fn >= 2 && fn < 6))
 		domain(c, 0, "the component count must be 2 to 5");
-	char buf[2048];
-	size_t at = 0;
+	str_format_args(c, 3, 4);
+	int n = (int)fn;
+	char part[5][STR_FLOAT_MAX];
+	int plen[5];
+	size_t total = (size_t)(n - 1) * (size_t)seplen;
 	for (int i = 0; i < n; i++) {
 		double x = v->kind == V_FLOAT ? v->v[0] : v->v[i];
-		if (i && at + (size_t)seplen < sizeof buf - 300) {
+		plen[i] = format_float(part[i], sizeof part[i], x, F(c, 3), F(c, 4));
+		total += (size_t)plen[i];
+	}
+	if (total > MAX_STRING)
+		eval_fail(c->E, c->n->loc, "string too long (%zu bytes; the limit is %d)", total, MAX_STRING);
+	char *buf = ARENA_ARRAY(&c->E->arena, char, total + 1);
+	size_t at = 0;
+	for (int i = 0; i < n; i++) {
+		if (i) {
 			memcpy(buf + at, sep, (size_t)seplen);
 			at += (size_t)seplen;
 		}
-		at += (size_t)format_float(buf + at, sizeof buf - at, x, F(c, 3), F(c, 4));
-		if (at >= sizeof buf - 300)
-			break;
+		memcpy(buf + at, part[i], (size_t)plen[i]);
+		at += (size_t)plen[i];
 	}
-	return str_value(c->E, buf, at, c->n->loc);
+	return val_string(buf, (int)at);
 }
 
 static struct value f_chr(struct call *c)
@@ -451,29 +477,70 @@ static const struct builtin table[] = {
 	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vstr", 5, 5, f_vstr},
 };
 
-static int by_name(const void *key, const void *elem)
+/* Every built-in name (the functions above and the constants below) in one
+ * open-addressing hash table, made on first use: name lookups run on every
+ * #declare and every call, in the innermost loops of a scene. */
+static const char *const consts[] = {"pi", "tau", "true", "false", "yes", "no", "on", "off",
+	"x", "y", "z", "t", "u", "v", "clock", "clock_delta", "clock_on", "frame_number",
+	"initial_clock", "final_clock", "initial_frame", "final_frame", "image_width",
+	"image_height", "version", "defined"};
+
+#define NSLOTS 256 /* a power of two, well above the names' count */
+
+struct slot {
+	const char *name;        /* NULL: empty */
+	const struct builtin *b; /* NULL for a constant */
+};
+
+static struct slot slots[NSLOTS];
+static pthread_once_t slots_once = PTHREAD_ONCE_INIT;
+
+static uint32_t name_hash(const char *s)
 {
-	return strcmp(key, ((const struct builtin *)elem)->name);
+	uint32_t h = 2166136261u;
+	for (; *s; s++)
+		h = (h ^ (unsigned char)*s) * 16777619u;
+	return h;
 }
 
-/* The table is sorted by name: binary search (this runs on every #declare). */
+static void slot_put(const char *name, const struct builtin *b)
+{
+	uint32_t h = name_hash(name);
+	while (slots[h & (NSLOTS - 1)].name)
+		h++;
+	slots[h & (NSLOTS - 1)] = (struct slot){name, b};
+}
+
+static void make_slots(void)
+{
+	for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+		slot_put(table[i].name, &table[i]);
+	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++)
+		slot_put(consts[i], NULL);
+}
+
+/* The slot holding name, or NULL when it is not a built-in name. */
+static const struct slot *lookup(const char *name)
+{
+	pthread_once(&slots_once, make_slots);
+	for (uint32_t h = name_hash(name);; h++) {
+		const struct slot *sl = &slots[h & (NSLOTS - 1)];
+		if (!sl->name)
+			return NULL;
+		if (strcmp(sl->name, name) == 0)
+			return sl;
+	}
+}
+
 static const struct builtin *find(const char *name)
 {
-	return bsearch(name, table, sizeof table / sizeof table[0], sizeof table[0], by_name);
+	const struct slot *sl = lookup(name);
+	return sl ? sl->b : NULL;
 }
 
 bool builtin_is_name(const char *name)
 {
-	struct value v;
-	static const char *const consts[] = {"pi", "tau", "true", "false", "yes", "no", "on", "off",
-		"x", "y", "z", "t", "u", "v", "clock", "clock_delta", "clock_on", "frame_number",
-		"initial_clock", "final_clock", "initial_frame", "final_frame", "image_width",
-		"image_height", "version", "defined"};
-	(void)v;
-	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++)
-		if (strcmp(consts[i], name) == 0)
-			return true;
-	return find(name) != NULL;
+	return lookup(name) != NULL;
 }
 
 bool builtin_call(struct eval *E, const struct node *n, struct value *out)

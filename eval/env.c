@@ -8,6 +8,7 @@
 
 struct entry {
 	const char *name;         /* key (arena) */
+	uint32_t hash;            /* hash(name) */
 	struct value val;         /* identifier value */
 	const struct node *macro; /* N_MACRO when this is a macro */
 	struct entry *next;       /* chain */
@@ -17,6 +18,7 @@ struct scope {
 	struct entry **buckets; /* hash chains */
 	int nbuckets;           /* power of two */
 	int count;              /* entries */
+	struct scope *next;     /* on E->spare_scopes once released */
 };
 
 static uint32_t hash(const char *s)
@@ -29,10 +31,34 @@ static uint32_t hash(const char *s)
 
 struct scope *scope_new(struct eval *E)
 {
-	struct scope *sc = ARENA_NEW(&E->arena, struct scope);
+	struct scope *sc = E->spare_scopes;
+	if (sc) { /* a released scope: its table and entries are reused */
+		E->spare_scopes = sc->next;
+		sc->next = NULL;
+		return sc;
+	}
+	sc = ARENA_NEW(&E->arena, struct scope);
 	sc->nbuckets = 16;
 	sc->buckets = ARENA_ARRAY(&E->arena, struct entry *, sc->nbuckets);
 	return sc;
+}
+
+/* A macro's or an include's scope, popped and no longer reachable: its
+ * entries go to E->spare_entries and the table to E->spare_scopes, so a
+ * million macro calls cost no more memory than the deepest of them. */
+void scope_release(struct eval *E, struct scope *sc)
+{
+	for (int i = 0; i < sc->nbuckets; i++) {
+		for (struct entry *e = sc->buckets[i], *next; e; e = next) {
+			next = e->next;
+			e->next = E->spare_entries;
+			E->spare_entries = e;
+		}
+		sc->buckets[i] = NULL;
+	}
+	sc->count = 0;
+	sc->next = E->spare_scopes;
+	E->spare_scopes = sc;
 }
 
 void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
@@ -44,12 +70,17 @@ void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
 
 void scope_pop(struct eval *E) { E->nscopes--; }
 
-static struct entry *find(struct scope *sc, const char *name)
+static struct entry *find_h(struct scope *sc, const char *name, uint32_t h)
 {
-	for (struct entry *e = sc->buckets[hash(name) & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
-		if (strcmp(e->name, name) == 0)
+	for (struct entry *e = sc->buckets[h & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
+		if (e->hash == h && strcmp(e->name, name) == 0)
 			return e;
 	return NULL;
+}
+
+static struct entry *find(struct scope *sc, const char *name)
+{
+	return find_h(sc, name, hash(name));
 }
 
 /* Doubles a scope's table when it gets crowded. */
@@ -60,7 +91,7 @@ static void grow(struct eval *E, struct scope *sc)
 	for (int i = 0; i < sc->nbuckets; i++) {
 		for (struct entry *e = sc->buckets[i], *next; e; e = next) {
 			next = e->next;
-			uint32_t h = hash(e->name) & (uint32_t)(nb - 1);
+			uint32_t h = e->hash & (uint32_t)(nb - 1);
 			e->next = b[h];
 			b[h] = e;
 		}
@@ -78,9 +109,16 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 	}
 	if (sc->count >= sc->nbuckets)
 		grow(E, sc);
-	e = ARENA_NEW(&E->arena, struct entry);
-	e->name = eval_strdup(E, name, (int)strlen(name));
-	uint32_t h = hash(name) & (uint32_t)(sc->nbuckets - 1);
+	e = E->spare_entries;
+	if (e) {
+		E->spare_entries = e->next;
+		memset(e, 0, sizeof *e);
+	} else {
+		e = ARENA_NEW(&E->arena, struct entry);
+	}
+	e->name = name; /* names are AST or evaluator strings: they live as long */
+	e->hash = hash(name);
+	uint32_t h = e->hash & (uint32_t)(sc->nbuckets - 1);
 	e->next = sc->buckets[h];
 	sc->buckets[h] = e;
 	sc->count++;
@@ -89,8 +127,9 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 
 struct value *env_lookup(struct eval *E, const char *name)
 {
+	uint32_t h = hash(name);
 	for (int i = E->nscopes - 1; i >= 0; i--) {
-		struct entry *e = find(E->scopes[i], name);
+		struct entry *e = find_h(E->scopes[i], name, h);
 		if (e && !e->macro)
 			return &e->val;
 	}
@@ -111,8 +150,9 @@ struct value *env_declare(struct eval *E, const char *name, bool local)
 {
 	struct scope *sc = E->scopes[local ? E->nscopes - 1 : 0];
 	if (!local) {
+		uint32_t h = hash(name);
 		for (int i = E->nscopes - 1; i > 0; i--) {
-			struct entry *e = find(E->scopes[i], name);
+			struct entry *e = find_h(E->scopes[i], name, h);
 			if (e && !e->macro)
 				return &e->val;
 		}

@@ -6,6 +6,7 @@
  * are reported once and longjmp back to eval_scene (Lua's luaD_throw). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,8 +184,29 @@ static double srgb_to_linear(double c)
 	return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
-/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n);
+
+/* A colour expression: its prefix applied to its operand, then POV-Ray's
+ * trailing components (red/green/blue/filter/transmit value) in order. */
 static struct value colour_prefix(struct eval *E, const struct node *n)
+{
+	struct value v = n->a ? colour_base(E, n) : val_colour(c_rgb(0, 0, 0));
+	for (int i = 0; i < n->nkids; i++) {
+		const struct node *k = n->kids[i];
+		double f = eval_float(E, k->a);
+		switch (k->op) {
+		case TK_RED: v.v[0] = f; break;
+		case TK_GREEN: v.v[1] = f; break;
+		case TK_BLUE: v.v[2] = f; break;
+		case TK_FILTER: v.v[3] = f; break;
+		default: v.v[4] = f; break;
+		}
+	}
+	return v;
+}
+
+/* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
+static struct value colour_base(struct eval *E, const struct node *n)
 {
 	struct value a = eval_expr(E, n->a);
 	if (n->op == TK_COLOR || n->op == TK_COLOUR)
@@ -361,6 +383,8 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		          def->nkids == 1 ? "" : "s", call->nkids);
 	if (E->macro_depth >= MAX_MACRO_DEPTH)
 		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
+	if (++E->calls > E->opt->max_calls)
+		eval_fail(E, call->loc, "macro call limit (%ld) exceeded; raise it with --max-calls", E->opt->max_calls);
 	struct value args[64];
 	if (call->nkids > 64)
 		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
@@ -392,6 +416,7 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		scope_push(E, sc, call->loc);
 	}
 	scope_pop(E);
+	scope_release(E, sc);
 }
 
 /* A macro call in an expression: its body must yield exactly one value. */
@@ -420,10 +445,29 @@ static struct value identifier(struct eval *E, const struct node *n)
 		return c;
 	if (env_macro(E, n->str))
 		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
+	if (tok_is_pov_word(n->str))
+		eval_fail(E, n->loc, "'%s' is not supported", n->str);
 	eval_fail(E, n->loc, "undeclared identifier '%s'", n->str);
 }
 
+static struct value eval_expr_node(struct eval *E, const struct node *n);
+
+/* Every number the language computes passes here: an infinity or a NaN
+ * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
+ * non-finite number reaches the scene (docs/design.md §8). */
 struct value eval_expr(struct eval *E, const struct node *n)
+{
+	struct value v = eval_expr_node(E, n);
+	if (v.kind == V_FLOAT || v.kind == V_VECTOR || v.kind == V_COLOUR) {
+		int k = v.kind == V_FLOAT ? 1 : v.kind == V_COLOUR ? 5 : v.n;
+		for (int i = 0; i < k; i++)
+			if (!isfinite(v.v[i]))
+				eval_fail(E, n->loc, "the result is not a finite number (%s)", isnan(v.v[i]) ? "NaN" : "infinite");
+	}
+	return v;
+}
+
+static struct value eval_expr_node(struct eval *E, const struct node *n)
 {
 	switch (n->kind) {
 	case N_NUM: return val_float(n->num);
@@ -472,6 +516,12 @@ static void count_iteration(struct eval *E, struct srcloc loc)
 {
 	if (++E->iterations > E->opt->max_iterations)
 		eval_fail(E, loc, "loop iteration limit (%ld) exceeded; raise it with --max-iterations", E->opt->max_iterations);
+}
+
+void eval_count_object(struct eval *E, struct srcloc loc)
+{
+	if (++E->objects > E->opt->max_objects)
+		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
 static void exec_declare(struct eval *E, const struct node *n)
@@ -644,22 +694,34 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 	struct inc_cache *c = load_include(E, n, name);
 	E->dir_stack[E->include_depth + 1] = c->dir;
 	E->include_depth++;
-	scope_push(E, scope_new(E), n->loc);
+	struct scope *sc = scope_new(E);
+	scope_push(E, sc, n->loc);
 	eval_items(E, c->ast, s);
 	scope_pop(E);
+	scope_release(E, sc);
 	E->include_depth--;
 }
 
 /* ==== items =============================================================== */
 
+/* Every nested list of items (a directive's body, a block, a macro body, an
+ * include) passes here, so this one counter bounds the evaluator's recursion
+ * whatever mix of directives, blocks, macros and includes makes it. */
 void eval_items(struct eval *E, const struct node *list, struct sink *s)
 {
+	if (E->depth >= MAX_EVAL_DEPTH)
+		eval_fail(E, list->loc, "nesting too deep (more than %d levels of blocks, directives, macro calls and includes)",
+		          MAX_EVAL_DEPTH);
+	E->depth++;
 	for (int i = 0; i < list->nkids && !E->breaking; i++)
 		eval_item(E, list->kids[i], s);
+	E->depth--;
 }
 
 void eval_item(struct eval *E, const struct node *n, struct sink *s)
 {
+	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
+		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
 	switch (n->kind) {
 	case N_DECLARE: exec_declare(E, n); return;
 	case N_UNDEF: env_undef(E, n->str); return;
@@ -729,6 +791,8 @@ void eval_default_options(struct eval_options *o)
 	o->width = 320;
 	o->height = 240;
 	o->max_iterations = 10000000;
+	o->max_calls = 1000000;
+	o->max_objects = 1000000;
 	o->debug_out = stdout;
 }
 
@@ -748,6 +812,24 @@ static void declare_define(struct eval *E, const char *def)
 		v = val_float(strtod(val, &end));
 	}
 	*env_declare(E, name, false) = v;
+}
+
+/* The evaluator running now, for the memory budget's handler. */
+static struct eval *running;
+
+/* Over the --max-memory budget while building the scene: an error at the
+ * statement being evaluated, and exit status 70 (docs/design.md §8). */
+static void eval_over_budget(size_t request)
+{
+	struct eval *E = running;
+	char size[32];
+	(void)request;
+	if (!E) /* already unwinding: let the allocation go ahead */
+		return;
+	mem_format_size(size, sizeof size, mem_budget());
+	E->out_of_memory = 1;
+	running = NULL; /* the error path allocates nothing more under this handler */
+	eval_fail(E, E->stmt, "out of memory: the scene needs more than the %s that --max-memory allows", size);
 }
 
 int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out)
@@ -773,11 +855,16 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	arena_init(&E->arena);
 	E->default_tex = scene_default_texture();
 	int rc = 0;
+	E->stmt = (struct srcloc){file, 1, 1};
+	running = E;
+	mem_over_fn outer = mem_set_budget(mem_budget(), eval_over_budget);
 	if (setjmp(jb) == 0) {
 		struct node *ast = parse_file(file, diag, &E->arena);
 		if (diag->errors == 0) {
 			scope_push(E, scope_new(E), srcloc_none());
 			E->dir_stack[0] = dir_of(E, path);
+			if (opt->pov_include_dir) /* arvo's library reads POV-Ray's files after itself */
+				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
 			for (int i = 0; i < opt->ndefines; i++)
 				declare_define(E, opt->defines[i]);
 			struct sink s;
@@ -786,8 +873,10 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 			objects_finish(E);
 		}
 	}
+	mem_set_budget(mem_budget(), outer);
+	running = NULL;
 	if (diag->errors > 0)
-		rc = E->missing ? 66 : 65;
+		rc = E->out_of_memory ? 70 : E->missing ? 66 : 65;
 	free(E->rng);
 	arena_free(&E->arena);
 	free(E);

@@ -13,6 +13,7 @@ struct eval_options {
 	const char *const *include_dirs; /* -I directories, in order */
 	int ninclude;
 	const char *stdlib_dir;          /* stdlib-scenes/include (NULL: none) */
+	const char *pov_include_dir;     /* POV-Ray's include files (NULL: none) */
 	const char *const *allow_read;   /* --allow-read directories: more a scene may read */
 	int nallow;
 	const char *const *defines;      /* -D NAME=VALUE strings */
@@ -21,6 +22,8 @@ struct eval_options {
 	int frame;                       /* frame_number */
 	int width, height;               /* image_width, image_height */
 	long max_iterations;             /* #while/#for iterations in total */
+	long max_calls;                  /* macro calls in total */
+	long max_objects;                /* objects and lights in the scene */
 	FILE *debug_out;                 /* where #debug writes (stdout) */
 	/* Called for each file read (the scene and every include), for -M. */
 	void (*on_file)(const char *path, void *ctx);

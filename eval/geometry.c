@@ -10,10 +10,10 @@
  * texture with the object when the texture came first). */
 static void object_transform(struct eval *E, struct object *o, const struct xform *X)
 {
-	o->xf = xf_then(o->xf, *X);
+	o->xf = xform_then(E, o->xf, X);
 	if (o->tex) {
 		o->tex = texture_copy(E, o->tex);
-		o->tex->pigment.xf = xf_then(o->tex->pigment.xf, *X);
+		o->tex->pigment.xf = xform_then(E, o->tex->pigment.xf, X);
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -75,7 +75,7 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
 		else
-			run_block(E, n, SK_FINISH, &o->tex->finish, &sub);
+			finish_block(E, n, &o->tex->finish);
 	} else if (n->op == TK_INTERIOR) {
 		struct interior *in = NEW(E, struct interior);
 		*in = o->interior ? *o->interior : scene_default_interior();
@@ -310,7 +310,7 @@ struct value object_block(struct eval *E, const struct node *blk)
 		o = NEW(E, struct object);
 		o->kind = object_kind_of(blk->op);
 		o->loc = blk->loc;
-		o->xf = xf_identity();
+		o->xf = NULL; /* the identity until a transform comes */
 	}
 	sink_init(&s, SK_OBJECT, blk->op, blk->loc, o);
 	eval_items(E, blk, &s);

@@ -16,8 +16,10 @@
 #define MAX_STRING 1048576    /* bytes in a string value */
 #define MAX_ARRAY 16777216L   /* elements in an array */
 #define MAX_SCOPES 512        /* scope stack */
+#define MAX_EVAL_DEPTH 1000   /* nested item lists: blocks, directives, macros, includes */
 
 struct scope;
+struct entry;
 struct inc_cache;
 
 /* What a block's items are being evaluated into. */
@@ -54,6 +56,13 @@ struct eval {
 	int nscopes;
 	int include_depth;
 	int macro_depth;
+	int depth;                 /* nested item lists (eval_items) */
+	long calls;                /* macro calls so far */
+	long objects;              /* objects and lights made so far */
+	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
+	int out_of_memory;         /* the budget ran out: exit status 70 */
+	struct scope *spare_scopes; /* released scopes, for reuse */
+	struct entry *spare_entries;
 	long iterations;           /* loop iterations so far */
 	int breaking;              /* a #break is unwinding to its #switch */
 	jmp_buf *fail;             /* where a fatal error jumps */
@@ -89,10 +98,15 @@ char *eval_strdup(struct eval *E, const char *s, int len);
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
 
+/* Counts one object or light made at loc against --max-objects. */
+void eval_count_object(struct eval *E, struct srcloc loc);
+
 /* ---- env.c ---- */
 struct scope *scope_new(struct eval *E);
 void scope_push(struct eval *E, struct scope *sc, struct srcloc loc);
 void scope_pop(struct eval *E);
+/* Recycles a popped scope nothing refers to any more (macro and include scopes). */
+void scope_release(struct eval *E, struct scope *sc);
 /* Finds a name, innermost scope first; NULL when undeclared. */
 struct value *env_lookup(struct eval *E, const char *name);
 const struct node *env_macro(struct eval *E, const char *name);
@@ -126,6 +140,12 @@ bool transform_of(struct eval *E, const struct node *n, struct xform *out);
 struct texture *texture_copy(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
+/* A transform old (NULL: identity) followed by X, in a slot of its own, since
+ * copied objects and textures may share old; NULL when it is the identity. */
+const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X);
+/* A finish { } block n on a texture's finish *f: it changes a copy, since
+ * textures share finishes (the default one, a declared texture's). */
+void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)

@@ -128,6 +128,22 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X)
+{
+	struct xform *x = NEW(E, struct xform);
+	*x = xf_then(old ? *old : xf_ident, *X);
+	return xf_is_identity(x) ? NULL : x;
+}
+
+void finish_block(struct eval *E, const struct node *n, const struct finish **f)
+{
+	struct sink sub;
+	struct finish *c = NEW(E, struct finish);
+	*c = **f;
+	run_block(E, n, SK_FINISH, c, &sub);
+	*f = c;
+}
+
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out)
 {
@@ -143,6 +159,8 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.kind = V_SKIPPED;
 		return v;
 	}
+	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
+		eval_count_object(E, blk->loc);
 	if (is_object_kw(blk->op))
 		return object_block(E, blk);
 	switch (blk->op) {
@@ -161,7 +179,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 	case TK_FINISH:
 		v.kind = V_FINISH;
 		v.p.fin = NEW(E, struct finish);
-		*v.p.fin = scene_default_texture().finish;
+		*v.p.fin = *scene_default_texture().finish;
 		run_block(E, blk, SK_FINISH, v.p.fin, &s);
 		return v;
 	case TK_INTERIOR:
@@ -254,7 +272,7 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		run_block(E, n, SK_FINISH, &t->finish, &sub);
+		finish_block(E, n, &t->finish);
 	else
 		misplaced(E, s, n);
 }
@@ -313,7 +331,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (transform_of(E, n, &X)) {
 			if (m->tex) {
 				m->tex = texture_copy(E, m->tex);
-				m->tex->pigment.xf = xf_then(m->tex->pigment.xf, X);
+				m->tex->pigment.xf = xform_then(E, m->tex->pigment.xf, &X);
 			}
 			return;
 		}

@@ -2,7 +2,8 @@
 /* paths.c: which files a scene may read (docs/design.md §9, "Files").
  *
  * A scene reads only below its roots: the scene file's directory, the -I
- * directories, the standard library and the --allow-read directories.
+ * directories, the standard library, POV-Ray's include directory and the
+ * --allow-read directories.
  * A name the scene gives (#include, image_map) is joined to each directory
  * searched, made absolute and normalized lexically ("." and ".." removed
  * from the text, no symlinks resolved); the result must lie below a root,
@@ -89,6 +90,8 @@ static int readable(struct eval *E, const char *path)
 			return 1;
 	if (o->stdlib_dir && normalize(NULL, o->stdlib_dir, root, sizeof root) == 0 && below(root, path))
 		return 1;
+	if (o->pov_include_dir && normalize(NULL, o->pov_include_dir, root, sizeof root) == 0 && below(root, path))
+		return 1;
 	for (int i = 0; i < o->nallow; i++)
 		if (normalize(NULL, o->allow_read[i], root, sizeof root) == 0 && below(root, path))
 			return 1;
@@ -96,8 +99,11 @@ static int readable(struct eval *E, const char *path)
 }
 
 /* Finds a file the scene names (#include, image_map): in the directory of
- * the file being read, then each -I directory, then the standard library
- * (an absolute name is looked for as it is). Returns a malloc'd real path,
+ * the file being read, then each -I directory, then the standard library,
+ * then POV-Ray's include directory (an absolute name is looked for as it
+ * is). A library file that includes its own name reads the next file of
+ * that name on the path (as C's #include_next): arvo's glass.inc adds
+ * POV-Ray's. Returns a malloc'd real path,
  * and in *found_dir (if not NULL) the directory, as given, where it was
  * found. `what` names the file kind in errors. A name that would lead
  * outside the roots from every directory searched is refused (exit 65);
@@ -109,12 +115,18 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 	if (name[0] == '\0')
 		eval_fail(E, loc, "%s name is empty", what);
 	dirs[nd++] = E->dir_stack[E->include_depth];
+	char libreal[PATH_MAX] = "", self[PATH_MAX] = "";
 	if (name[0] != '/') {
 		for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
 			dirs[nd++] = E->opt->include_dirs[i];
-		if (E->opt->stdlib_dir)
-			dirs[nd++] = E->opt->stdlib_dir;
+		if (E->opt->stdlib_dir && !realpath(dirs[nd++] = E->opt->stdlib_dir, libreal))
+			libreal[0] = '\0';
+		if (E->opt->pov_include_dir)
+			dirs[nd++] = E->opt->pov_include_dir;
 	}
+	const struct srcfile *from = srcfile_get(loc.file);
+	if (!from || !realpath(from->name, self))
+		self[0] = '\0';
 	int refused = 0, tried = 0;
 	for (int i = 0; i < nd; i++) {
 		char cand[PATH_MAX], real[PATH_MAX];
@@ -126,8 +138,12 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			refused++; /* not even looked at: a scene may not probe outside */
 			continue;
 		}
+		char realdir[PATH_MAX];
 		if (stat(cand, &sb) != 0 || S_ISDIR(sb.st_mode) || !realpath(cand, real))
 			continue;
+		if (self[0] && strcmp(real, self) == 0 && libreal[0] && realpath(dirs[i], realdir) &&
+		    strcmp(realdir, libreal) == 0)
+			continue; /* the library file naming itself: the next one on the path */
 		if (found_dir)
 			*found_dir = name[0] == '/' ? "/" : dirs[i];
 		return mem_strdup(real);

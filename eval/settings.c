@@ -204,7 +204,7 @@ void global_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct global_settings *g = &SC(E)->gs;
 	struct sink sub;
 	switch (n->op) {
-	case TK_ASSUMED_GAMMA: g->assumed_gamma = arg_positive(E, n); return;
+	case TK_ASSUMED_GAMMA: g->assumed_gamma = arg_positive(E, n); g->gamma_given = true; return;
 	case TK_MAX_TRACE_LEVEL: g->max_trace_level = arg_int(E, n, 1, 256); return;
 	case TK_ADC_BAILOUT: g->adc_bailout = arg_float(E, n); return;
 	case TK_AMBIENT_LIGHT: g->ambient_light = arg_colour(E, n); return;

@@ -77,7 +77,7 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct xform X;
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
-		p->xf = xf_then(p->xf, X);
+		p->xf = xform_then(E, p->xf, &X);
 		return;
 	}
 	switch (n->op) {
@@ -212,13 +212,13 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 	struct sink sub;
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
-		t->pigment.xf = xf_then(t->pigment.xf, X);
+		t->pigment.xf = xform_then(E, t->pigment.xf, &X);
 		return;
 	}
 	if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		run_block(E, n, SK_FINISH, &t->finish, &sub);
+		finish_block(E, n, &t->finish);
 	else
 		misplaced(E, s, n);
 }

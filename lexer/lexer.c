@@ -8,6 +8,7 @@
 #include "lexer.h"
 
 #include <ctype.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -169,6 +170,10 @@ static void scan_number(struct lexer *lx, struct token *t)
 	buf[n] = '\0';
 	t->kind = TK_NUMBER;
 	t->num = strtod(buf, NULL);
+	if (!isfinite(t->num)) { /* 1e400: no infinite radius reaches the scene */
+		diag_error(lx->diag, t->loc, "number out of range: %s", buf);
+		t->kind = TK_ERROR;
+	}
 	lx->p = p;
 }
 

@@ -3,6 +3,8 @@
 #ifndef ARVO_TOKEN_H
 #define ARVO_TOKEN_H
 
+#include <stdbool.h>
+
 #include "../common/srcloc.h"
 
 enum tok {
@@ -41,6 +43,8 @@ const char *tok_name(enum tok k);
 /* The bare word of a keyword or directive ("sphere", "declare"), else NULL. */
 const char *tok_word(enum tok k);
 enum kw_shape tok_shape(enum tok k);
+/* Is s one of POV-Ray 3.7's reserved words (povwords.c)? */
+bool tok_is_pov_word(const char *s);
 static inline int tok_is_keyword(enum tok k) { return k > TK_KW_FIRST_ && k < TK_COUNT_; }
 static inline int tok_is_directive(enum tok k) { return k > TK_DIR_FIRST_ && k < TK_KW_FIRST_; }
 

@@ -22,7 +22,8 @@ struct parser {
 	struct arena *arena; /* where nodes go */
 	struct diag *diag;
 	int panic;           /* suppress errors until resynchronised */
-	int depth;           /* recursion depth (blocks + expressions) */
+	int depth;           /* recursion depth (blocks, directives, expressions) */
+	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
 };
 
@@ -35,6 +36,7 @@ static void parse_items(struct parser *p, struct node *list);
 static void advance(struct parser *p)
 {
 	p->prev = p->tok;
+	p->ntok++;
 	lex_next(&p->lx, &p->tok);
 	while (p->tok.kind == TK_ERROR) {
 		p->panic = 1; /* already reported: no cascade of parse errors */
@@ -108,11 +110,15 @@ static int expect(struct parser *p, enum tok k)
 	return 0;
 }
 
-/* Skips to a token an item can start with, then leaves panic mode. */
-static void synchronize(struct parser *p)
+/* Skips to a token an item can start with, then leaves panic mode. `start`
+ * is p->ntok before the item: an item that consumed nothing is skipped, so
+ * every call makes progress and no loop of items can spin in place. */
+static void synchronize(struct parser *p, long start)
 {
 	if (!p->panic)
 		return;
+	if (p->ntok == start && !check(p, TK_EOF))
+		advance(p);
 	while (!check(p, TK_EOF)) {
 		enum tok k = p->tok.kind;
 		if (k == TK_RBRACE || tok_is_directive(k) || (tok_is_keyword(k) && tok_shape(k) == SH_BLOCK))
@@ -129,12 +135,14 @@ static struct node *node(struct parser *p, enum node_kind k, struct srcloc loc)
 	return ast_new(p->arena, k, loc);
 }
 
+/* Counts one level of nesting; false (depth unchanged) past MAX_DEPTH. */
 static int enter(struct parser *p)
 {
-	if (++p->depth > MAX_DEPTH) {
+	if (p->depth >= MAX_DEPTH) {
 		error_at(p, p->tok.loc, "nesting too deep (more than %d levels)", MAX_DEPTH);
 		return 0;
 	}
+	p->depth++;
 	return 1;
 }
 
@@ -283,8 +291,14 @@ static struct node *parse_postfix(struct parser *p, struct node *e)
 	}
 }
 
+static bool colour_component(enum tok k)
+{
+	return k == TK_RED || k == TK_GREEN || k == TK_BLUE || k == TK_FILTER || k == TK_TRANSMIT;
+}
+
 /* primary := number | string | ident [args] | '(' expr ')' | vector
- *          | colour-keyword expr | array */
+ *          | colour-keyword [expr] {('red'|'green'|'blue'|'filter'|'transmit') expr}
+ *          | array */
 static struct node *parse_primary(struct parser *p)
 {
 	struct token t = p->tok;
@@ -318,9 +332,23 @@ static struct node *parse_primary(struct parser *p)
 		n = node(p, N_COLOUR, t.loc);
 		n->op = t.kind;
 		advance(p);
-		if ((t.kind == TK_COLOR || t.kind == TK_COLOUR) && tok_shape(p->tok.kind) == SH_PREFIX)
-			return parse_primary(p); /* "color rgb …" */
-		n->a = parse_expr(p);
+		if ((t.kind == TK_COLOR || t.kind == TK_COLOUR) && tok_shape(p->tok.kind) == SH_PREFIX) {
+			if (!enter(p)) /* "color color … rgb": bounded like any nesting */
+				return n;
+			struct node *r = parse_primary(p); /* "color rgb …" */
+			leave(p);
+			return r;
+		}
+		if (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind))
+			n->a = parse_expr(p); /* "color red 1 …" has none */
+		/* POV-Ray's trailing components: rgb 1 filter 0.5, color red 1 green 0.5 */
+		while (colour_component(p->tok.kind) && !p->panic) {
+			struct node *c = node(p, N_COLOUR, p->tok.loc);
+			c->op = p->tok.kind;
+			advance(p);
+			c->a = parse_expr(p);
+			ast_push(p->arena, n, c);
+		}
 		return n;
 	} else if (t.kind == TK_ARRAY) {
 		return parse_array(p);
@@ -401,10 +429,11 @@ static struct node *parse_block_body(struct parser *p, struct node *blk)
 	if (!enter(p))
 		return blk;
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
+		long start = p->ntok;
 		struct node *it = parse_item(p);
 		if (it)
 			ast_push(p->arena, blk, it);
-		synchronize(p);
+		synchronize(p, start);
 		if (tok_is_directive(p->tok.kind) && (check(p, TK_DIR_END) || check(p, TK_DIR_ELSE) ||
 		    check(p, TK_DIR_ELSEIF) || check(p, TK_DIR_CASE) || check(p, TK_DIR_RANGE)))
 			break;
@@ -437,8 +466,11 @@ static struct node *parse_keyword_item(struct parser *p)
 {
 	struct token t = p->tok;
 	enum kw_shape sh = tok_shape(t.kind);
-	if (sh == SH_PREFIX || sh == SH_VALUE)
-		return parse_expr(p);
+	if (sh == SH_PREFIX || sh == SH_VALUE) {
+		struct node *e = parse_expr(p);
+		accept(p, TK_COMMA); /* checker color A, color B */
+		return e;
+	}
 	advance(p);
 	struct node *n = node(p, N_MOD, t.loc);
 	n->op = t.kind;
@@ -513,21 +545,36 @@ static struct node *parse_declare(struct parser *p, struct token d)
 {
 	struct node *n = node(p, N_DECLARE, d.loc);
 	n->op = d.kind;
-	if (!check(p, TK_IDENT)) {
-		if (tok_is_keyword(p->tok.kind)) {
-			error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
-			advance(p); /* so resynchronising does not restart at it */
+	struct token name = p->tok;
+	bool have_name = false;
+	if (check(p, TK_IDENT) && p->tok.len == 10 && memcmp(p->tok.text, "deprecated", 10) == 0) {
+		advance(p);
+		if (check(p, TK_ONCE) || check(p, TK_STRING)) {
+			/* POV-Ray's #declare deprecated [once] "message" Name = … */
+			accept(p, TK_ONCE);
+			accept(p, TK_STRING);
 		} else {
-			expected(p, "an identifier");
+			have_name = true; /* a variable called deprecated */
 		}
-		return n;
 	}
-	n->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-	n->len = p->tok.len;
-	n->b = node(p, N_IDENT, p->tok.loc); /* where the name is */
+	if (!have_name) {
+		if (!check(p, TK_IDENT)) {
+			if (tok_is_keyword(p->tok.kind)) {
+				error_at(p, p->tok.loc, "%s is a reserved word and cannot be declared", tok_name(p->tok.kind));
+				advance(p); /* so resynchronising does not restart at it */
+			} else {
+				expected(p, "an identifier");
+			}
+			return n;
+		}
+		name = p->tok;
+		advance(p);
+	}
+	n->str = arena_strndup(p->arena, name.text, (size_t)name.len);
+	n->len = name.len;
+	n->b = node(p, N_IDENT, name.loc); /* where the name is */
 	n->b->str = n->str;
 	n->b->len = n->len;
-	advance(p);
 	while (check(p, TK_LBRACKET)) {
 		struct srcloc open = p->tok.loc;
 		advance(p);
@@ -693,10 +740,25 @@ static struct node *parse_macro(struct parser *p, struct token d)
 /* directive := declare | if | ifdef | while | for | switch | macro
  *            | '#undef' ident | '#include' expr | '#version' expr [';']
  *            | ('#debug' | '#warning' | '#error') expr | '#default' block | '#break' */
+static struct node *parse_directive_body(struct parser *p, struct token d);
+
+/* Directives nest under the same guard as blocks: 45,000 nested '#if' are
+ * an error, not a stack overflow (docs/design.md §8). */
 static struct node *parse_directive(struct parser *p)
 {
 	struct token d = p->tok;
+	if (!enter(p)) {
+		advance(p);
+		return NULL;
+	}
 	advance(p);
+	struct node *n = parse_directive_body(p, d);
+	leave(p);
+	return n;
+}
+
+static struct node *parse_directive_body(struct parser *p, struct token d)
+{
 	struct node *n;
 	switch (d.kind) {
 	case TK_DIR_DECLARE: case TK_DIR_LOCAL: return parse_declare(p, d);
@@ -747,6 +809,26 @@ static struct node *parse_directive(struct parser *p)
 	}
 }
 
+/* A word arvo has no keyword for, followed by '{': POV-Ray's old
+ * `default { }` (#default), a `radiosity { }` block (ignored with a
+ * warning: the scene renders without it), or an error naming the word. */
+static struct node *word_block(struct parser *p, struct node *id)
+{
+	if (strcmp(id->str, "default") == 0) {
+		struct node *n = node(p, N_DEFAULT, id->loc);
+		n->op = TK_DIR_DEFAULT;
+		return parse_block_body(p, n);
+	}
+	skip_braces(p);
+	if (strcmp(id->str, "radiosity") == 0)
+		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
+	else if (tok_is_pov_word(id->str))
+		error_at(p, id->loc, "'%s' is not supported", id->str);
+	else
+		error_at(p, id->loc, "unknown keyword '%s' before '{'", id->str);
+	return NULL;
+}
+
 /* item := directive | keyword-item | '[' items ']' | expr [','] */
 static struct node *parse_item(struct parser *p)
 {
@@ -757,17 +839,24 @@ static struct node *parse_item(struct parser *p)
 		return parse_keyword_item(p);
 	if (k == TK_LBRACKET) {
 		struct node *n = node(p, N_ENTRY, p->tok.loc);
+		if (!enter(p)) {
+			advance(p);
+			return NULL;
+		}
 		advance(p);
 		while (!check(p, TK_RBRACKET) && !check(p, TK_EOF) && !p->panic) {
 			struct node *it = parse_item(p);
 			if (it)
 				ast_push(p->arena, n, it);
 		}
+		leave(p);
 		expect_close(p, TK_RBRACKET, TK_LBRACKET, n->loc);
 		return n;
 	}
 	if (starts_expr(p)) {
 		struct node *e = parse_expr(p);
+		if (e && e->kind == N_IDENT && check(p, TK_LBRACE))
+			return word_block(p, e);
 		accept(p, TK_COMMA);
 		return e;
 	}
@@ -787,10 +876,11 @@ static void parse_items(struct parser *p, struct node *list)
 		if (k == TK_EOF || k == TK_RBRACE || k == TK_DIR_END || k == TK_DIR_ELSE ||
 		    k == TK_DIR_ELSEIF || k == TK_DIR_CASE || k == TK_DIR_RANGE)
 			return;
+		long start = p->ntok;
 		struct node *it = parse_item(p);
 		if (it)
 			ast_push(p->arena, list, it);
-		synchronize(p);
+		synchronize(p, start);
 	}
 }
 
@@ -811,7 +901,7 @@ struct node *parse_file(int file, struct diag *diag, struct arena *arena)
 		/* a stray closer at file level */
 		error_at(&p, p.tok.loc, "unexpected %s", found(&p));
 		advance(&p);
-		synchronize(&p);
+		synchronize(&p, p.ntok);
 	}
 	return root;
 }

@@ -1,85 +1,93 @@
 /* SPDX-License-Identifier: MIT */
-/* bvh.c: binned-SAH bounding volume hierarchy with iterative traversal.
+/* bvh.c: the acceleration structure and traversal, on Embree 3
+ * (docs/design.md §5).
  *
- * Nodes live in one array in depth-first order: an inner node's left child
- * follows it, its right child's index is stored. Leaves hold a run of the
- * primitive array. Boxes are padded by a small relative margin so rounding
- * in the slab test can never cull the true nearest hit: the tree returns
- * exactly the hit a brute-force loop over shape_intersect would. */
+ * Every bounded leaf is one primitive of a single Embree user geometry:
+ * Embree builds the hierarchy over float boxes and walks it; the callbacks
+ * run arvo's own double-precision intersectors, so (u,v), partials and the
+ * accuracy of every hit are those of shape.h. Unbounded leaves are tested on
+ * every ray first, as before.
+ *
+ * Float culling must never drop the true nearest hit. Boxes are padded
+ * outward by a margin that covers rounding the ray to float: a ray that
+ * starts outside the scene's box is first moved (in double) to where it
+ * enters it, so its float origin is within the box's magnitude, and the
+ * margin is a few float ulps of that magnitude. The ray's float interval is
+ * rounded outward too. Ties at the same t go to the lower primitive index,
+ * and unbounded leaves win ties with bounded ones, so the hit is the one a
+ * brute-force loop over the leaves in order returns, whatever order Embree
+ * visits them in: images do not depend on the build or the thread count. */
 #include "bvh.h"
 
+#include <embree3/rtcore.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 #include "../common/arena.h"
 
-#define BINS 16      /* SAH bins per split */
-#define MAX_DEPTH 60 /* leaves are forced below this; the stack holds 64 */
-#define LEAF_MAX 4   /* leaves never hold more unless the split fails */
-
-struct bvh_node {
-	struct bbox b; /* padded bounds of everything below */
-	int first;     /* leaf: first primitive; inner: right child's index */
-	int count;     /* leaf: number of primitives; inner: 0 */
-};
-
 struct bvh {
-	struct bvh_node *nodes;        /* depth-first; nodes[0] is the root */
-	int nnodes;                    /* used entries of nodes */
-	const struct object **prims;   /* bounded leaves, in tree order */
+	RTCScene scene;                /* NULL when nothing is bounded */
+	const struct object **prims;   /* bounded leaves, in collection order */
 	int nprims;                    /* entries of prims */
+	struct bbox *boxes;            /* their world bounds (build only) */
 	const struct object **unbound; /* unbounded leaves, tested always */
 	int nunbound;                  /* entries of unbound */
+	struct bbox bounds;            /* world bounds of the bounded leaves */
+	double pad;                    /* float safety margin of every box */
 };
 
-/* One primitive while building. */
-struct item {
-	const struct object *o; /* the leaf object */
-	struct bbox b;          /* its padded world bounds */
-	struct vec3 c;          /* centre of b */
+/* One query: Embree's context first, so the callbacks can reach the rest. */
+struct query {
+	struct RTCIntersectContext rc;
+	const struct bvh *b;
+	const struct ray *r;   /* the ray in double */
+	double tmin, tmax;     /* open interval; tmax shrinks to the best hit */
+	double t0;             /* where the float ray starts along r */
+	unsigned skip;         /* leaves with these flags are ignored */
+	struct hit *h;         /* best hit so far */
+	int best;              /* its primitive index, -1: an unbounded leaf */
+	bool found;
 };
 
-/* Growable arrays used during the build. */
-struct builder {
-	struct item *items;    /* bounded leaves */
-	int nitems, capitems;  /* count and capacity of items */
-	struct bvh *t;         /* the tree being filled */
-	int capnodes;          /* capacity of t->nodes */
-};
+/* ==== the device ========================================================= */
+
+static RTCDevice device;
+static pthread_once_t device_once = PTHREAD_ONCE_INIT;
+
+static void make_device(void)
+{
+	device = rtcNewDevice("verbose=0");
+}
 
 /* ==== collecting leaves ================================================== */
 
-static double box_area(struct bbox b)
-{
-	struct vec3 e = v_sub(b.hi, b.lo);
-	if (e.x < 0 || e.y < 0 || e.z < 0)
-		return 0;
-	return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
+struct builder {
+	struct bvh *t;
+	int cap, capu;
+};
 
-/* b grown by a margin relative to its size and distance from the origin. */
-static struct bbox pad(struct bbox b)
+static void add_leaf(struct builder *B, const struct object *o, struct bbox b)
 {
-	struct vec3 m = v_max(v_max(v_neg(b.lo), b.hi), v_sub(b.hi, b.lo));
-	double e = 1e-9 * fmax(fmax(m.x, m.y), m.z) + 1e-300;
-	return (struct bbox){v_sub(b.lo, v3(e, e, e)), v_add(b.hi, v3(e, e, e))};
+	struct bvh *t = B->t;
+	if (t->nprims == B->cap) {
+		B->cap = B->cap ? 2 * B->cap : 64;
+		t->prims = mem_realloc(t->prims, sizeof *t->prims * (size_t)B->cap);
+		t->boxes = mem_realloc(t->boxes, sizeof *t->boxes * (size_t)B->cap);
+	}
+	t->prims[t->nprims] = o;
+	t->boxes[t->nprims++] = b;
+	t->bounds = bbox_union(t->bounds, b);
 }
 
 static void add_unbound(struct builder *B, const struct object *o)
 {
 	struct bvh *t = B->t;
-	t->unbound = mem_realloc(t->unbound, sizeof *t->unbound * (size_t)(t->nunbound + 1));
-	t->unbound[t->nunbound++] = o;
-}
-
-static void add_item(struct builder *B, const struct object *o, struct bbox b)
-{
-	if (B->nitems == B->capitems) {
-		B->capitems = B->capitems ? 2 * B->capitems : 64;
-		B->items = mem_realloc(B->items, sizeof *B->items * (size_t)B->capitems);
+	if (t->nunbound == B->capu) {
+		B->capu = B->capu ? 2 * B->capu : 8;
+		t->unbound = mem_realloc(t->unbound, sizeof *t->unbound * (size_t)B->capu);
 	}
-	b = pad(b);
-	B->items[B->nitems++] = (struct item){o, b, v_scale(v_add(b.lo, b.hi), 0.5)};
+	t->unbound[t->nunbound++] = o;
 }
 
 /* Adds o, descending into unions that are not inverted. */
@@ -96,131 +104,93 @@ static void collect(struct builder *B, const struct object *o)
 	if (!shape_bounded(o))
 		add_unbound(B, o);
 	else
-		add_item(B, o, b);
+		add_leaf(B, o, b);
+}
+
+/* ==== callbacks ========================================================== */
+
+static float down(double x) { float f = (float)x; return (double)f > x ? nextafterf(f, -INFINITY) : f; }
+static float up(double x) { float f = (float)x; return (double)f < x ? nextafterf(f, INFINITY) : f; }
+
+static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
+{
+	const struct bvh *t = a->geometryUserPtr;
+	struct bbox b = t->boxes[a->primID];
+	double p = t->pad;
+	*a->bounds_o = (struct RTCBounds){down(b.lo.x - p), down(b.lo.y - p), down(b.lo.z - p), 0,
+	                                  up(b.hi.x + p), up(b.hi.y + p), up(b.hi.z + p), 0};
+}
+
+static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
+{
+	if (!a->valid[0])
+		return;
+	struct query *q = (struct query *)a->context;
+	int id = (int)a->primID;
+	const struct object *o = q->b->prims[id];
+	if (o->flags & q->skip)
+		return;
+	/* a tie with the best so far is looked at: the lower index wins */
+	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax;
+	struct hit tmp;
+	if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
+		return;
+	*q->h = tmp;
+	q->tmax = tmp.t;
+	q->best = id;
+	q->found = true;
+	struct RTCRayHit *rh = (struct RTCRayHit *)a->rayhit;
+	rh->ray.tfar = up((tmp.t - q->t0) * (1 + 1e-6));
+	rh->hit.geomID = a->geomID;
+	rh->hit.primID = a->primID;
+}
+
+static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
+{
+	if (!a->valid[0])
+		return;
+	struct query *q = (struct query *)a->context;
+	const struct object *o = q->b->prims[a->primID];
+	if (o->flags & q->skip)
+		return;
+	if (shape_occluded(o, q->r, q->tmin, q->tmax))
+		((struct RTCRay *)a->ray)->tfar = -INFINITY;
 }
 
 /* ==== building =========================================================== */
 
-static int new_node(struct builder *B)
-{
-	struct bvh *t = B->t;
-	if (t->nnodes == B->capnodes) {
-		B->capnodes = B->capnodes ? 2 * B->capnodes : 64;
-		t->nodes = mem_realloc(t->nodes, sizeof *t->nodes * (size_t)B->capnodes);
-	}
-	return t->nnodes++;
-}
-
-/* The SAH split of items[lo,hi) along axis over centroid range [c0,c1]:
- * returns the best bin boundary (1..BINS-1) and its cost in *cost. */
-static int best_bin(const struct builder *B, int lo, int hi, int axis, double c0, double c1,
-                    double *cost)
-{
-	struct bbox bb[BINS];
-	int cnt[BINS] = {0};
-	double scale = BINS / (c1 - c0), right_area[BINS];
-	int right_cnt[BINS];
-	for (int i = 0; i < BINS; i++)
-		bb[i] = bbox_empty();
-	for (int i = lo; i < hi; i++) {
-		int k = (int)((v_comp(B->items[i].c, axis) - c0) * scale);
-		k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
-		cnt[k]++;
-		bb[k] = bbox_union(bb[k], B->items[i].b);
-	}
-	struct bbox acc = bbox_empty();
-	int n = 0;
-	for (int k = BINS - 1; k > 0; k--) {
-		acc = bbox_union(acc, bb[k]);
-		n += cnt[k];
-		right_area[k] = box_area(acc);
-		right_cnt[k] = n;
-	}
-	acc = bbox_empty();
-	n = 0;
-	int best = -1;
-	for (int k = 1; k < BINS; k++) {
-		acc = bbox_union(acc, bb[k - 1]);
-		n += cnt[k - 1];
-		double c = n * box_area(acc) + right_cnt[k] * right_area[k];
-		if (n > 0 && right_cnt[k] > 0 && (best < 0 || c < *cost))
-			best = k, *cost = c;
-	}
-	return best;
-}
-
-/* Moves items whose centroid bin is below `bin` to the front; returns the split. */
-static int partition(struct builder *B, int lo, int hi, int axis, double c0, double c1, int bin)
-{
-	double scale = BINS / (c1 - c0);
-	int i = lo, j = hi - 1;
-	while (i <= j) {
-		int k = (int)((v_comp(B->items[i].c, axis) - c0) * scale);
-		k = k < 0 ? 0 : k >= BINS ? BINS - 1 : k;
-		if (k < bin) {
-			i++;
-		} else {
-			struct item tmp = B->items[i];
-			B->items[i] = B->items[j];
-			B->items[j--] = tmp;
-		}
-	}
-	return i;
-}
-
-/* Makes node ni a leaf over items[lo,hi). */
-static void make_leaf(struct builder *B, int ni, int lo, int hi)
-{
-	B->t->nodes[ni].first = lo;
-	B->t->nodes[ni].count = hi - lo;
-}
-
-/* Builds the subtree over items[lo,hi); returns its node index. */
-static int build(struct builder *B, int lo, int hi, int depth)
-{
-	int ni = new_node(B);
-	struct bbox b = bbox_empty(), cb = bbox_empty();
-	for (int i = lo; i < hi; i++) {
-		b = bbox_union(b, B->items[i].b);
-		cb = bbox_add(cb, B->items[i].c);
-	}
-	B->t->nodes[ni].b = b;
-	struct vec3 e = v_sub(cb.hi, cb.lo);
-	int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
-	double c0 = v_comp(cb.lo, axis), c1 = v_comp(cb.hi, axis), cost = 0;
-	if (hi - lo <= 1 || depth >= MAX_DEPTH || !(c1 > c0)) {
-		make_leaf(B, ni, lo, hi);
-		return ni;
-	}
-	int bin = best_bin(B, lo, hi, axis, c0, c1, &cost);
-	/* leaf cost n·A against 1/8 traversal + the split's cost (both per A) */
-	if (bin < 0 || (hi - lo <= LEAF_MAX && cost >= (hi - lo - 0.125) * box_area(b))) {
-		make_leaf(B, ni, lo, hi);
-		return ni;
-	}
-	int mid = partition(B, lo, hi, axis, c0, c1, bin);
-	if (mid == lo || mid == hi)
-		mid = (lo + hi) / 2;
-	build(B, lo, mid, depth + 1);
-	int right = build(B, mid, hi, depth + 1);
-	B->t->nodes[ni].first = right;
-	B->t->nodes[ni].count = 0;
-	return ni;
-}
-
 struct bvh *bvh_build(struct object **objs, int n)
 {
 	struct bvh *t = mem_calloc(1, sizeof *t);
-	struct builder B = {NULL, 0, 0, t, 0};
+	struct builder B = {t, 0, 0};
+	t->bounds = bbox_empty();
 	for (int i = 0; i < n; i++)
 		collect(&B, objs[i]);
-	if (B.nitems > 0)
-		build(&B, 0, B.nitems, 0);
-	t->prims = mem_alloc(sizeof *t->prims * (size_t)(B.nitems ? B.nitems : 1));
-	for (int i = 0; i < B.nitems; i++)
-		t->prims[i] = B.items[i].o;
-	t->nprims = B.nitems;
-	free(B.items);
+	if (t->nprims == 0)
+		return t;
+	/* rounding a ray that starts inside (or on) the box to float moves it
+	 * by a few ulps of the box's magnitude and diagonal */
+	struct vec3 m = v_max(v_neg(t->bounds.lo), t->bounds.hi);
+	double mag = fmax(fmax(m.x, m.y), m.z) + v_len(v_sub(t->bounds.hi, t->bounds.lo));
+	t->pad = ldexp(mag, -18) + 1e-30;
+	pthread_once(&device_once, make_device);
+	if (!device)
+		return t; /* no Embree: every leaf is tested (see traverse) */
+	t->scene = rtcNewScene(device);
+	rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_ROBUST);
+	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
+	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+	rtcSetGeometryUserPrimitiveCount(g, (unsigned)t->nprims);
+	rtcSetGeometryUserData(g, t);
+	rtcSetGeometryBoundsFunction(g, bounds_cb, t);
+	rtcSetGeometryIntersectFunction(g, intersect_cb);
+	rtcSetGeometryOccludedFunction(g, occluded_cb);
+	rtcCommitGeometry(g);
+	rtcAttachGeometry(t->scene, g);
+	rtcReleaseGeometry(g);
+	rtcCommitScene(t->scene);
+	free(t->boxes);
+	t->boxes = NULL;
 	return t;
 }
 
@@ -228,8 +198,10 @@ void bvh_free(struct bvh *b)
 {
 	if (!b)
 		return;
-	free(b->nodes);
+	if (b->scene)
+		rtcReleaseScene(b->scene);
 	free(b->prims);
+	free(b->boxes);
 	free(b->unbound);
 	free(b);
 }
@@ -243,26 +215,23 @@ int bvh_count(const struct bvh *b, int *unbounded)
 
 struct bbox bvh_bounds(const struct bvh *b)
 {
-	return b->nnodes > 0 ? b->nodes[0].b : bbox_empty();
+	return b->bounds;
 }
 
 /* ==== traversal ========================================================== */
 
-/* Slab test of box b against the ray (inv = 1/d) over [tmin,tmax]; the entry
- * distance goes to *t. NaN from 0·∞ leaves the bound unchanged. */
-static bool box_hit(const struct bbox *b, struct vec3 o, struct vec3 inv, double tmin,
-                    double tmax, double *t)
+/* Where r enters box b over (tmin, tmax): false when it misses. */
+static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
 {
 	for (int k = 0; k < 3; k++) {
-		double oi = v_comp(o, k), iv = v_comp(inv, k);
-		double t0 = (v_comp(b->lo, k) - oi) * iv, t1 = (v_comp(b->hi, k) - oi) * iv;
+		double o = v_comp(r->o, k), d = v_comp(r->d, k);
+		double t0 = (v_comp(b.lo, k) - o) / d, t1 = (v_comp(b.hi, k) - o) / d;
 		if (t0 > t1) {
 			double s = t0;
 			t0 = t1;
 			t1 = s;
 		}
-		t1 *= 1 + 1e-12;
-		if (t0 > tmin)
+		if (t0 > tmin) /* NaN (0/0) leaves the bound as it is */
 			tmin = t0;
 		if (t1 < tmax)
 			tmax = t1;
@@ -273,61 +242,74 @@ static bool box_hit(const struct bbox *b, struct vec3 o, struct vec3 inv, double
 	return true;
 }
 
-/* The walk shared by both queries: with any set, stops at the first hit. */
+/* The bounded leaves through Embree; q holds the interval and the result. */
+static void walk(struct query *q, bool any)
+{
+	const struct bvh *b = q->b;
+	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
+	                  v_add(b->bounds.hi, v3(b->pad, b->pad, b->pad))};
+	double te;
+	if (!enter(bx, q->r, -INFINITY, INFINITY, &te) || !(te < q->tmax))
+		return;
+	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
+	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
+	struct RTCRayHit rh;
+	rh.ray.org_x = (float)o.x, rh.ray.org_y = (float)o.y, rh.ray.org_z = (float)o.z;
+	rh.ray.dir_x = (float)q->r->d.x, rh.ray.dir_y = (float)q->r->d.y, rh.ray.dir_z = (float)q->r->d.z;
+	double lo = q->tmin - q->t0;
+	rh.ray.tnear = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
+	rh.ray.tfar = isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6));
+	rh.ray.time = 0;
+	rh.ray.mask = ~0u;
+	rh.ray.id = 0;
+	rh.ray.flags = 0;
+	rtcInitIntersectContext(&q->rc);
+	if (any) {
+		rtcOccluded1(b->scene, &q->rc, &rh.ray);
+		q->found = rh.ray.tfar < 0;
+	} else {
+		rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+		rtcIntersect1(b->scene, &q->rc, &rh);
+	}
+}
+
+/* Without a device (Embree failed to start): every bounded leaf in order. */
+static void brute(struct query *q, bool any)
+{
+	struct hit tmp;
+	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
+		const struct object *o = q->b->prims[i];
+		if (o->flags & q->skip)
+			continue;
+		if (any)
+			q->found = shape_occluded(o, q->r, q->tmin, q->tmax);
+		else if (shape_intersect(o, q->r, q->tmin, q->tmax, &tmp))
+			*q->h = tmp, q->tmax = tmp.t, q->best = i, q->found = true;
+	}
+}
+
+/* The query shared by both kinds: with any set, stops at the first hit. */
 static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                      unsigned skip, bool any, struct hit *h)
 {
-	bool found = false;
+	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip, .h = h, .best = -1};
 	struct hit tmp;
 	for (int i = 0; i < b->nunbound; i++) {
-		if (b->unbound[i]->flags & skip)
+		const struct object *o = b->unbound[i];
+		if (o->flags & skip)
 			continue;
-		if (any && shape_occluded(b->unbound[i], r, tmin, tmax))
+		if (any && shape_occluded(o, r, tmin, tmax))
 			return true;
-		if (!any && shape_intersect(b->unbound[i], r, tmin, tmax, &tmp))
-			*h = tmp, tmax = tmp.t, found = true;
+		if (!any && shape_intersect(o, r, q.tmin, q.tmax, &tmp))
+			*h = tmp, q.tmax = tmp.t, q.found = true;
 	}
-	if (b->nnodes == 0)
-		return found;
-	struct vec3 inv = v3(1 / r->d.x, 1 / r->d.y, 1 / r->d.z);
-	struct { int n; double t; } stack[64];
-	int sp = 0;
-	double te;
-	if (!box_hit(&b->nodes[0].b, r->o, inv, tmin, tmax, &te))
-		return found;
-	stack[sp].n = 0, stack[sp++].t = te;
-	while (sp > 0) {
-		sp--;
-		if (stack[sp].t > tmax)
-			continue;
-		const struct bvh_node *nd = &b->nodes[stack[sp].n];
-		if (nd->count > 0) {
-			for (int i = nd->first; i < nd->first + nd->count; i++) {
-				const struct object *o = b->prims[i];
-				if (o->flags & skip)
-					continue;
-				if (any && shape_occluded(o, r, tmin, tmax))
-					return true;
-				if (!any && shape_intersect(o, r, tmin, tmax, &tmp))
-					*h = tmp, tmax = tmp.t, found = true;
-			}
-			continue;
-		}
-		int l = (int)(nd - b->nodes) + 1, rt = nd->first;
-		double tl, tr;
-		bool hl = box_hit(&b->nodes[l].b, r->o, inv, tmin, tmax, &tl);
-		bool hr = box_hit(&b->nodes[rt].b, r->o, inv, tmin, tmax, &tr);
-		if (hl && hr && tr < tl) { /* push the far one first */
-			stack[sp].n = l, stack[sp++].t = tl;
-			stack[sp].n = rt, stack[sp++].t = tr;
-		} else {
-			if (hr)
-				stack[sp].n = rt, stack[sp++].t = tr;
-			if (hl)
-				stack[sp].n = l, stack[sp++].t = tl;
-		}
-	}
-	return found;
+	if (b->nprims == 0)
+		return q.found;
+	if (b->scene)
+		walk(&q, any);
+	else
+		brute(&q, any);
+	return q.found;
 }
 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,

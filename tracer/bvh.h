@@ -4,9 +4,9 @@
  * Top-level unions (not inverted) are flattened into their children, which
  * can be traced independently; intersection, difference, merge and inverted
  * unions stay whole as leaves. Unbounded objects (planes, CSG containing
- * them, inverted primitives) are kept apart and tested on every ray. The
- * hierarchy is built with the binned surface area heuristic and traversed
- * iteratively, nearest child first. */
+ * them, inverted primitives) are kept apart and tested on every ray. Embree 3
+ * builds and walks the hierarchy (bvh.c); the hit is exactly the one a loop
+ * over every leaf in order would return. Queries are thread-safe. */
 #ifndef ARVO_BVH_H
 #define ARVO_BVH_H
 

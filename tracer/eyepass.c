@@ -172,7 +172,7 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
                               struct vec3 q, double w, bool test, struct vec3 *E)
 {
 	const struct scene *s = pa->ctx->scene;
-	const struct finish *f = &sf->tex->finish;
+	const struct finish *f = sf->tex->finish;
 	struct vec3 L;
 	double dist = towards(l, sf->h->p, q, &L), c = v_dot(sf->nf, L);
 	if (c <= 0)
@@ -271,7 +271,7 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
-	struct surf_in si = {sf->h, &sf->tex->finish, sf->pc, in, d, sf->nf,
+	struct surf_in si = {sf->h, sf->tex->finish, sf->pc, in, d, sf->nf,
 	                     pa->ctx->scene->legacy_lights, false};
 	struct surf_out so;
 	surf_scatter(&si, pa->band, &so);
@@ -307,7 +307,7 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	if (v_dot(sf.nf, sf.v) < 0)
 		sf.nf = v_neg(sf.nf);
 	sf.opacity = fmin(1, fmax(0, 1 - sf.pc.f - sf.pc.t));
-	const struct finish *f = &sf.tex->finish;
+	const struct finish *f = sf.tex->finish;
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0);
 	struct vec3 out = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
 	                                  col3(f->emission)));

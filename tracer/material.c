@@ -180,7 +180,7 @@ struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, s
 {
 	if (pg->kind == PIG_SOLID)
 		return pg->c[0];
-	struct vec3 q = xf_inv_point(&pg->xf, p);
+	struct vec3 q = xf_inv_point(pg->xf ? pg->xf : &xf_ident, p);
 	switch (pg->kind) {
 	case PIG_CHECKER: return checker(pg, q);
 	case PIG_GRADIENT: return gradient(pg, q);

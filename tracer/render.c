@@ -128,6 +128,9 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 {
 	if (s->nlights == 0 || o->rays < 0)
 		return 0;
+	/* POV-Ray casts no caustics unless the scene asks for photons */
+	if (s->legacy_lights && !s->gs.illum.given && o->rays == 0)
+		return 0;
 	struct lp_opts lo = {
 		/* --rays, else illumination { rays }, else POV-Ray's photons { count }, else 1e6 */
 		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays

@@ -21,19 +21,20 @@ void scene_init(struct scene *s)
 	s->gs.illum.passes = PASSES_RGB;
 }
 
+/* POV-Ray's default finish, which every texture without a finish shares. */
+static const struct finish default_finish = {
+	.ambient = {0.1, 0.1, 0.1, 0, 0}, .diffuse = 0.6, .brilliance = 1, .roughness = 0.05,
+	.phong_size = 40, .refl_falloff = 1,
+};
+
 struct texture scene_default_texture(void)
 {
 	struct texture t;
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
-	t.pigment.xf = xf_identity();
+	t.pigment.xf = NULL;
 	t.pigment.axis = v3(0, 1, 0);
-	t.finish.ambient = c_rgb(0.1, 0.1, 0.1);
-	t.finish.diffuse = 0.6;
-	t.finish.brilliance = 1;
-	t.finish.roughness = 0.05;
-	t.finish.phong_size = 40;
-	t.finish.refl_falloff = 1;
+	t.finish = &default_finish;
 	t.loc = (struct srcloc){-1, 0, 0};
 	return t;
 }
@@ -98,6 +99,14 @@ void scene_add_light(struct scene *s, const struct light *l)
 
 void scene_free(struct scene *s) { arena_free(&s->arena); }
 
+const char *scene_pov_view(const struct scene *s)
+{
+	if (!s->legacy_lights)
+		return NULL;
+	bool srgb = s->gs.gamma_given ? s->gs.assumed_gamma < 1.6 : s->version >= 3.7;
+	return srgb ? "Standard" : "Raw";
+}
+
 /* ==== --dump-scene ======================================================== */
 
 static const char *const kind_names[OBJ_KIND_COUNT] = {
@@ -146,7 +155,7 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 		pc(o, p->map[i].c);
 		fputs("]\n", o);
 	}
-	dump_xform(o, &p->xf, d + 1);
+	dump_xform(o, p->xf ? p->xf : &xf_ident, d + 1);
 }
 
 static void dump_finish(FILE *o, const struct finish *f, int d)
@@ -184,7 +193,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 	indent(o, d);
 	fprintf(o, "object %s @%d:%d\n", kind_names[ob->kind], ob->loc.line, ob->loc.col);
 	dump_geometry(o, ob, d + 1);
-	dump_xform(o, &ob->xf, d + 1);
+	dump_xform(o, obj_xf(ob), d + 1);
 	if (ob->flags) {
 		indent(o, d + 1);
 		fputs("flags", o);
@@ -197,7 +206,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		indent(o, d + 1);
 		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
-		dump_finish(o, &ob->tex->finish, d + 2);
+		dump_finish(o, ob->tex->finish, d + 2);
 	}
 	if (ob->interior) {
 		const struct interior *in = ob->interior;

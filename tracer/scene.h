@@ -39,7 +39,7 @@ struct pigment {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
-	struct xform xf;          /* pattern space → world */
+	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
 
 struct finish {
@@ -71,7 +71,7 @@ struct interior {
 
 struct texture {
 	struct pigment pigment;
-	struct finish finish;
+	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
 };
 
@@ -127,7 +127,7 @@ struct object {
 		struct { struct vec3 p[3]; } triangle;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
-	struct xform xf;             /* object frame → world */
+	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
 	unsigned flags;              /* enum object_flags */
@@ -135,6 +135,12 @@ struct object {
 	struct photon_spec photons;  /* photons { } */
 	bool has_photons;            /* a photons { } block was given */
 };
+
+/* The object's frame → world transform (the identity when it has none). */
+static inline const struct xform *obj_xf(const struct object *o)
+{
+	return o->xf ? o->xf : &xf_ident;
+}
 
 /* ---- lights and camera -------------------------------------------------- */
 
@@ -193,6 +199,7 @@ struct illum_settings {
 
 struct global_settings {
 	double assumed_gamma;      /* parsed, recorded (output is linear) */
+	bool gamma_given;          /* the scene set assumed_gamma */
 	int max_trace_level;       /* default 5 */
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
@@ -226,6 +233,11 @@ void scene_add_light(struct scene *s, const struct light *l);
 /* Stable text for golden tests (--dump-scene). */
 void scene_dump(FILE *out, const struct scene *s);
 const char *scene_object_kind_name(enum object_kind k);
+/* The OCIO view whose PNG matches POV-Ray's own for a #version 3.x scene
+ * (docs/design.md §6): "Standard" (sRGB) for assumed_gamma 1, "Raw" for
+ * POV-Ray's un-corrected output (assumed_gamma 2.2, or none before 3.7);
+ * NULL for arvo's own scenes. */
+const char *scene_pov_view(const struct scene *s);
 void scene_free(struct scene *s);
 
 #endif

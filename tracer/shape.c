@@ -23,23 +23,23 @@ static const struct prim_ops *ops(const struct object *o)
 /* The world ray expressed in the object's frame (same t). */
 static struct ray local_ray(const struct object *o, const struct ray *r)
 {
-	return (struct ray){xf_inv_point(&o->xf, r->o), xf_inv_vector(&o->xf, r->d)};
+	return (struct ray){xf_inv_point(obj_xf(o), r->o), xf_inv_vector(obj_xf(o), r->d)};
 }
 
 /* Fills a world hit from a local one. */
 static void to_world(const struct object *o, const struct ray *r, const struct local_hit *lh,
                      struct hit *h)
 {
-	struct vec3 n = v_norm(xf_normal(&o->xf, lh->n));
+	struct vec3 n = v_norm(xf_normal(obj_xf(o), lh->n));
 	if (o->flags & OF_INVERSE)
 		n = v_neg(n);
 	h->t = lh->t;
-	h->p = xf_point(&o->xf, lh->p);
+	h->p = xf_point(obj_xf(o), lh->p);
 	h->n = n;
 	h->u = lh->u;
 	h->v = lh->v;
-	h->dpdu = xf_vector(&o->xf, lh->dpdu);
-	h->dpdv = xf_vector(&o->xf, lh->dpdv);
+	h->dpdu = xf_vector(obj_xf(o), lh->dpdu);
+	h->dpdv = xf_vector(obj_xf(o), lh->dpdv);
 	h->obj = o;
 	h->entering = v_dot(r->d, n) < 0;
 }
@@ -74,7 +74,7 @@ bool shape_inside(const struct object *o, struct vec3 world_p)
 	const struct prim_ops *p = ops(o);
 	if (!p)
 		return csg_is_csg(o) && csg_inside(o, world_p);
-	bool in = p->inside(o, xf_inv_point(&o->xf, world_p));
+	bool in = p->inside(o, xf_inv_point(obj_xf(o), world_p));
 	return (o->flags & OF_INVERSE) ? !in : in;
 }
 
@@ -86,7 +86,7 @@ struct bbox shape_bounds(const struct object *o)
 	if (!p)
 		return csg_is_csg(o) ? csg_bounds(o) : bbox_empty();
 	struct bbox b = p->bounds(o);
-	return bbox_finite(b) ? xf_bbox(&o->xf, b) : prim_infinite_box();
+	return bbox_finite(b) ? xf_bbox(obj_xf(o), b) : prim_infinite_box();
 }
 
 struct bbox shape_solid_bounds(const struct object *o)
@@ -119,11 +119,11 @@ bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
 	if (!ps || !ps->uv_point(o, u, v, &lp, &lu, &lv))
 		return false;
 	if (p)
-		*p = xf_point(&o->xf, lp);
+		*p = xf_point(obj_xf(o), lp);
 	if (dpdu)
-		*dpdu = xf_vector(&o->xf, lu);
+		*dpdu = xf_vector(obj_xf(o), lu);
 	if (dpdv)
-		*dpdv = xf_vector(&o->xf, lv);
+		*dpdv = xf_vector(obj_xf(o), lv);
 	return true;
 }
 
@@ -158,7 +158,7 @@ double shape_area(const struct object *o)
 
 bool shape_similarity(const struct object *o, double *area_scale)
 {
-	const double(*m)[4] = o->xf.m;
+	const double(*m)[4] = obj_xf(o)->m;
 	double g[3][3];
 	for (int i = 0; i < 3; i++)
 		for (int j = 0; j < 3; j++)
@@ -183,7 +183,7 @@ double shape_planar_scale(const struct object *o, struct vec3 n)
 {
 	struct vec3 t1, t2;
 	shape_basis(v_norm(n), &t1, &t2);
-	return v_len(v_cross(xf_vector(&o->xf, t1), xf_vector(&o->xf, t2)));
+	return v_len(v_cross(xf_vector(obj_xf(o), t1), xf_vector(obj_xf(o), t2)));
 }
 
 /* Gauss–Legendre nodes and weights on [-1,1], 5 and 7 points. */

@@ -62,7 +62,7 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 {
 	const struct texture *t = mat_texture(h->obj);
 	si->h = h;
-	si->f = &t->finish;
+	si->f = t->finish;
 	si->pc = mat_pigment(mc, &t->pigment, h->p);
 	si->in = mat_interior(h->obj);
 	si->d = d;

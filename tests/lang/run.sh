@@ -22,6 +22,8 @@ set -u
 cd "$(dirname "$0")/../.." || exit 2
 ARVO=${ARVO:-$PWD/arvo}
 TIMEOUT=${TIMEOUT:-10}
+# the cases do not depend on whether POV-Ray's include files are installed
+export ARVO_POVRAY_INCLUDE=
 [ $# -gt 0 ] || set -- tests/lang
 dirs=$*
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-lang.XXXXXX") || exit 2

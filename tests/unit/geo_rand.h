@@ -36,13 +36,24 @@ static inline struct vec3 rnd_dir(void)
 	return v3(s * cos(phi), s * sin(phi), z);
 }
 
+/* A transform kept where an object can point at it: a ring of slots, enough
+ * for every object a test holds at once. */
+static inline const struct xform *xf_keep(struct xform x)
+{
+	static struct xform ring[1 << 14];
+	static unsigned next;
+	struct xform *k = &ring[next++ & ((1u << 14) - 1)];
+	*k = x;
+	return k;
+}
+
 /* A fresh object of kind k with the identity transform. */
 static inline struct object mk_obj(enum object_kind k)
 {
 	struct object o;
 	memset(&o, 0, sizeof o);
 	o.kind = k;
-	o.xf = xf_identity();
+	o.xf = NULL;
 	return o;
 }
 

@@ -32,7 +32,7 @@ static struct object scatter(int i)
 		o.g.sphere.r = rndr(0.2, 3);
 	} else if (i % 3 == 1) {
 		o = rnd_prim(OBJ_BOX, false);
-		o.xf = xf_then(rnd_xform(false, true), xf_translate(rnd_vec(-50, 50)));
+		o.xf = xf_keep(xf_then(rnd_xform(false, true), xf_translate(rnd_vec(-50, 50))));
 	} else {
 		o = mk_obj(OBJ_TRIANGLE);
 		struct vec3 c = rnd_vec(-50, 50);

@@ -94,8 +94,8 @@ static void t_difference_is_intersection_with_inverse(void)
 	int bad = 0, hits = 0;
 	for (int i = 0; i < 2000; i++) {
 		struct object a = rnd_prim(OBJ_BOX, false), b = rnd_prim(OBJ_SPHERE, false);
-		a.xf = rnd_xform(false, true);
-		b.xf = rnd_xform(true, false);
+		a.xf = xf_keep(rnd_xform(false, true));
+		b.xf = xf_keep(rnd_xform(true, false));
 		struct object bi = b;
 		bi.flags |= OF_INVERSE;
 		struct object *k1[] = {&a, &b}, *k2[] = {&a, &bi};
@@ -205,7 +205,7 @@ static void t_random_consistency(void)
 		int n = 2 + (int)(rnd() * 3);
 		for (int j = 0; j < n; j++) {
 			p[j] = rnd_prim(solid_kinds[(int)(rnd() * 5)], false);
-			p[j].xf = rnd_xform(false, true);
+			p[j].xf = xf_keep(rnd_xform(false, true));
 			if (rnd() < 0.15)
 				p[j].flags |= OF_INVERSE;
 			k[j] = &p[j];

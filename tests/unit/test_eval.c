@@ -81,7 +81,7 @@ static void t_transforms_and_camera(void)
 	CHECK(run("sphere { 0, 1 translate x rotate y*90 scale 2 }\n"
 	          "camera { location <0,0,-5> look_at 0 angle 90 }\n") == 0);
 	CHECK(sc.nobjects == 1);
-	struct vec3 p = xf_point(&sc.objects[0]->xf, v3(0, 0, 0));
+	struct vec3 p = xf_point(obj_xf(sc.objects[0]), v3(0, 0, 0));
 	/* translate x, rotate 90° about y takes x to -z, scale 2 */
 	CHECK_NEAR(p.x, 0, 1e-12);
 	CHECK_NEAR(p.z, -2, 1e-12);

@@ -240,7 +240,7 @@ static void t_uniform(void)
 	}
 	/* an ellipsoid (non-uniform scale): node areas by cubature, with cell */
 	struct object o = prim(OBJ_SPHERE);
-	o.xf = xf_scale(v3(1, 2, 0.7));
+	o.xf = xf_keep(xf_scale(v3(1, 2, 0.7)));
 	struct illum_map *m = map_cell(&o, 0.6);
 	long nu, nv;
 	illum_grid(m, &nu, &nv, NULL, NULL);

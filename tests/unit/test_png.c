@@ -80,7 +80,7 @@ static int read_png8(const char *path, unsigned char *buf, int w, int h)
 static void check_png(const char *view, const int want[NPIX][3], int tol)
 {
 	struct framebuffer *fb = make_fb();
-	struct out_png_opts o = {NULL, NULL, view, NULL};
+	struct out_png_opts o = {NULL, NULL, view, NULL, NULL};
 	const char *path = in_dir("v.png");
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err == NULL);
@@ -114,7 +114,7 @@ static void t_odd_inputs(void)
 	float *r = fb_plane(fb, "R");
 	r[0] = NAN, r[1] = 0.5f;
 	unsigned char enc[6];
-	struct out_png_opts o = {NULL, NULL, "Raw", NULL};
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL};
 	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
 	CHECK(enc[0] == 0 && enc[3] == 128 && enc[4] == 0 && enc[5] == 0);
 	struct framebuffer *nob = fb_new(2, 1);
@@ -134,7 +134,7 @@ static void t_failures(void)
 		fputs("old", f);
 		fclose(f);
 	}
-	struct out_png_opts o = {NULL, NULL, "Filmic", NULL};
+	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL};
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err && strstr(err, "Filmic") && strstr(err, "\"Standard\""));
 	o.view = NULL;

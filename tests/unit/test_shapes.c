@@ -196,7 +196,7 @@ static void t_no_rehit_convex(void)
 		int fails = 0, tries = 0;
 		for (int i = 0; i < 400; i++) {
 			struct object o = rnd_prim(convex_kinds[k], false);
-			o.xf = rnd_xform(i % 4 == 0, true);
+			o.xf = xf_keep(rnd_xform(i % 4 == 0, true));
 			double sc = obj_scale(&o), eps = 1e-9 * sc;
 			struct vec3 q = surface_point(&o);
 			struct ray r = {v_madd(q, rnd_dir(), 2 * sc), v3(0, 0, 0)};
@@ -278,7 +278,7 @@ static bool round_trip(const struct object *o, double u, double v)
 		printf("#   kind %d: no hit at uv (%.6f, %.6f)\n", o->kind, u, v);
 		return false;
 	}
-	double orient = v_dot(h.n, cr) * xf_det(&o->xf);
+	double orient = v_dot(h.n, cr) * xf_det(obj_xf(o));
 	bool ok = fabs(h.u - u) < 1e-9 && fabs(h.v - v) < 1e-9 && dist(h.p, p) < 1e-9 * sc &&
 	          orient > 0 && fabs(fabs(v_dot(h.n, n)) - 1) < 1e-9 &&
 	          dist(h.dpdu, du) < 1e-7 * v_len(du) && dist(h.dpdv, dv) < 1e-7 * v_len(dv);
@@ -295,7 +295,7 @@ static void t_uv_round_trip(void)
 		int bad = 0;
 		for (int i = 0; i < 600; i++) {
 			struct object o = rnd_prim(all_kinds[k], i % 3 == 1);
-			o.xf = rnd_xform(i % 4 == 0, true);
+			o.xf = xf_keep(rnd_xform(i % 4 == 0, true));
 			double u, v;
 			rnd_uv(&o, 0.01, &u, &v);
 			bad += !round_trip(&o, u, v);
@@ -325,7 +325,7 @@ static void t_partials_fd(void)
 		double worst = 0;
 		for (int i = 0; i < 500; i++) {
 			struct object o = rnd_prim(all_kinds[k], i % 3 == 1);
-			o.xf = rnd_xform(false, true);
+			o.xf = xf_keep(rnd_xform(false, true));
 			double u, v, h = o.kind == OBJ_PLANE ? 1e-4 : 1e-6;
 			struct vec3 p, du, dv;
 			rnd_uv(&o, 0.01, &u, &v);
@@ -362,33 +362,33 @@ static void t_cell_area_totals(void)
 	double s2 = 1.7 * 1.7;
 	struct object o = mk_obj(OBJ_SPHERE);
 	o.g.sphere.r = 1.3;
-	o.xf = sim;
+	o.xf = xf_keep(sim);
 	CHECK_REL(grid_sum(&o, 37, 23, 0, 1, 0, 1), 4 * M_PI * 1.69 * s2, 1e-12);
 
 	o = mk_obj(OBJ_BOX); /* grid lines do not follow the face blocks */
 	o.g.box.lo = v3(0, 0, 0), o.g.box.hi = v3(1, 2, 3);
-	o.xf = xf_then(xf_scale(v3(2, 3, 0.5)), xf_rotate(v3(30, 0, 60))); /* non-uniform: exact */
+	o.xf = xf_keep(xf_then(xf_scale(v3(2, 3, 0.5)), xf_rotate(v3(30, 0, 60)))); /* non-uniform: exact */
 	CHECK_REL(grid_sum(&o, 7, 5, 0, 1, 0, 1), 2 * (2 * 6 + 6 * 1.5 + 1.5 * 2), 1e-12);
 
 	o = mk_obj(OBJ_CYLINDER);
 	o.g.cylinder.a = v3(0, -1, 0), o.g.cylinder.b = v3(0, 1, 0), o.g.cylinder.r = 0.5;
-	o.xf = sim;
+	o.xf = xf_keep(sim);
 	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), (2 * M_PI * 0.5 * 2 + 2 * M_PI * 0.25) * s2, 1e-12);
-	o.xf = xf_scale(v3(1, 3, 1)); /* stretched along the axis: the side goes numeric */
+	o.xf = xf_keep(xf_scale(v3(1, 3, 1))); /* stretched along the axis: the side goes numeric */
 	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), 2 * M_PI * 0.5 * 6 + 2 * M_PI * 0.25, 1e-9);
 	o.flags |= OF_OPEN;
 	CHECK_REL(grid_sum(&o, 9, 13, 0, 1, 0, 1), 2 * M_PI * 0.5 * 6, 1e-9);
 
 	o = mk_obj(OBJ_CONE);
 	o.g.cone.a = v3(0, 0, 0), o.g.cone.b = v3(0, 0, 2), o.g.cone.ra = 1, o.g.cone.rb = 0.25;
-	o.xf = sim;
+	o.xf = xf_keep(sim);
 	double slant = hypot(2, 0.75);
 	CHECK_REL(grid_sum(&o, 11, 17, 0, 1, 0, 1), (M_PI * 1.25 * slant + M_PI * (1 + 0.0625)) * s2,
 	          1e-12);
 
 	o = mk_obj(OBJ_TORUS);
 	o.g.torus.major = 2, o.g.torus.minor = 0.5;
-	o.xf = sim;
+	o.xf = xf_keep(sim);
 	CHECK_REL(grid_sum(&o, 13, 11, 0, 1, 0, 1), 4 * M_PI * M_PI * 2 * 0.5 * s2, 1e-12);
 	o.g.torus.major = 0.5, o.g.torus.minor = 1; /* spindle: |R + r cosθ| */
 	double ta = acos(-0.5);
@@ -397,18 +397,18 @@ static void t_cell_area_totals(void)
 
 	o = mk_obj(OBJ_DISC);
 	o.g.disc.n = v3(0, 1, 0), o.g.disc.r = 2, o.g.disc.hole = 0.5;
-	o.xf = xf_scale(v3(3, 7, 0.5));
+	o.xf = xf_keep(xf_scale(v3(3, 7, 0.5)));
 	CHECK_REL(grid_sum(&o, 10, 10, 0, 1, 0, 1), M_PI * (4 - 0.25) * 1.5, 1e-12);
 
 	o = mk_obj(OBJ_TRIANGLE);
 	o.g.triangle.p[1] = v3(1, 0, 0), o.g.triangle.p[2] = v3(0, 1, 0);
-	o.xf = xf_scale(v3(2, 3, 5));
+	o.xf = xf_keep(xf_scale(v3(2, 3, 5)));
 	CHECK_REL(grid_sum(&o, 7, 9, 0, 1, 0, 1), 3, 1e-12);
 	CHECK_NEAR(shape_cell_area(&o, 0.6, 0.9, 0.6, 0.9), 0, 0); /* beyond u + v = 1 */
 
 	o = mk_obj(OBJ_PLANE);
 	o.g.plane.n = v3(0, 0, 1);
-	o.xf = xf_scale(v3(2, 3, 5));
+	o.xf = xf_keep(xf_scale(v3(2, 3, 5)));
 	CHECK_REL(grid_sum(&o, 4, 4, -1, 1, -2, 2), 8 * 6, 1e-12);
 }
 
@@ -418,12 +418,12 @@ static void t_cell_area_spheroid(void)
 	struct object o = mk_obj(OBJ_SPHERE);
 	o.g.sphere.r = 1;
 	double a = 1.5, c = 3, e = sqrt(1 - a * a / (c * c));
-	o.xf = xf_then(xf_scale(v3(a, c, a)), xf_rotate(v3(20, 40, 60)));
+	o.xf = xf_keep(xf_then(xf_scale(v3(a, c, a)), xf_rotate(v3(20, 40, 60))));
 	double prolate = 2 * M_PI * a * a * (1 + c / (a * e) * asin(e));
 	CHECK_REL(grid_sum(&o, 16, 16, 0, 1, 0, 1), prolate, 1e-9);
 	CHECK_REL(shape_area(&o), prolate, 1e-9);
 	c = 0.5, e = sqrt(1 - c * c / (a * a));
-	o.xf = xf_scale(v3(a, c, a));
+	o.xf = xf_keep(xf_scale(v3(a, c, a)));
 	double oblate = 2 * M_PI * a * a * (1 + (1 - e * e) / e * atanh(e));
 	CHECK_REL(grid_sum(&o, 16, 16, 0, 1, 0, 1), oblate, 1e-9);
 	/* pole cells are finite and add up */
@@ -465,7 +465,7 @@ static void t_cell_area_singular(void)
 /* Distance of a world point to the torus surface, in its own frame. */
 static double torus_dist(const struct object *o, struct vec3 wp)
 {
-	struct vec3 p = xf_inv_point(&o->xf, wp);
+	struct vec3 p = xf_inv_point(obj_xf(o), wp);
 	double k = sqrt(p.x * p.x + p.z * p.z) - o->g.torus.major;
 	return fabs(sqrt(k * k + p.y * p.y) - o->g.torus.minor);
 }
@@ -503,14 +503,14 @@ static void t_torus_grazing(void)
 	double worst = 0;
 	for (int i = 0; i < 4000; i++) {
 		struct object o = rnd_prim(OBJ_TORUS, false);
-		o.xf = rnd_xform(i % 2 == 0, true);
+		o.xf = xf_keep(rnd_xform(i % 2 == 0, true));
 		double u = rnd(), v = rnd(), sc = o.g.torus.major + o.g.torus.minor;
 		struct vec3 p, du, dv;
 		shape_uv_point(&o, u, v, &p, &du, &dv);
 		struct vec3 n = v_norm(v_cross(du, dv)), t = v_norm(v_madd(du, dv, rndr(-3, 3)));
 		t = v_norm(v_madd(t, n, -v_dot(t, n))); /* tangent */
 		double depth = pow(10, rndr(-11, -3)) * obj_scale(&o);
-		struct vec3 target = v_madd(p, n, xf_det(&o.xf) > 0 ? -depth : depth);
+		struct vec3 target = v_madd(p, n, xf_det(obj_xf(&o)) > 0 ? -depth : depth);
 		struct ray r = {v_madd(target, t, -2 * obj_scale(&o)), t};
 		struct hit h;
 		bool got = shape_intersect(&o, &r, 0, INFINITY, &h);
@@ -537,7 +537,7 @@ static void t_torus_far(void)
 	double worst = 0;
 	for (int i = 0; i < 4000; i++) {
 		struct object o = rnd_prim(OBJ_TORUS, false);
-		o.xf = rnd_xform(i % 2 == 0, true);
+		o.xf = xf_keep(rnd_xform(i % 2 == 0, true));
 		double sc = o.g.torus.major + o.g.torus.minor;
 		struct vec3 p;
 		shape_uv_point(&o, rnd(), rnd(), &p, NULL, NULL);

@@ -186,6 +186,8 @@ static int make_proc(const struct out_png_opts *o, struct ocio_config **cfg, str
 	int err = out_ocio_load(o->ocio_config, cfg, dg);
 	if (!err)
 		err = out_ocio_pick_view(*cfg, o->display, o->view, &disp, &view, dg);
+	if (!err && !o->view && o->scene_view && has_view(*cfg, disp, o->scene_view))
+		view = o->scene_view;
 	if (err)
 		return err;
 	*proc = ocio_proc_display(*cfg, o->source, disp, view, msg, sizeof msg);
@@ -196,7 +198,7 @@ static int make_proc(const struct out_png_opts *o, struct ocio_config **cfg, str
 int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
                    struct diag *dg)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL};
 	const struct out_png_opts *o = opts ? opts : &defaults;
 	if (!fb_find(fb, "R"))
 		return diag_fail(dg, FAIL_INTERNAL, srcloc_none(), "the image has no beauty channels (R, G, B)");

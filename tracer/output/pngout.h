@@ -23,6 +23,7 @@ struct out_png_opts {
 	const char *display;     /* NULL: OUT_DEFAULT_DISPLAY, or the config's default if absent */
 	const char *view;        /* NULL: OUT_DEFAULT_VIEW, or the display's default if absent */
 	const char *source;      /* colour space of the pixels; NULL: the scene_linear role */
+	const char *scene_view;  /* the scene's view when view is NULL, if the display has it */
 };
 
 /* The shipped config "ocio/config.ocio", searched in $ARVO_DATA_DIR, then the

@@ -113,7 +113,7 @@ static double tr_cell_area(const struct object *o, double u0, double u1, double 
 	if (!(u1 > u0) || !(v1 > v0))
 		return 0;
 	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
-	double jac = v_len(v_cross(xf_vector(&o->xf, e1), xf_vector(&o->xf, e2)));
+	double jac = v_len(v_cross(xf_vector(obj_xf(o), e1), xf_vector(obj_xf(o), e2)));
 	return clipped_area(u0, u1, v0, v1) * jac;
 }
 
