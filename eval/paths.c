@@ -103,11 +103,11 @@ static int readable(struct eval *E, const char *path)
  * then POV-Ray's include directory (an absolute name is looked for as it
  * is). A library file that includes its own name reads the next file of
  * that name on the path (as C's #include_next): arvo's glass.inc adds
- * POV-Ray's. Returns a malloc'd real path,
- * and in *found_dir (if not NULL) the directory, as given, where it was
- * found. `what` names the file kind in errors. A name that would lead
- * outside the roots from every directory searched is refused (exit 65);
- * one that is found nowhere sets E->missing (exit 66). */
+ * POV-Ray's. Returns a malloc'd real path, and in *found_dir (if not NULL)
+ * the directory, as given, where it was found. `what` names the file kind
+ * in errors. A name that would lead outside the roots from every directory
+ * searched is refused (exit 65); one that is found nowhere sets E->missing
+ * (exit 66). */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
 {
 	const char *dirs[68];
