@@ -42,7 +42,7 @@ CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS) -lembree3 -lstdc++ -lm -pthread
 
 # Every .c under the source directories; main.c is the program's entry.
-SRCDIRS  = common lexer parser eval tracer
+SRCDIRS  = common lexer parser eval tracer tools
 LIB_C    = $(shell find $(SRCDIRS) -name '*.c' | sort)
 LIB_CXX  = $(shell find $(SRCDIRS) -name '*.cpp' | sort)
 LIB_OBJ  = $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
@@ -57,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus
+.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -147,9 +147,17 @@ DEB_PKGS_FUZZ = clang libclang-rt-14-dev
 deps-fuzz:
 	@$(MAKE) --no-print-directory deps DEB_PKGS="$(DEB_PKGS_FUZZ)"
 
+# check also builds an ASan + UBSan arvo for tests/sanitized (a subset: the
+# hostile suite, the fuzz replay, small renders), unless all of it is sanitized.
 check: deps
 	$(Q)$(MAKE) --no-print-directory all unit
+	$(Q)$(if $(SANITIZE),:,$(MAKE) --no-print-directory SANITIZE=1 $(BUILD)-san/arvo $(FUZZ_TARGETS:%=$(BUILD)-san/fuzz/replay_%))
 	$(Q)MODE=$(MODE) SANITIZE=$(SANITIZE) BUILD=$(BUILD) sh tests/run.sh
+
+# ThreadSanitizer on the threaded passes (tests/sanitized/tsan.sh).
+check-tsan: deps
+	$(Q)$(MAKE) --no-print-directory SANITIZE=thread build/$(MODE)-tsan/arvo
+	$(Q)MODE=$(MODE) sh tests/sanitized/tsan.sh
 
 test: check
 

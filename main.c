@@ -22,6 +22,8 @@
 #include "tracer/output/exrout.h"
 #include "tracer/output/ocio_shim.h"
 #include "tracer/output/pngout.h"
+#include "tools/tools.h"
+#include "tracer/camera.h"
 #include "tracer/output/tmpfile.h"
 #include "tracer/render.h"
 #include "tracer/scene.h"
@@ -66,6 +68,10 @@ struct options {
 	const char *save_maps;       /* --save-maps FILE */
 	const char *load_maps;       /* --load-maps FILE */
 	int passes;                  /* --passes: 0 not given, else enum illum_passes + 1 */
+	int region[4];               /* --region x0:x1,y0:y1 (x1 == 0: not given) */
+	int tile_i, tile_n;          /* --tile i/n (tile_n == 0: not given) */
+	long seed;                   /* --seed */
+	int png_depth;               /* --png-depth 8|16 (0: 8) */
 	char data_dir[PATH_MAX * 2];     /* stdlib-scenes (or share/arvo) */
 	char stdlib_dir[PATH_MAX * 2 + 16];   /* data_dir/include */
 };
@@ -86,6 +92,10 @@ static void usage(FILE *out)
 	      "  --dump-maps DIR    write every illumination map as an EXR into DIR\n"
 	      "  --save-maps FILE, --load-maps FILE   keep a light pass for later renders\n"
 	      "  --passes rgb|spectral   dispersion by colour channel or by wavelength\n"
+	      "  --region x0:x1,y0:y1  render columns x0..x1-1, rows y0..y1-1 (an EXR of that part)\n"
+	      "  --tile i/n         render the i-th of n bands of rows (1 <= i <= n), as --region\n"
+	      "  --seed N           another set of random numbers (default 0)\n"
+	      "  --png-depth 8|16   bits per PNG channel (default 8)\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --allow-read DIR   let the scene read files below DIR too\n"
@@ -98,6 +108,7 @@ static void usage(FILE *out)
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
 	      "  --dump-tokens | --dump-ast | --dump-scene   print a stage's text and stop\n"
 	      "  --quiet, --stats, --help, --version\n"
+	      "  arvo compare A.exr B.exr [options]   arvo merge -o FULL.exr PARTS.exr...\n"
 	      "exit status: 0 ok, 64 usage, 65 bad scene, 66 missing input, 70 internal error,\n"
 	      "             73 cannot create output, 74 output I/O error\n",
 	      out);
@@ -235,6 +246,33 @@ static int pov_switch(struct options *o, const char *a)
 	return 0;
 }
 
+/* --region, --tile, --seed, --png-depth (value v): returns -1, or an exit code. */
+static int pipeline_option(struct options *o, const char *a, const char *v)
+{
+	int n = 0;
+	long x;
+	if (!strcmp(a, "--region")) {
+		int *r = o->region;
+		if (sscanf(v, "%d:%d,%d:%d%n", &r[0], &r[1], &r[2], &r[3], &n) != 4 || v[n] ||
+		    r[0] < 0 || r[2] < 0 || r[1] <= r[0] || r[3] <= r[2])
+			return usage_error("bad value for --region: '%s' (expected x0:x1,y0:y1 with "
+			                   "0 <= x0 < x1 and 0 <= y0 < y1)", v);
+	} else if (!strcmp(a, "--tile")) {
+		if (sscanf(v, "%d/%d%n", &o->tile_i, &o->tile_n, &n) != 2 || v[n] || o->tile_n < 1 ||
+		    o->tile_i < 1 || o->tile_i > o->tile_n)
+			return usage_error("bad value for --tile: '%s' (expected i/n with 1 <= i <= n)", v);
+	} else if (!strcmp(a, "--seed")) {
+		if (!parse_int(v, 0, 2147483647L, &x))
+			return usage_error("bad value for --seed: '%s' (expected 0 to 2147483647)", v);
+		o->seed = x;
+	} else if (strcmp(v, "8") && strcmp(v, "16")) {
+		return usage_error("bad value for --png-depth: '%s' (expected 8 or 16)", v);
+	} else {
+		o->png_depth = atoi(v);
+	}
+	return -1;
+}
+
 /* Reads argv into o; returns -1 to go on, else an exit code. */
 static int parse_args(int argc, char **argv, struct options *o)
 {
@@ -293,6 +331,12 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (strcmp(next, "rgb") && strcmp(next, "spectral"))
 				return usage_error("bad value for --passes: '%s' (expected rgb or spectral)", next);
 			o->passes = (strcmp(next, "rgb") ? PASSES_SPECTRAL : PASSES_RGB) + 1;
+		} else if (!strcmp(a, "--region") || !strcmp(a, "--tile") || !strcmp(a, "--seed") ||
+		           !strcmp(a, "--png-depth")) {
+			NEED_ARG();
+			int rc = pipeline_option(o, a, next);
+			if (rc >= 0)
+				return rc;
 		} else if (!strcmp(a, "--half")) {
 			o->half = 1;
 		} else if (!strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--ocio-config")) {
@@ -497,10 +541,68 @@ static int check_creatable(const char *path)
 	return EX_OK;
 }
 
-/* Over the --max-memory budget after the scene is built: the light pass's
- * maps, the acceleration structure or the framebuffer. Exit status 70,
+/* --tile i/n becomes a region (the i-th band of rows); checks the region
+ * lies in the frame and goes to an EXR. Returns -1, or an exit code. */
+static int resolve_region(struct options *o, int kind)
+{
+	int *r = o->region;
+	if (o->tile_n > 0 && r[1] > 0)
+		return usage_error("--region and --tile cannot be used together");
+	if (o->tile_n > o->height)
+		return usage_error("--tile %d/%d: more tiles than the image has rows (%d)", o->tile_i,
+		                   o->tile_n, o->height);
+	if (o->tile_n > 0) {
+		r[0] = 0, r[1] = o->width;
+		r[2] = (int)((long)(o->tile_i - 1) * o->height / o->tile_n);
+		r[3] = (int)((long)o->tile_i * o->height / o->tile_n);
+	}
+	if (r[1] > 0 && (r[1] > o->width || r[3] > o->height))
+		return usage_error("--region %d:%d,%d:%d lies outside the %dx%d image", r[0], r[1], r[2],
+		                   r[3], o->width, o->height);
+	if (r[1] > 0 && kind != 'e')
+		return usage_error("a partial render (--region, --tile) needs an .exr output");
+	return -1;
+}
+
+/* The EXR header's record of the render: camera, settings, scene, version. */
+static void exr_meta(const struct options *o, const struct scene *scene, struct out_exr_meta *m)
+{
+	struct cam c;
+	double c2w[16], w2c[16], ndc[16];
+	cam_setup(&c, &scene->camera);
+	cam_matrices(&c, c2w, w2c, ndc);
+	m->has_camera = 1;
+	for (int i = 0; i < 16; i++) {
+		m->camera_to_world[i] = (float)c2w[i];
+		m->world_to_camera[i] = (float)w2c[i];
+		m->world_to_ndc[i] = (float)ndc[i];
+	}
+	const struct illum_settings *il = &scene->gs.illum;
+	int method = o->method ? o->method - 1 : (int)il->method, passes = o->passes ? o->passes - 1 : (int)il->passes;
+	out_meta_add(m, "arvo:version", "%s", ARVO_VERSION);
+	out_meta_add(m, "arvo:spp", "%d", o->spp > 0 ? o->spp : 1);
+	if (o->rays == 0 || (o->rays < 0 && scene->nlights == 0))
+		out_meta_add(m, "arvo:rays", "off");
+	else if (o->load_maps)
+		out_meta_add(m, "arvo:rays", "loaded from %s", o->load_maps);
+	else
+		out_meta_add(m, "arvo:rays", "%ld", o->rays > 0 ? o->rays : il->rays > 0 ? il->rays
+		             : il->count > 0 ? il->count : 1000000);
+	out_meta_add(m, "arvo:method", "%s", method == ILLUM_SHAFT ? "shaft" : "point");
+	out_meta_add(m, "arvo:passes", "%s", passes == PASSES_SPECTRAL ? "spectral" : "rgb");
+	if (o->tolerance > 0 || il->tolerance > 0)
+		out_meta_add(m, "arvo:tolerance", "%g", o->tolerance > 0 ? o->tolerance : il->tolerance);
+	out_meta_add(m, "arvo:seed", "%ld", o->seed);
+}
+
+/* What runs outside the evaluator, for out-of-memory messages. */
+static const char *volatile mem_phase = "reading the scene";
+
+/* Over the --max-memory budget outside the evaluator (which reports at the
+ * statement it was running): reading the scene file, or rendering (the
+ * light pass's maps, the acceleration structure, the framebuffer). Exit 70,
  * after removing any temporary being written. */
-static void render_over_budget(size_t request)
+static void over_budget(size_t request)
 {
 	static atomic_int once;
 	char size[32];
@@ -508,24 +610,28 @@ static void render_over_budget(size_t request)
 		for (;;)
 			pause();
 	mem_format_size(size, sizeof size, mem_budget());
-	fprintf(stderr, "arvo: error: out of memory: rendering needs more than the %s that --max-memory allows "
-	        "(allocating %zu bytes)\n", size, request);
+	(void)request;
+	fprintf(stderr, "arvo: error: out of memory: %s needs more than the %s that --max-memory allows\n", mem_phase, size);
 	out_tmp_remove_all();
 	exit(EX_SOFTWARE);
 }
 
 /* Checks everything a render will write or look up before any work: the
- * output format (64), the OCIO config (66) and display/view (64) for PNG
- * output or when named, every output path (73), the --load-maps file (66). */
-static int check_outputs(const struct options *o, const char *output, struct diag *dg)
+ * output format (64), the region (64), the OCIO config (66) and
+ * display/view (64) for PNG output or when named, every output path (73),
+ * the --load-maps file (66). */
+static int check_outputs(struct options *o, const char *output, struct diag *dg)
 {
 	int kind = output_kind(output);
 	if (!kind)
 		return usage_error("unknown output format '%s' (expected a .exr or .png name)", output);
+	int rc = resolve_region(o, kind);
+	if (rc >= 0)
+		return rc;
 	if (kind == 'p' || o->ocio_config || o->display || o->view) {
 		struct ocio_config *cfg;
 		const char *disp, *view;
-		int rc = out_ocio_load(o->ocio_config, &cfg, dg);
+		rc = out_ocio_load(o->ocio_config, &cfg, dg);
 		if (rc)
 			return rc;
 		rc = out_ocio_pick_view(cfg, o->display, o->view, &disp, &view, dg);
@@ -533,7 +639,7 @@ static int check_outputs(const struct options *o, const char *output, struct dia
 		if (rc)
 			return rc;
 	}
-	int rc = check_creatable(output);
+	rc = check_creatable(output);
 	struct stat sb;
 	if (!rc && o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
 		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
@@ -563,17 +669,21 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 {
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes};
+	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes,
+	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
 	struct render_stats st;
 	struct framebuffer *fb;
 	int rc = render(scene, &ro, dg, &fb, &st);
 	if (rc)
 		return rc;
 	if (output_kind(output) == 'e') {
-		struct out_exr_opts eo = {o->half, o->compression, scene->name};
+		static struct out_exr_meta meta;
+		exr_meta(o, scene, &meta);
+		struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
 		rc = out_exr_write(fb, output, &eo, dg);
 	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene)};
+		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
+		                          o->png_depth};
 		rc = out_png_write(fb, output, &po, dg);
 	}
 	fb_free(fb);
@@ -604,6 +714,8 @@ static void install_signals(void)
 
 int main(int argc, char **argv)
 {
+	if (argc > 1 && (!strcmp(argv[1], "compare") || !strcmp(argv[1], "merge")))
+		return argv[1][0] == 'c' ? tool_compare(argc - 1, argv + 1) : tool_merge(argc - 1, argv + 1);
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
@@ -611,7 +723,7 @@ int main(int argc, char **argv)
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
-	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), render_over_budget);
+	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), over_budget);
 	struct diag dg;
 	diag_init(&dg, stderr);
 	install_signals();
@@ -658,6 +770,7 @@ int main(int argc, char **argv)
 		if (o.action == ACT_SCENE) {
 			scene_dump(stdout, &scene);
 		} else if (o.action == ACT_RENDER) {
+			mem_phase = "rendering";
 			rc = render_and_write(&o, &scene, output, &dg);
 		}
 	}

@@ -2,6 +2,7 @@
 /* arena.c: allocation wrapper (with fault injection) and bump arenas. */
 #include "arena.h"
 
+#include <errno.h>
 #include <stdatomic.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -55,8 +56,11 @@ size_t mem_parse_size(const char *s)
 	char *end;
 	if (*s < '0' || *s > '9')
 		return 0;
+	errno = 0;
 	unsigned long long v = strtoull(s, &end, 10);
 	int shift = 0;
+	if (errno)
+		return 0;
 	if (*end) {
 		const char *units = "KMGT", *u = strchr(units, end[0] & ~0x20);
 		if (!u || !*u || (end[1] && strcmp(end + 1, "iB") && strcmp(end + 1, "B")))

@@ -437,7 +437,11 @@ static struct value f_seed(struct call *c)
 		eval_fail(E, c->n->loc, "too many random streams (seed() called more than %d times)", 1 << 20);
 	if ((E->nrng & (E->nrng - 1)) == 0)
 		E->rng = mem_realloc(E->rng, sizeof *E->rng * (size_t)(E->nrng ? E->nrng * 2 : 1));
-	E->rng[E->nrng] = (uint64_t)(int64_t)F(c, 0) * 0x2545F4914F6CDD1Dull;
+	double v = F(c, 0);
+	uint64_t k = (uint64_t)(int64_t)v;
+	if (!(fabs(v) < 9.2e18)) /* beyond int64: the double's bits, not a conversion out of range */
+		memcpy(&k, &v, sizeof k);
+	E->rng[E->nrng] = k * 0x2545F4914F6CDD1Dull;
 	return val_float(E->nrng++);
 }
 
@@ -545,7 +549,7 @@ bool builtin_is_name(const char *name)
 
 bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 {
-	if (strcmp(n->str, "defined") == 0) {
+	if (n->str[0] == 'd' && strcmp(n->str, "defined") == 0) {
 		if (n->nkids != 1 || !n->kids[0] || n->kids[0]->kind != N_IDENT)
 			eval_fail(E, n->loc, "defined() needs one identifier");
 		*out = val_float(env_lookup(E, n->kids[0]->str) != NULL || env_macro(E, n->kids[0]->str) != NULL);

@@ -70,10 +70,18 @@ void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
 
 void scope_pop(struct eval *E) { E->nscopes--; }
 
+/* strcmp(a, b) == 0 for the short names of scenes, without a call. */
+static inline bool same(const char *a, const char *b)
+{
+	while (*a && *a == *b)
+		a++, b++;
+	return *a == *b;
+}
+
 static struct entry *find_h(struct scope *sc, const char *name, uint32_t h)
 {
 	for (struct entry *e = sc->buckets[h & (uint32_t)(sc->nbuckets - 1)]; e; e = e->next)
-		if (e->hash == h && strcmp(e->name, name) == 0)
+		if (e->hash == h && same(e->name, name))
 			return e;
 	return NULL;
 }

@@ -10,6 +10,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "../parser/parser.h"
 #include "internal.h"
@@ -308,9 +309,9 @@ static struct value *index_slot(struct eval *E, const struct node *n)
 	for (int d = 0; d < k; d++) {
 		const struct node *ix = chain[k - 1 - d];
 		double f = eval_float(E, ix->b);
-		long i = (long)f;
-		if (f < 0 || i >= arr->dims[d])
+		if (!(f >= 0 && f < arr->dims[d])) /* compared as a double: no conversion out of range */
 			eval_fail(E, ix->b->loc, "array index %g out of range (0 to %d)", f, arr->dims[d] - 1);
+		long i = (long)f;
 		off = off * arr->dims[d] + i;
 	}
 	return &arr->items[off];
@@ -455,9 +456,26 @@ static struct value eval_expr_node(struct eval *E, const struct node *n);
 /* Every number the language computes passes here: an infinity or a NaN
  * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
  * non-finite number reaches the scene (docs/design.md §8). */
+/* Counts one level of the evaluator's recursion at loc: the count bounds
+ * it at MAX_EVAL_DEPTH wherever the nesting comes from (directives, blocks,
+ * macro calls, includes, expressions), and the stack in use is checked
+ * against three quarters of the stack limit as a second guard (docs/design.md §9). */
+static void enter(struct eval *E, struct srcloc loc)
+{
+	char here;
+	if (E->depth >= MAX_EVAL_DEPTH)
+		eval_fail(E, loc, "nesting too deep (more than %d levels of blocks, directives, macro calls, includes and expressions)",
+		          MAX_EVAL_DEPTH);
+	if ((size_t)(E->stack_base - &here) > E->stack_max)
+		eval_fail(E, loc, "nesting too deep (the evaluator's stack is used up)");
+	E->depth++;
+}
+
 struct value eval_expr(struct eval *E, const struct node *n)
 {
+	enter(E, n->loc);
 	struct value v = eval_expr_node(E, n);
+	E->depth--;
 	if (v.kind == V_FLOAT || v.kind == V_VECTOR || v.kind == V_COLOUR) {
 		int k = v.kind == V_FLOAT ? 1 : v.kind == V_COLOUR ? 5 : v.n;
 		for (int i = 0; i < k; i++)
@@ -705,14 +723,11 @@ static void exec_include(struct eval *E, const struct node *n, struct sink *s)
 /* ==== items =============================================================== */
 
 /* Every nested list of items (a directive's body, a block, a macro body, an
- * include) passes here, so this one counter bounds the evaluator's recursion
- * whatever mix of directives, blocks, macros and includes makes it. */
+ * include) passes here, and every expression through eval_expr, so one
+ * counter bounds the evaluator's recursion whatever mix makes it. */
 void eval_items(struct eval *E, const struct node *list, struct sink *s)
 {
-	if (E->depth >= MAX_EVAL_DEPTH)
-		eval_fail(E, list->loc, "nesting too deep (more than %d levels of blocks, directives, macro calls and includes)",
-		          MAX_EVAL_DEPTH);
-	E->depth++;
+	enter(E, list->loc);
 	for (int i = 0; i < list->nkids && !E->breaking; i++)
 		eval_item(E, list->kids[i], s);
 	E->depth--;
@@ -848,6 +863,13 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 
 	struct eval *E = mem_calloc(1, sizeof *E);
 	jmp_buf jb;
+	char base;
+	struct rlimit rl;
+	E->stack_base = &base;
+	E->stack_max = (size_t)64 << 20;
+	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < E->stack_max)
+		E->stack_max = (size_t)rl.rlim_cur;
+	E->stack_max = E->stack_max / 4 * 3;
 	E->diag = diag;
 	E->opt = opt;
 	E->scene = out;

@@ -22,6 +22,7 @@ static void object_transform(struct eval *E, struct object *o, const struct xfor
 
 static struct object *object_copy(struct eval *E, const struct object *o)
 {
+	eval_count_object(E, E->stmt); /* copies of declared CSGs count too */
 	struct object *c = NEW(E, struct object);
 	*c = *o;
 	if (o->kind >= OBJ_FIRST_CSG) {

@@ -16,7 +16,7 @@
 #define MAX_STRING 1048576    /* bytes in a string value */
 #define MAX_ARRAY 16777216L   /* elements in an array */
 #define MAX_SCOPES 512        /* scope stack */
-#define MAX_EVAL_DEPTH 1000   /* nested item lists: blocks, directives, macros, includes */
+#define MAX_EVAL_DEPTH 2000   /* evaluator recursion: item lists and expressions */
 
 struct scope;
 struct entry;
@@ -56,7 +56,9 @@ struct eval {
 	int nscopes;
 	int include_depth;
 	int macro_depth;
-	int depth;                 /* nested item lists (eval_items) */
+	int depth;                 /* evaluator recursion (eval_items, eval_expr) */
+	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
+	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
 	long calls;                /* macro calls so far */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */

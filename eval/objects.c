@@ -85,9 +85,30 @@ int arg_int(struct eval *E, const struct node *n, int lo, int hi)
 	return (int)f;
 }
 
+static bool transform_kind(struct eval *E, const struct node *n, struct xform *out);
+
+/* A transform whose matrix or inverse is not finite (translate 1e308 twice,
+ * scale 1e-200 twice) is an error at loc: no infinity reaches the scene. */
+static const struct xform *xform_finite(struct eval *E, const struct xform *x, struct srcloc loc)
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 4; j++)
+			if (!isfinite(x->m[i][j]) || !isfinite(x->inv[i][j]))
+				eval_fail(E, loc, "the transform is not finite (it overflows, or is nearly singular)");
+	return x;
+}
+
 /* translate/rotate/scale/matrix/transform: computes the transform of item n;
  * false when n is not a transform keyword. */
 bool transform_of(struct eval *E, const struct node *n, struct xform *out)
+{
+	if (!transform_kind(E, n, out))
+		return false;
+	xform_finite(E, out, n->loc);
+	return true;
+}
+
+static bool transform_kind(struct eval *E, const struct node *n, struct xform *out)
 {
 	switch (n->op) {
 	case TK_TRANSLATE: *out = xf_translate(arg_vec3(E, n)); return true;
@@ -132,6 +153,7 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 {
 	struct xform *x = NEW(E, struct xform);
 	*x = xf_then(old ? *old : xf_ident, *X);
+	xform_finite(E, x, E->stmt);
 	return xf_is_identity(x) ? NULL : x;
 }
 
@@ -325,6 +347,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (!transform_of(E, n, &X))
 			misplaced(E, s, n);
 		*(struct xform *)s->target = xf_then(*(struct xform *)s->target, X);
+		xform_finite(E, s->target, n->loc);
 		return;
 	case SK_MATERIAL: {
 		struct material *m = s->target;

@@ -50,7 +50,7 @@ void photons_keyword(struct eval *E, struct sink *s, const struct node *n)
 		g->given = true;
 		switch (n->op) {
 		case TK_SPACING: g->spacing = arg_positive(E, n); return;
-		case TK_COUNT: g->count = (long)arg_positive(E, n); return;
+		case TK_COUNT: g->count = (long)fmin(arg_positive(E, n), 1e12); return; /* rays are 1e12 at most */
 		case TK_MAX_TRACE_LEVEL: g->max_depth = arg_int(E, n, 1, 256); return;
 		case TK_GATHER: case TK_MEDIA: case TK_JITTER: case TK_AUTOSTOP: case TK_EXPAND_THRESHOLDS:
 		case TK_RADIUS: case TK_ADC_BAILOUT:
@@ -85,10 +85,11 @@ void light_keyword(struct eval *E, struct sink *s, const struct node *n)
 		l->area = true;
 		l->axis1 = eval_vec3(E, n->kids[0]);
 		l->axis2 = eval_vec3(E, n->kids[1]);
-		l->size1 = (int)eval_float(E, n->kids[2]);
-		l->size2 = (int)eval_float(E, n->kids[3]);
-		if (l->size1 < 1 || l->size2 < 1 || l->size1 > 1024 || l->size2 > 1024)
+		double s1 = eval_float(E, n->kids[2]), s2 = eval_float(E, n->kids[3]);
+		if (!(s1 >= 1 && s2 >= 1 && s1 < 1025 && s2 < 1025)) /* before converting to int */
 			eval_fail(E, n->kids[2]->loc, "area_light sizes must be 1 to 1024");
+		l->size1 = (int)s1;
+		l->size2 = (int)s2;
 		return;
 	case TK_ADAPTIVE: l->adaptive = arg_int(E, n, 0, 16); return;
 	case TK_JITTER: l->jitter = arg_bool(E, n); return;

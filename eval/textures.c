@@ -81,13 +81,42 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_CHECKER:
-		p->kind = PIG_CHECKER;
-		p->c[0] = c_rgb(0, 0, 1);
-		p->c[1] = c_rgb(0, 1, 0);
+	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK:
+		/* POV-Ray's default colours: checker blue, green; hexagon blue,
+		 * green, red; brick grey mortar, red brick */
+		p->kind = n->op == TK_CHECKER ? PIG_CHECKER : n->op == TK_HEXAGON ? PIG_HEXAGON : PIG_BRICK;
+		p->c[0] = n->op == TK_BRICK ? c_rgb(0.5, 0.5, 0.5) : c_rgb(0, 0, 1);
+		p->c[1] = n->op == TK_BRICK ? c_rgb(0.6, 0.15, 0.15) : c_rgb(0, 1, 0);
+		p->c[2] = c_rgb(1, 0, 0);
 		s->nparams = 0;
 		s->modified = 0;
 		return;
+	case TK_RADIAL: case TK_ONION: case TK_SPHERICAL: case TK_CYLINDRICAL: case TK_BOXED:
+	case TK_PLANAR: case TK_LEOPARD:
+		p->kind = PIG_PATTERN;
+		p->pattern = n->op == TK_RADIAL ? PAT_RADIAL : n->op == TK_ONION ? PAT_ONION
+		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
+		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
+		return;
+	case TK_FREQUENCY: p->frequency = arg_float(E, n); return;
+	case TK_PHASE: p->phase = arg_float(E, n); return;
+	case TK_RAMP_WAVE: p->wave = WAVE_RAMP; return;
+	case TK_TRIANGLE_WAVE: p->wave = WAVE_TRIANGLE; return;
+	case TK_SINE_WAVE: p->wave = WAVE_SINE; return;
+	case TK_SCALLOP_WAVE: p->wave = WAVE_SCALLOP; return;
+	case TK_CUBIC_WAVE: p->wave = WAVE_CUBIC; return;
+	case TK_POLY_WAVE:
+		p->wave = WAVE_POLY;
+		p->exponent = n->nkids ? arg_float(E, n) : 1;
+		return;
+	case TK_BRICK_SIZE: {
+		struct vec3 b = arg_vec3(E, n);
+		if (!(b.x > 0 && b.y > 0 && b.z > 0))
+			eval_fail(E, n->kids[0]->loc, "brick_size must be positive in x, y and z");
+		p->brick_size = b;
+		return;
+	}
+	case TK_MORTAR: p->mortar = arg_float(E, n); return;
 	case TK_GRADIENT: {
 		struct vec3 a = arg_vec3(E, n);
 		if (v_len(a) == 0)
@@ -123,7 +152,7 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 		s->modified = 1;
 		return;
 	}
-	if (v->kind == V_COLOUR_MAP && p->kind == PIG_GRADIENT) {
+	if (v->kind == V_COLOUR_MAP && (p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN)) {
 		p->map = v->p.cmap->e;
 		p->nmap = v->p.cmap->n;
 		return;
@@ -131,9 +160,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 	if (v->kind != V_COLOUR && v->kind != V_FLOAT && v->kind != V_VECTOR)
 		eval_fail(E, loc, "expected a colour in pigment, found %s", val_type_name(v));
 	struct colour c = val_want_colour(E, v, loc);
-	if (p->kind == PIG_CHECKER) {
-		if (s->nparams >= 2)
-			eval_fail(E, loc, "checker takes two colours, found a third");
+	if (p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK) {
+		int most = p->kind == PIG_HEXAGON ? 3 : 2;
+		if (s->nparams >= most)
+			eval_fail(E, loc, "%s takes %s colours, found more", p->kind == PIG_HEXAGON ? "hexagon" :
+			          p->kind == PIG_BRICK ? "brick" : "checker", most == 3 ? "three" : "two");
 		p->c[s->nparams++] = c;
 		return;
 	}

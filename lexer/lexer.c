@@ -328,7 +328,7 @@ static void scan_directive(struct lexer *lx, struct token *t)
 			diag_error(lx->diag, t->loc, "'#%.*s' is not supported: a scene cannot open, read or write "
 			           "files or run commands", (int)(p - w), w);
 		else
-			diag_error(lx->diag, t->loc, "unknown directive '#%.*s'", (int)(p - w), w);
+			diag_error(lx->diag, t->loc, "unknown directive '#%.*s'", p - w > 40 ? 40 : (int)(p - w), w);
 	}
 }
 
@@ -358,7 +358,13 @@ static void scan(struct lexer *lx, struct token *t)
 		const char *p = lx->p;
 		while (p < lx->end && is_ident((unsigned char)*p))
 			p++;
-		t->kind = lex_keyword(lx->p, (int)(p - lx->p));
+		if (p - lx->p > MAX_IDENT) { /* every lookup hashes the whole name */
+			diag_error(lx->diag, t->loc, "identifier too long (%ld characters; the limit is %d)", (long)(p - lx->p),
+			           MAX_IDENT);
+			t->kind = TK_ERROR;
+		} else {
+			t->kind = lex_keyword(lx->p, (int)(p - lx->p));
+		}
 		lx->p = p;
 	} else if (c == '"') {
 		scan_string(lx, t);

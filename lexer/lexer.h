@@ -10,6 +10,8 @@
 #include "../common/diag.h"
 #include "token.h"
 
+#define MAX_IDENT 1024 /* characters in an identifier */
+
 struct lexer {
 	const char *src;        /* start of the file's text */
 	const char *p;          /* next unread character */

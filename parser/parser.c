@@ -383,10 +383,16 @@ static struct node *parse_unary(struct parser *p)
 static struct node *parse_binary(struct parser *p, int min_prec)
 {
 	struct node *left = parse_unary(p);
+	int chain = 0; /* each operator nests its left operand one level deeper */
 	for (;;) {
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
-			return left;
+			break;
+		if (p->depth >= MAX_DEPTH) {
+			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
+			break;
+		}
+		p->depth++, chain++;
 		struct node *n = node(p, N_BINARY, p->tok.loc);
 		n->op = p->tok.kind;
 		advance(p);
@@ -394,6 +400,8 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 		n->b = parse_binary(p, prec + 1);
 		left = n;
 	}
+	p->depth -= chain;
+	return left;
 }
 
 /* expr := binary ['?' expr ':' expr] */
@@ -425,9 +433,13 @@ static struct node *parse_block_body(struct parser *p, struct node *blk)
 		error_at(p, p->tok.loc, "expected '{' after %s, found %s", tok_name(blk->op), found(p));
 		return blk;
 	}
-	advance(p);
-	if (!enter(p))
+	if (p->depth >= MAX_DEPTH) { /* reported at the block's keyword */
+		error_at(p, blk->loc, "nesting too deep (more than %d levels)", MAX_DEPTH);
+		advance(p);
 		return blk;
+	}
+	enter(p);
+	advance(p);
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
 		long start = p->ntok;
 		struct node *it = parse_item(p);

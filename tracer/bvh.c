@@ -30,7 +30,6 @@ struct bvh {
 	RTCScene scene;                /* NULL when nothing is bounded */
 	const struct object **prims;   /* bounded leaves, in collection order */
 	int nprims;                    /* entries of prims */
-	struct bbox *boxes;            /* their world bounds (build only) */
 	const struct object **unbound; /* unbounded leaves, tested always */
 	int nunbound;                  /* entries of unbound */
 	struct bbox bounds;            /* world bounds of the bounded leaves */
@@ -73,10 +72,8 @@ static void add_leaf(struct builder *B, const struct object *o, struct bbox b)
 	if (t->nprims == B->cap) {
 		B->cap = B->cap ? 2 * B->cap : 64;
 		t->prims = mem_realloc(t->prims, sizeof *t->prims * (size_t)B->cap);
-		t->boxes = mem_realloc(t->boxes, sizeof *t->boxes * (size_t)B->cap);
 	}
-	t->prims[t->nprims] = o;
-	t->boxes[t->nprims++] = b;
+	t->prims[t->nprims++] = o;
 	t->bounds = bbox_union(t->bounds, b);
 }
 
@@ -115,7 +112,7 @@ static float up(double x) { float f = (float)x; return (double)f < x ? nextafter
 static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 {
 	const struct bvh *t = a->geometryUserPtr;
-	struct bbox b = t->boxes[a->primID];
+	struct bbox b = shape_bounds(t->prims[a->primID]); /* as collect found it */
 	double p = t->pad;
 	*a->bounds_o = (struct RTCBounds){down(b.lo.x - p), down(b.lo.y - p), down(b.lo.z - p), 0,
 	                                  up(b.hi.x + p), up(b.hi.y + p), up(b.hi.z + p), 0};
@@ -177,7 +174,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
 	t->scene = rtcNewScene(device);
-	rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_ROBUST);
+	rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);
 	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
 	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
 	rtcSetGeometryUserPrimitiveCount(g, (unsigned)t->nprims);
@@ -189,8 +186,6 @@ struct bvh *bvh_build(struct object **objs, int n)
 	rtcAttachGeometry(t->scene, g);
 	rtcReleaseGeometry(g);
 	rtcCommitScene(t->scene);
-	free(t->boxes);
-	t->boxes = NULL;
 	return t;
 }
 
@@ -201,7 +196,6 @@ void bvh_free(struct bvh *b)
 	if (b->scene)
 		rtcReleaseScene(b->scene);
 	free(b->prims);
-	free(b->boxes);
 	free(b->unbound);
 	free(b);
 }

@@ -68,3 +68,50 @@ struct ray cam_ray(const struct cam *c, double sx, double sy, double l1, double 
 	}
 	return r;
 }
+
+/* The rows of the inverse of the 3×3 matrix whose rows are a, b, c, laid out
+ * for row vectors: q = x·a + y·b + z·c gives x = q·ia, y = q·ib, z = q·ic. */
+static void inverse_rows(struct vec3 a, struct vec3 b, struct vec3 c, struct vec3 *ia,
+                         struct vec3 *ib, struct vec3 *ic)
+{
+	double det = v_dot(a, v_cross(b, c));
+	*ia = v_scale(v_cross(b, c), 1 / det);
+	*ib = v_scale(v_cross(c, a), 1 / det);
+	*ic = v_scale(v_cross(a, b), 1 / det);
+}
+
+/* Fills column col of the row-vector matrix m with p ↦ p·v + k. */
+static void set_col(double m[16], int col, struct vec3 v, double k)
+{
+	m[col] = v.x, m[4 + col] = v.y, m[8 + col] = v.z, m[12 + col] = k;
+}
+
+void cam_matrices(const struct cam *c, double c2w[16], double w2c[16], double ndc[16])
+{
+	struct vec3 r = v_norm(c->right), u = v_norm(c->up), d = c->fwd, ia, ib, ic;
+	const struct vec3 rows[4] = {r, u, d, c->loc};
+	for (int i = 0; i < 4; i++) {
+		c2w[4 * i] = rows[i].x, c2w[4 * i + 1] = rows[i].y, c2w[4 * i + 2] = rows[i].z;
+		c2w[4 * i + 3] = i == 3;
+	}
+	inverse_rows(r, u, d, &ia, &ib, &ic);
+	set_col(w2c, 0, ia, -v_dot(c->loc, ia));
+	set_col(w2c, 1, ib, -v_dot(c->loc, ib));
+	set_col(w2c, 2, ic, -v_dot(c->loc, ic));
+	set_col(w2c, 3, v3(0, 0, 0), 1);
+	/* film coordinates: q - loc = a·right + b·up + c·direction; the film point
+	 * is (½ + a/c, ½ - b/c) (perspective) or (½ + a, ½ - b) (orthographic) */
+	inverse_rows(c->right, c->up, c->dir, &ia, &ib, &ic);
+	double a0 = -v_dot(c->loc, ia), b0 = -v_dot(c->loc, ib), c0 = -v_dot(c->loc, ic);
+	if (c->kind == CAM_ORTHOGRAPHIC) {
+		set_col(ndc, 0, ia, a0 + 0.5);
+		set_col(ndc, 1, v_neg(ib), 0.5 - b0);
+		set_col(ndc, 2, ic, c0);
+		set_col(ndc, 3, v3(0, 0, 0), 1);
+	} else {
+		set_col(ndc, 0, v_madd(ia, ic, 0.5), a0 + 0.5 * c0);
+		set_col(ndc, 1, v_madd(v_neg(ib), ic, 0.5), 0.5 * c0 - b0);
+		set_col(ndc, 2, ic, c0);
+		set_col(ndc, 3, ic, c0);
+	}
+}

@@ -38,4 +38,13 @@ bool cam_has_dof(const struct cam *c);
  * lens point (ignored for a pinhole). The direction is not normalised. */
 struct ray cam_ray(const struct cam *c, double sx, double sy, double l1, double l2);
 
+/* The camera as matrices for row vectors (p' = p·M, translation in the last
+ * row, as OpenEXR's m44f attributes and Imath take them), row-major:
+ * c2w maps camera space (x right, y up, z along direction: left-handed,
+ * OpenEXR's and RenderMan's convention; unit axes) to world space, w2c
+ * back; ndc maps a world point, after division by w, to film coordinates
+ * (0,0) top left, (1,1) bottom right (OpenEXR's worldToNDC; z/w is 1 for
+ * perspective, the depth along direction for orthographic). */
+void cam_matrices(const struct cam *c, double c2w[16], double w2c[16], double ndc[16]);
+
 #endif

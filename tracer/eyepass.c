@@ -19,13 +19,24 @@ struct path {
 	                              path split off at dispersive glass */
 };
 
-/* The AOVs of the first visible point (filled at depth 1 only). */
+/* The AOVs of the first visible point (filled at depth 1 only). The
+ * radiance leaving it splits as
+ *   beauty = albedo/π · (direct + caustic) + specular + emission
+ * (eyepass.h): lambert is the first term; diffuse is the diffuse radiance
+ * the shading computed, which differs from lambert where the surface is
+ * not Lambertian (brilliance ≠ 1, the legacy light model, the fade of a
+ * medium the camera sits in): that difference counts as specular. */
 struct aov {
+	bool hit;           /* the camera ray hit something */
 	struct vec3 direct; /* irradiance from shadow rays */
-	struct vec3 albedo; /* pigment × diffuse */
+	struct vec3 albedo; /* pigment × diffuse × opacity */
 	struct vec3 n;      /* facing normal */
-	double z;           /* hit distance */
+	struct vec3 p;      /* world position */
+	double z;           /* hit distance (+inf on a miss) */
 	struct vec3 caustic;/* irradiance from the illumination maps */
+	struct vec3 emis;   /* ambient and emission (the background on a miss) */
+	struct vec3 diffuse;/* diffuse radiance from the lights and the maps */
+	struct vec3 spec;   /* highlights, reflected and refracted radiance */
 };
 
 /* What the shading of one hit needs to know about the surface. */
@@ -165,11 +176,12 @@ static double towards(const struct light *l, struct vec3 p, struct vec3 q, struc
 }
 
 /* The light from point q of l (weighted by w) reflected at sf: diffuse and
- * highlights; adds the irradiance to *E. Tests the shadow ray when asked.
+ * highlights; adds the irradiance to *E and the highlights' radiance to *H.
+ * Tests the shadow ray when asked.
  * As in POV-Ray, the diffuse term is scaled by the surface's opacity
  * (1 - filter - transmit) but highlights are not, so clear glass shows them. */
 static struct vec3 from_point(struct path *pa, const struct light *l, const struct surf *sf,
-                              struct vec3 q, double w, bool test, struct vec3 *E)
+                              struct vec3 q, double w, bool test, struct vec3 *E, struct vec3 *H)
 {
 	const struct scene *s = pa->ctx->scene;
 	const struct finish *f = sf->tex->finish;
@@ -191,16 +203,17 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
 	struct vec3 hl = v_scale(Li, highlight(f, sf->nf, sf->v, L) * k);
 	if (f->refl_metallic)
 		hl = v_mul(hl, col3(sf->pc));
+	*H = v_add(*H, hl);
 	return v_add(v_scale(v_mul(rho, Li), cb * k * sf->opacity), hl);
 }
 
 /* Direct light from l at surface sf: returns the reflected radiance and adds
- * the irradiance (W/m², before albedo) to *E. Physical model: an area light
+ * the irradiance (W/m², before albedo) to *E, the highlights to *H. Physical model: an area light
  * is size1×size2 point lights of 1/(size1·size2) the intensity, each with
  * its own shadow ray. Legacy model (POV-Ray): the area only softens the
  * shadow; shading uses the centre, scaled by the fraction of samples seen. */
 static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
-                             struct vec3 *E)
+                             struct vec3 *E, struct vec3 *H)
 {
 	bool area = l->area && (l->size1 > 1 || l->size2 > 1);
 	int n1 = area && l->size1 > 0 ? l->size1 : 1, n2 = area && l->size2 > 0 ? l->size2 : 1;
@@ -211,7 +224,7 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 		for (int j = 0; j < n2; j++) {
 			struct vec3 q = light_point(pa, l, i, j);
 			if (!legacy) {
-				out = v_add(out, from_point(pa, l, sf, q, w, true, E));
+				out = v_add(out, from_point(pa, l, sf, q, w, true, E, H));
 				continue;
 			}
 			double dist = towards(l, sf->h->p, q, &L);
@@ -220,7 +233,7 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 				seen += w * (k.x + k.y + k.z) / 3;
 			}
 		}
-	return legacy && seen > 0 ? from_point(pa, l, sf, l->pos, seen, false, E) : out;
+	return legacy && seen > 0 ? from_point(pa, l, sf, l->pos, seen, false, E, H) : out;
 }
 
 /* ==== reflection and refraction ========================================== */
@@ -306,25 +319,34 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0)
 		sf.nf = v_neg(sf.nf);
-	sf.opacity = fmin(1, fmax(0, 1 - sf.pc.f - sf.pc.t));
+	sf.opacity = 1 - sf.pc.f - sf.pc.t;
+	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
+		sf.opacity = fmin(1, fmax(0, sf.opacity));
 	const struct finish *f = sf.tex->finish;
-	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0);
-	struct vec3 out = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
-	                                  col3(f->emission)));
-	out = v_scale(out, sf.opacity);
+	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0), H = v3(0, 0, 0), lit = v3(0, 0, 0);
+	struct vec3 emis = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
+	                                   col3(f->emission)));
+	emis = v_scale(emis, sf.opacity);
 	for (int i = 0; i < s->nlights; i++)
-		out = v_add(out, light_one(pa, &s->lights[i], &sf, &E));
+		lit = v_add(lit, light_one(pa, &s->lights[i], &sf, &E, &H));
+	struct vec3 diffuse = v_sub(lit, H);
 	struct vec3 Ec = caustic_at(pa->ctx, h);
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
-		out = v_add(out, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
-		                         (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
+		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
+		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
+	struct vec3 spec = specular(pa, &sf, v_norm(d), depth, weight, skip);
 	if (aov) {
+		aov->hit = true;
 		aov->caustic = Ec;
 		aov->direct = E;
-		aov->albedo = v_scale(pc, f->diffuse);
+		aov->albedo = v_scale(pc, f->diffuse * sf.opacity);
 		aov->n = sf.nf;
+		aov->p = h->p;
+		aov->emis = emis;
+		aov->diffuse = diffuse;
+		aov->spec = v_add(H, spec);
 	}
-	return v_add(out, specular(pa, &sf, v_norm(d), depth, weight, skip));
+	return v_add(v_add(emis, diffuse), v_add(H, spec));
 }
 
 /* The radiance arriving along r: the background on a miss, else the shaded
@@ -338,14 +360,32 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		return v3(0, 0, 0);
 	struct hit h;
 	pa->rays++;
-	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))
+	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h)) {
+		if (aov)
+			aov->emis = col3(s->background);
 		return col3(s->background);
+	}
 	if (aov)
 		aov->z = h.t * v_len(r.d);
 	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);
-	if (!h.entering)
-		c = v_mul(c, opt_fade(mat_interior(h.obj), h.t * v_len(r.d)));
+	if (!h.entering) {
+		struct vec3 fade = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
+		c = v_mul(c, fade);
+		if (aov) {
+			aov->emis = v_mul(aov->emis, fade);
+			aov->diffuse = v_mul(aov->diffuse, fade);
+			aov->spec = v_mul(aov->spec, fade);
+		}
+	}
 	return c;
+}
+
+/* The specular layer of a sample: highlights, reflection and refraction,
+ * plus what the diffuse radiance holds beyond albedo/π · (direct + caustic). */
+static struct vec3 aov_specular(const struct aov *a)
+{
+	struct vec3 lambert = v_scale(v_mul(a->albedo, v_add(a->direct, a->caustic)), 1 / M_PI);
+	return v_add(a->spec, v_sub(a->diffuse, lambert));
 }
 
 /* ==== pixels ============================================================= */
@@ -374,12 +414,16 @@ static void put3(float *dst, struct vec3 v, double k)
 }
 
 /* Shades one pixel: spp camera samples, stratified over an m×m grid of the
- * pixel (m = ⌊√spp⌋, remaining samples uniform), averaged with equal weights. */
+ * pixel (m = ⌊√spp⌋, remaining samples uniform), averaged with equal weights.
+ * The radiance and irradiance layers are means over the samples; A is the
+ * share of samples that hit; Z, N, P and albedo are the nearest sample's
+ * (the first of equals), so they describe one surface. */
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
 {
-	uint64_t pixel = (uint64_t)y * (uint64_t)ctx->w + (uint64_t)x;
-	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), A = v3(0, 0, 0), N = v3(0, 0, 0), C = v3(0, 0, 0);
-	double z = 0;
+	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
+	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
+	struct aov near = {.z = INFINITY};
+	int hits = 0;
 	bool jitter = ctx->spp > 1;
 	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	for (int i = 0; i < ctx->spp; i++) {
@@ -391,20 +435,26 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 		}
 		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
 		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
-		struct aov aov = {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), 0, v3(0, 0, 0)};
+		struct aov aov = {.z = INFINITY};
 		sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
 		E = v_add(E, aov.direct);
-		A = v_add(A, aov.albedo);
-		N = v_add(N, aov.n);
 		C = v_add(C, aov.caustic);
-		z += aov.z;
+		S = v_add(S, aov_specular(&aov));
+		M = v_add(M, aov.emis);
+		hits += aov.hit;
+		if (aov.z < near.z)
+			near = aov;
 		*rays += pa.rays;
 	}
 	double k = 1.0 / ctx->spp;
 	put3(out->rgb, sum, k);
 	put3(out->direct, E, k);
-	put3(out->albedo, A, k);
-	put3(out->n, N, k);
 	put3(out->caustic, C, k);
-	out->z = (float)(z * k);
+	put3(out->specular, S, k);
+	put3(out->emission, M, k);
+	put3(out->albedo, near.albedo, 1);
+	put3(out->n, near.n, 1);
+	put3(out->p, near.p, 1);
+	out->z = (float)near.z;
+	out->a = (float)(hits * k);
 }

@@ -40,16 +40,29 @@ struct eye_ctx {
 	                                  rays look through such objects (surface.h) */
 	bool spectral;                 /* passes spectral: dispersive glass splits a path
 	                                  into wavelengths, not into channels */
+	uint64_t seed_key;             /* --seed, mixed into every pixel's key (0: seed 0) */
 };
 
-/* One pixel's result, averaged over its samples. */
+/* One pixel's result. The beauty splits into layers the way Cycles' colour ×
+ * light passes do: per camera sample,
+ *   rgb = albedo/π · (direct + caustic) + specular + emission
+ * exactly (to float rounding; with several samples per pixel albedo is the
+ * nearest sample's, so the sum holds only where they all saw one surface).
+ * specular holds highlights, reflected and refracted radiance, and whatever
+ * of the diffuse radiance is not albedo/π · irradiance (brilliance ≠ 1,
+ * the legacy light model's missing 1/π); emission holds ambient, emission,
+ * and the background where the camera ray escaped. */
 struct eye_px {
-	float rgb[3];    /* beauty radiance */
-	float direct[3]; /* irradiance from shadow rays at the first hit, W/m² */
-	float albedo[3]; /* pigment × diffuse at the first hit */
-	float n[3];      /* world normal at the first hit (facing the camera) */
-	float z;         /* distance from the camera to the first hit (0: none) */
-	float caustic[3];/* irradiance from the illumination maps at the first hit, W/m² */
+	float rgb[3];     /* beauty radiance: the mean of the samples */
+	float direct[3];  /* irradiance from shadow rays at the first hit, W/m² (mean) */
+	float caustic[3]; /* irradiance from the illumination maps at the first hit, W/m² (mean) */
+	float specular[3];/* highlights, reflected and refracted radiance (mean) */
+	float emission[3];/* ambient, emission and background radiance (mean) */
+	float albedo[3];  /* pigment × diffuse × opacity at the nearest sample's hit */
+	float n[3];       /* world normal there (facing the camera; 0 on a miss) */
+	float p[3];       /* world position there (0 on a miss) */
+	float z;          /* distance from the camera to the nearest hit (+inf: none) */
+	float a;          /* coverage: the share of samples that hit an object */
 };
 
 /* Sets up ctx for scene s rendered at w×h with spp samples per pixel. */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "../common/arena.h"
+#include "pattern.h"
 
 /* ==== the image cache ==================================================== */
 
@@ -123,22 +124,6 @@ static struct colour colour_map(const struct pigment *pg, double v)
 	return m[pg->nmap - 1].c;
 }
 
-/* POV's checker: the parity of the unit cell containing q. */
-static struct colour checker(const struct pigment *pg, struct vec3 q)
-{
-	const double e = 1e-9;
-	long s = (long)floor(q.x + e) + (long)floor(q.y + e) + (long)floor(q.z + e);
-	return pg->c[s & 1 ? 1 : 0];
-}
-
-/* POV's gradient: the ramp of q·axis, repeating every unit. */
-static struct colour gradient(const struct pigment *pg, struct vec3 q)
-{
-	double v = v_dot(q, pg->axis);
-	v -= floor(v);
-	return colour_map(pg, v);
-}
-
 /* One texel (x, y) of im, clamped or wrapped at the edges. */
 static struct colour texel(const struct img *im, long x, long y)
 {
@@ -182,8 +167,8 @@ struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, s
 		return pg->c[0];
 	struct vec3 q = xf_inv_point(pg->xf ? pg->xf : &xf_ident, p);
 	switch (pg->kind) {
-	case PIG_CHECKER: return checker(pg, q);
-	case PIG_GRADIENT: return gradient(pg, q);
+	case PIG_CHECKER: case PIG_HEXAGON: case PIG_BRICK: return pg->c[pattern_block(pg, q)];
+	case PIG_GRADIENT: case PIG_PATTERN: return colour_map(pg, pattern_value(pg, q));
 	case PIG_IMAGE: return image_map(c, pg, q);
 	default: return pg->c[0];
 	}

@@ -18,8 +18,10 @@
 #include "eyepass.h"
 #include "light/lightpass.h"
 #include "material.h"
+#include "sampler.h"
 
 #define TILE 16 /* tile edge in pixels */
+#define NPLANES 27
 
 /* The eye pass's shared state: tiles are handed out by parallel_for and
  * each pixel's result goes to its own slot, so scheduling cannot change the
@@ -27,7 +29,8 @@
 struct eye_job {
 	const struct eye_ctx *ctx; /* shading context */
 	struct framebuffer *fb;    /* output planes */
-	float *pl[16];             /* R G B, direct RGB, albedo RGB, N XYZ, Z, caustic RGB */
+	float *pl[NPLANES];        /* the planes, in plane_names' order */
+	int x0, y0, w, h;          /* the region rendered (fb holds just it) */
 	int tx, ty;                /* tiles across and down */
 	atomic_int done;           /* tiles finished */
 	long long *rays;           /* rays traced, per worker */
@@ -42,18 +45,23 @@ static double now(void)
 	return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static const char *const plane_names[16] = {
-	"R", "G", "B", "direct.R", "direct.G", "direct.B", "albedo.R", "albedo.G", "albedo.B",
-	"N.X", "N.Y", "N.Z", "Z", "caustic.R", "caustic.G", "caustic.B"};
+/* Channel names as Nuke and OpenImageIO group them into layers. */
+static const char *const plane_names[NPLANES] = {
+	"R", "G", "B", "A", "direct.R", "direct.G", "direct.B", "caustic.R", "caustic.G",
+	"caustic.B", "specular.R", "specular.G", "specular.B", "emission.R", "emission.G",
+	"emission.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z",
+	"Z", NULL};
 
 /* Stores one pixel's result in the planes. */
 static void store(struct eye_job *j, size_t i, const struct eye_px *px)
 {
-	const float *src[16] = {&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->direct[0],
-	                        &px->direct[1], &px->direct[2], &px->albedo[0], &px->albedo[1],
-	                        &px->albedo[2], &px->n[0], &px->n[1], &px->n[2], &px->z,
-	                        &px->caustic[0], &px->caustic[1], &px->caustic[2]};
-	for (int k = 0; k < 16; k++)
+	const float *src[NPLANES - 1] = {
+		&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->a, &px->direct[0], &px->direct[1],
+		&px->direct[2], &px->caustic[0], &px->caustic[1], &px->caustic[2], &px->specular[0],
+		&px->specular[1], &px->specular[2], &px->emission[0], &px->emission[1],
+		&px->emission[2], &px->albedo[0], &px->albedo[1], &px->albedo[2], &px->n[0], &px->n[1],
+		&px->n[2], &px->p[0], &px->p[1], &px->p[2], &px->z};
+	for (int k = 0; k < NPLANES - 1; k++)
 		j->pl[k][i] = *src[k];
 }
 
@@ -74,13 +82,14 @@ static void do_tile(void *arg, long t, int worker)
 {
 	struct eye_job *j = arg;
 	int x0 = (int)(t % j->tx) * TILE, y0 = (int)(t / j->tx) * TILE;
-	int w = j->ctx->w, h = j->ctx->h;
-	for (int y = y0; y < y0 + TILE && y < h; y++)
-		for (int x = x0; x < x0 + TILE && x < w; x++) {
+	long long rays = 0; /* a local count: the workers' slots share a cache line */
+	for (int y = y0; y < y0 + TILE && y < j->h; y++)
+		for (int x = x0; x < x0 + TILE && x < j->w; x++) {
 			struct eye_px px;
-			eye_pixel(j->ctx, x, y, &px, &j->rays[worker]);
-			store(j, (size_t)y * (size_t)w + (size_t)x, &px);
+			eye_pixel(j->ctx, j->x0 + x, j->y0 + y, &px, &rays);
+			store(j, (size_t)y * (size_t)j->w + (size_t)x, &px);
 		}
+	j->rays[worker] += rays;
 	int d = atomic_fetch_add(&j->done, 1) + 1;
 	if (j->progress)
 		progress(j, d);
@@ -94,10 +103,11 @@ static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthr
 	memset(&j, 0, sizeof j);
 	j.ctx = ctx;
 	j.fb = fb;
-	for (int k = 0; k < 16; k++)
+	for (int k = 0; k < NPLANES - 1; k++)
 		j.pl[k] = fb_plane(fb, plane_names[k]);
-	j.tx = (ctx->w + TILE - 1) / TILE;
-	j.ty = (ctx->h + TILE - 1) / TILE;
+	j.x0 = fb->x0, j.y0 = fb->y0, j.w = fb->w, j.h = fb->h;
+	j.tx = (j.w + TILE - 1) / TILE;
+	j.ty = (j.h + TILE - 1) / TILE;
 	atomic_init(&j.done, 0);
 	j.rays = mem_calloc((size_t)nthreads, sizeof *j.rays);
 	j.progress = show;
@@ -139,6 +149,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
+		.seed_key = render_seed_key(o->seed),
 	};
 	/* the image's pixel, so the maps need not be finer than it */
 	struct cam cm;
@@ -171,6 +182,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			continue;
 		out[n++] = r;
 		st->light_rays += ls.rays;
+		st->light_segments += ls.segments;
 		st->tol_estimate = fmax(st->tol_estimate, ls.tol_estimate);
 		st->tol_rounds = ls.tol_rounds > st->tol_rounds ? ls.tol_rounds : st->tol_rounds;
 		st->tol_rays = ls.tol_rays > st->tol_rays ? ls.tol_rays : st->tol_rays;
@@ -234,6 +246,24 @@ static int dump_maps(struct lp_result *const *maps, int n, const char *dir, stru
 	return d.err;
 }
 
+uint64_t render_seed_key(long seed)
+{
+	return seed ? smp_mix((uint64_t)seed * 0x9E3779B97F4A7C15ull) : 0;
+}
+
+/* The framebuffer for the frame, or for the region of it asked for (the
+ * caller checked the region lies inside the frame). */
+static struct framebuffer *new_film(const struct render_opts *o)
+{
+	const int *r = o->region;
+	if (r[1] <= 0)
+		return fb_new(o->width, o->height);
+	struct framebuffer *fb = fb_new(r[1] - r[0], r[3] - r[2]);
+	fb->x0 = r[0], fb->y0 = r[2];
+	fb->full_w = o->width, fb->full_h = o->height;
+	return fb;
+}
+
 int render(const struct scene *s, const struct render_opts *o, struct diag *dg, struct framebuffer **out,
            struct render_stats *stats)
 {
@@ -249,7 +279,7 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 		return err;
 	}
 	struct bvh *b = bvh_build(s->objects, s->nobjects);
-	struct framebuffer *fb = fb_new(o->width, o->height);
+	struct framebuffer *fb = new_film(o);
 	st.threads = pool_threads(o->threads);
 	double t1 = now();
 	st.t_setup = t1 - t0;
@@ -275,6 +305,7 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
+	ctx.seed_key = render_seed_key(o->seed);
 	if (!err)
 		eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
 	st.t_eye = now() - t2;
@@ -302,8 +333,8 @@ void render_print_stats(FILE *f, const struct render_stats *st)
 	fprintf(f, "arvo: threads          %d\n", st->threads);
 	fprintf(f, "arvo: rays traced      %lld\n", st->rays);
 	fprintf(f, "arvo: setup            %.3f s (BVH, images)\n", st->t_setup);
-	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %ld maps, %.1f MiB)\n", st->t_light,
-	        st->light_rays, st->maps, st->map_bytes / 1048576.0);
+	fprintf(f, "arvo: light pass       %.3f s (%lld light rays, %lld segments, %ld maps, %.1f MiB)\n",
+	        st->t_light, st->light_rays, st->light_segments, st->maps, st->map_bytes / 1048576.0);
 	if (st->tolerance > 0)
 		fprintf(f, "arvo: tolerance        %.3g asked, %.3g estimated (%d rounds, last %ld rays per light, "
 		        "finest map cell %.3g)\n", st->tolerance, st->tol_estimate, st->tol_rounds, st->tol_rays,

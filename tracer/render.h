@@ -2,14 +2,17 @@
 /* render.h: the render driver (docs/design.md §1): builds the BVH, loads the
  * images, runs the passes over a thread pool and fills the framebuffer.
  *
- * Layers written: R G B (beauty), direct.R/G/B (irradiance from shadow rays
- * at the first visible point, W/m², before albedo), albedo.R/G/B,
- * N.X/Y/Z (world normal facing the camera) and Z (distance to the first
- * hit; 0 where the ray escaped), and caustic.R/G/B (irradiance from the
- * illumination maps at the first visible point, W/m², before albedo). The result is bit-identical for any thread
- * count: every pixel depends only on (pixel, sample) keyed random numbers. */
+ * Layers written (struct eye_px says what each holds): R G B (beauty), A
+ * (coverage), direct.R/G/B and caustic.R/G/B (irradiance, W/m²),
+ * specular.R/G/B and emission.R/G/B (radiance), albedo.R/G/B, N.X/Y/Z,
+ * P.X/Y/Z (world space) and Z (distance to the nearest hit, +inf where
+ * nothing was hit). The result is bit-identical for any thread count and
+ * for any region: every pixel depends only on (pixel, sample) keyed random
+ * numbers, the pixel numbered in the full frame. */
 #ifndef ARVO_RENDER_H
 #define ARVO_RENDER_H
+
+#include <stdint.h>
 
 #include "../common/diag.h"
 #include "output/framebuffer.h"
@@ -29,13 +32,21 @@ struct render_opts {
 	int method;              /* 0: the scene's method, else enum illum_method + 1 */
 	double tolerance;        /* > 0: the light pass's accuracy target (else the scene's) */
 	int passes;              /* 0: the scene's passes, else enum illum_passes + 1 */
+	int region[4];           /* x0 x1 y0 y1: render only columns [x0, x1) and rows
+	                            [y0, y1) (the framebuffer is that region of the
+	                            frame); x1 == 0: the whole frame */
+	long seed;               /* --seed: 0, or another set of random numbers */
 };
+
+/* The key a seed mixes into every random stream (0 for seed 0). */
+uint64_t render_seed_key(long seed);
 
 struct render_stats {
 	long long rays;     /* camera, reflected, refracted and shadow rays */
 	double t_setup;     /* seconds building the BVH and loading images */
 	double t_light;     /* seconds in the light pass */
 	long long light_rays; /* light rays shot (all passes) */
+	long long light_segments; /* ray segments traced by the light pass */
 	long maps;          /* surfaces with an illumination map */
 	size_t map_bytes;   /* memory held by the maps */
 	/* light-pass energy (W, summed over channels and passes): emitted toward

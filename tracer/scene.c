@@ -34,6 +34,10 @@ struct texture scene_default_texture(void)
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
 	t.pigment.axis = v3(0, 1, 0);
+	t.pigment.frequency = 1;
+	t.pigment.exponent = 1;
+	t.pigment.brick_size = v3(8, 3, 4.5);
+	t.pigment.mortar = 0.5;
 	t.finish = &default_finish;
 	t.loc = (struct srcloc){-1, 0, 0};
 	return t;
@@ -139,7 +143,9 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
-	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map"};
+	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
 	switch (p->kind) {
@@ -147,7 +153,16 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
 	case PIG_GRADIENT: pv(o, p->axis); break;
 	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", p->image, p->interpolate, p->once); break;
+	case PIG_PATTERN: fputs(pats[p->pattern], o); break;
+	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputc(' ', o), pc(o, p->c[2]); break;
+	case PIG_BRICK:
+		pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputs(" brick_size ", o), pv(o, p->brick_size);
+		fprintf(o, " mortar %.6g", p->mortar);
+		break;
 	}
+	if ((p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN) &&
+	    (p->wave != WAVE_RAMP || p->frequency != 1 || p->phase != 0))
+		fprintf(o, " %s_wave %.6g frequency %.6g phase %.6g", waves[p->wave], p->exponent, p->frequency, p->phase);
 	fputc('\n', o);
 	for (int i = 0; i < p->nmap; i++) {
 		indent(o, d + 1);

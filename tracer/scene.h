@@ -18,7 +18,21 @@
 
 /* ---- materials ---------------------------------------------------------- */
 
-enum pigment_kind { PIG_SOLID, PIG_CHECKER, PIG_GRADIENT, PIG_IMAGE };
+enum pigment_kind {
+	PIG_SOLID, PIG_CHECKER, PIG_GRADIENT, PIG_IMAGE,
+	PIG_PATTERN,  /* a continuous pattern (enum pattern_kind) through the colour_map */
+	PIG_HEXAGON,  /* three colours on hexagons in the x-z plane */
+	PIG_BRICK,    /* mortar colour, brick colour */
+};
+
+/* POV-Ray's continuous patterns (tracer/pattern.c). */
+enum pattern_kind {
+	PAT_RADIAL, PAT_ONION, PAT_SPHERICAL, PAT_CYLINDRICAL, PAT_BOXED, PAT_PLANAR,
+	PAT_LEOPARD, PAT_KIND_COUNT
+};
+
+/* The wave a pattern's value goes through before the colour_map. */
+enum wave_kind { WAVE_RAMP, WAVE_TRIANGLE, WAVE_SINE, WAVE_SCALLOP, WAVE_CUBIC, WAVE_POLY };
 
 /* One entry of a colour_map: the colour at position pos in [0,1]. */
 struct map_entry {
@@ -28,8 +42,14 @@ struct map_entry {
 
 struct pigment {
 	enum pigment_kind kind;   /* which pattern */
-	struct colour c[2];       /* solid colour; checker's two colours */
+	struct colour c[3];       /* solid colour; checker's, brick's two, hexagon's three */
 	struct vec3 axis;         /* gradient direction */
+	enum pattern_kind pattern; /* PIG_PATTERN: which */
+	enum wave_kind wave;      /* gradient, PIG_PATTERN: ramp_wave (default) … */
+	double frequency, phase;  /* POV frequency (default 1) and phase (0) */
+	double exponent;          /* poly_wave exponent (default 1) */
+	struct vec3 brick_size;   /* brick: default <8, 3, 4.5> */
+	double mortar;            /* brick: default 0.5 */
 	struct map_entry *map;    /* gradient colour_map (NULL: black→white) */
 	int nmap;                 /* entries in map */
 	const char *image;        /* image_map file, resolved path */

@@ -23,23 +23,26 @@ static const struct prim_ops *ops(const struct object *o)
 /* The world ray expressed in the object's frame (same t). */
 static struct ray local_ray(const struct object *o, const struct ray *r)
 {
-	return (struct ray){xf_inv_point(obj_xf(o), r->o), xf_inv_vector(obj_xf(o), r->d)};
+	if (!o->xf) /* no transform: the world frame */
+		return *r;
+	return (struct ray){xf_inv_point(o->xf, r->o), xf_inv_vector(o->xf, r->d)};
 }
 
 /* Fills a world hit from a local one. */
 static void to_world(const struct object *o, const struct ray *r, const struct local_hit *lh,
                      struct hit *h)
 {
-	struct vec3 n = v_norm(xf_normal(obj_xf(o), lh->n));
+	const struct xform *x = o->xf;
+	struct vec3 n = v_norm(x ? xf_normal(x, lh->n) : lh->n);
 	if (o->flags & OF_INVERSE)
 		n = v_neg(n);
 	h->t = lh->t;
-	h->p = xf_point(obj_xf(o), lh->p);
+	h->p = x ? xf_point(x, lh->p) : lh->p;
 	h->n = n;
 	h->u = lh->u;
 	h->v = lh->v;
-	h->dpdu = xf_vector(obj_xf(o), lh->dpdu);
-	h->dpdv = xf_vector(obj_xf(o), lh->dpdv);
+	h->dpdu = x ? xf_vector(x, lh->dpdu) : lh->dpdu;
+	h->dpdv = x ? xf_vector(x, lh->dpdv) : lh->dpdv;
 	h->obj = o;
 	h->entering = v_dot(r->d, n) < 0;
 }
@@ -86,7 +89,9 @@ struct bbox shape_bounds(const struct object *o)
 	if (!p)
 		return csg_is_csg(o) ? csg_bounds(o) : bbox_empty();
 	struct bbox b = p->bounds(o);
-	return bbox_finite(b) ? xf_bbox(obj_xf(o), b) : prim_infinite_box();
+	if (!bbox_finite(b))
+		return prim_infinite_box();
+	return o->xf ? xf_bbox(o->xf, b) : b;
 }
 
 struct bbox shape_solid_bounds(const struct object *o)

@@ -30,10 +30,13 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 	double n1 = h->entering ? 1 : ior, n2 = h->entering ? ior : 1;
 	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p);
 	struct vec3 R = clamp3(opt_reflection(si->f, si->pc, ci, n1, n2));
-	struct vec3 T = clamp3(opt_transmission(si->pc)), one = v3(1, 1, 1);
-	if (si->f->refl_fresnel || si->f->conserve_energy)
-		T = v_mul(T, v_sub(one, R));
-	T = v3(fmin(T.x, 1 - R.x), fmin(T.y, 1 - R.y), fmin(T.z, 1 - R.z)); /* never more out than in */
+	struct vec3 T = opt_transmission(si->pc), one = v3(1, 1, 1);
+	if (!si->legacy || maxc(T) <= 1) { /* POV-Ray's model lets transmit > 1 amplify */
+		T = clamp3(T);
+		if (si->f->refl_fresnel || si->f->conserve_energy)
+			T = v_mul(T, v_sub(one, R));
+		T = v3(fmin(T.x, 1 - R.x), fmin(T.y, 1 - R.y), fmin(T.z, 1 - R.z)); /* never more out than in */
+	}
 	out->tir = false;
 	out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
 	if (maxc(T) > 0 && !si->straight && !opt_refract(si->d, si->nf, n1 / n2, &out->trans.d)) {

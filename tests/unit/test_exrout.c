@@ -127,7 +127,7 @@ static void t_float_all_compressions(void)
 {
 	static const char *const comp[] = {"zip", "none", "zips", "piz", "rle"};
 	for (int c = 0; c < 5; c++) {
-		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test"};
+		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test", NULL};
 		char file[32];
 		CHECK(out_exr_compression_parse(comp[c], &o.compression) == 0);
 		CHECK((int)o.compression == c);
@@ -140,7 +140,7 @@ static void t_float_all_compressions(void)
 
 static void t_half(void)
 {
-	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL, NULL};
 	roundtrip(&o, "h_piz.exr");
 	o.compression = OUT_EXR_ZIP;
 	roundtrip(&o, "h_zip.exr");
@@ -154,7 +154,7 @@ static void t_half_rgb(void)
 	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
 	for (int i = 0; i < 15; i++)
 		p[0][i] = 0.5f * (float)i, p[1][i] = 0.1f, p[2][i] = -1.0f / 3.0f;
-	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL, NULL};
 	struct out_exr_info info;
 	CHECK(MSG(out_exr_write(fb, in_dir("rgb_half.exr"), &o, TDG)) == NULL);
 	CHECK(MSG(out_exr_read(in_dir("rgb_half.exr"), &rd, &info, TDG)) == NULL);
@@ -186,7 +186,7 @@ static void t_small_sizes(void)
 							for (int i = 0; i < w * h; i++)
 								p[i] = (float)((i * 37 + k * 11 + w) % 17) * 0.125f - 0.5f;
 						}
-						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL};
+						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL, NULL};
 						runs++;
 						if (out_exr_write(fb, in_dir("s.exr"), &o, TDG) ||
 						    out_exr_read(in_dir("s.exr"), &rd, NULL, TDG)) {
@@ -260,7 +260,7 @@ static void t_failed_write_midway(void)
 	lim.rlim_cur = 4096;
 	signal(SIGXFSZ, SIG_IGN);
 	setrlimit(RLIMIT_FSIZE, &lim);
-	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL};
+	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL, NULL};
 	const char *err = MSG(out_exr_write(fb, path, &o, TDG));
 	setrlimit(RLIMIT_FSIZE, &old);
 	CHECK(err != NULL);
@@ -314,6 +314,44 @@ static void t_read_errors(void)
 		printf("# expected error: %s\n", err);
 }
 
+/* A region of a frame keeps its place (data window) and the frame (display
+ * window) through a write and a read, with every header attribute. */
+static void t_region_and_meta(void)
+{
+	struct framebuffer *fb = fb_new(3, 2);
+	fb->x0 = 5, fb->y0 = 7, fb->full_w = 20, fb->full_h = 10;
+	float *r = fb_plane(fb, "R");
+	for (int i = 0; i < 6; i++)
+		r[i] = (float)i + 0.5f;
+	static struct out_exr_meta m;
+	m.has_camera = 1;
+	for (int i = 0; i < 16; i++)
+		m.world_to_camera[i] = (float)i, m.world_to_ndc[i] = (float)(i * 2), m.camera_to_world[i] = (float)-i;
+	out_meta_add(&m, "arvo:spp", "%d", 4);
+	out_meta_add(&m, "arvo:method", "%s", "shaft");
+	struct out_exr_opts o = {0, OUT_EXR_ZIP, "s.scn", &m};
+	struct framebuffer *rd = NULL;
+	static struct out_exr_info info;
+	CHECK(MSG(out_exr_write(fb, in_dir("region.exr"), &o, TDG)) == NULL);
+	CHECK(MSG(out_exr_read(in_dir("region.exr"), &rd, &info, TDG)) == NULL);
+	if (rd) {
+		CHECK(rd->w == 3 && rd->h == 2 && rd->x0 == 5 && rd->y0 == 7);
+		CHECK(rd->full_w == 20 && rd->full_h == 10);
+		CHECK(memcmp(fb_find(rd, "R"), r, 6 * sizeof(float)) == 0);
+	}
+	CHECK(info.meta.has_camera);
+	CHECK(info.meta.world_to_camera[7] == 7 && info.meta.world_to_ndc[15] == 30 &&
+	      info.meta.camera_to_world[3] == -3);
+	CHECK(info.meta.n == 3); /* arvo:spp, arvo:method and arvo:scene, in file order */
+	CHECK_STR(info.meta.key[0], "arvo:scene");
+	CHECK_STR(info.meta.val[0], "s.scn");
+	CHECK_STR(info.meta.key[1], "arvo:spp");
+	CHECK_STR(info.meta.val[1], "4");
+	CHECK_STR(info.meta.val[2], "shaft");
+	fb_free(rd);
+	fb_free(fb);
+}
+
 int main(void)
 {
 	snprintf(dir, sizeof dir, "%s/arvo-exr-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
@@ -330,6 +368,7 @@ int main(void)
 	RUN(t_failed_write_midway);
 	RUN(t_failed_write_dir);
 	RUN(t_read_errors);
+	RUN(t_region_and_meta);
 	if (getenv("ARVO_KEEP_TMP"))
 		return test_done();
 	char cmd[128];

@@ -2,6 +2,7 @@
 /* test_png.c: PNG output through the OCIO views (8-bit values of known
  * pixels, read back with libpng), its failure modes, and image loading for
  * image_map (PNG through "sRGB - Texture", EXR as linear). */
+#include <setjmp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -80,7 +81,7 @@ static int read_png8(const char *path, unsigned char *buf, int w, int h)
 static void check_png(const char *view, const int want[NPIX][3], int tol)
 {
 	struct framebuffer *fb = make_fb();
-	struct out_png_opts o = {NULL, NULL, view, NULL, NULL};
+	struct out_png_opts o = {NULL, NULL, view, NULL, NULL, 8};
 	const char *path = in_dir("v.png");
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err == NULL);
@@ -114,7 +115,7 @@ static void t_odd_inputs(void)
 	float *r = fb_plane(fb, "R");
 	r[0] = NAN, r[1] = 0.5f;
 	unsigned char enc[6];
-	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL};
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 8};
 	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
 	CHECK(enc[0] == 0 && enc[3] == 128 && enc[4] == 0 && enc[5] == 0);
 	struct framebuffer *nob = fb_new(2, 1);
@@ -134,7 +135,7 @@ static void t_failures(void)
 		fputs("old", f);
 		fclose(f);
 	}
-	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL};
+	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL, 8};
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err && strstr(err, "Filmic") && strstr(err, "\"Standard\""));
 	o.view = NULL;
@@ -286,6 +287,103 @@ static void t_load_errors(void)
 	CHECK(MSG(img_load(in_dir("old.png"), NULL, &im, TDG, srcloc_none(), NULL)) != NULL);
 }
 
+/* What a PNG file says besides its pixels (libpng's low-level reader). */
+struct png_facts {
+	int depth, srgb, cicp;       /* bit depth; sRGB and cICP chunks present */
+	unsigned char cicp_data[4];  /* the cICP chunk */
+	char display[128], view[128];/* the "OCIO display" and "OCIO view" texts */
+	unsigned px[3];              /* the first pixel's samples */
+};
+
+static int read_facts(const char *path, struct png_facts *f)
+{
+	memset(f, 0, sizeof *f);
+	FILE *fp = fopen(path, "rb");
+	if (!fp)
+		return 0;
+	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	png_infop info = png_create_info_struct(png);
+	if (setjmp(png_jmpbuf(png))) {
+		png_destroy_read_struct(&png, &info, NULL);
+		fclose(fp);
+		return 0;
+	}
+	png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_ALWAYS, (png_const_bytep) "cICP", 1);
+	png_init_io(png, fp);
+	png_read_info(png, info);
+	f->depth = png_get_bit_depth(png, info);
+	int intent;
+	f->srgb = png_get_sRGB(png, info, &intent) != 0;
+	png_unknown_chunkp unk;
+	int nunk = png_get_unknown_chunks(png, info, &unk);
+	for (int i = 0; i < nunk; i++)
+		if (!memcmp(unk[i].name, "cICP", 4) && unk[i].size == 4)
+			f->cicp = 1, memcpy(f->cicp_data, unk[i].data, 4);
+	png_textp text;
+	int ntext = 0;
+	png_get_text(png, info, &text, &ntext);
+	for (int i = 0; i < ntext; i++) {
+		if (!strcmp(text[i].key, "OCIO display"))
+			snprintf(f->display, sizeof f->display, "%s", text[i].text);
+		if (!strcmp(text[i].key, "OCIO view"))
+			snprintf(f->view, sizeof f->view, "%s", text[i].text);
+	}
+	unsigned char row[2 * 3 * 4];
+	png_read_row(png, row, NULL);
+	for (int c = 0; c < 3; c++)
+		f->px[c] = f->depth == 16 ? (unsigned)(row[2 * c] << 8 | row[2 * c + 1]) : row[c];
+	png_destroy_read_struct(&png, &info, NULL);
+	fclose(fp);
+	return 1;
+}
+
+/* --png-depth 16 through Raw: 0.5 → 32768, 0.25 → 16384, 2 → 65535; no
+ * colour chunk for Raw, the display and view in the text chunks. */
+static void t_png16(void)
+{
+	struct framebuffer *fb = fb_new(2, 1);
+	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
+	p[0][0] = 0.5f, p[1][0] = 0.25f, p[2][0] = 2;
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 16};
+	struct png_facts f;
+	CHECK(MSG(out_png_write(fb, in_dir("d16.png"), &o, TDG)) == NULL);
+	CHECK(read_facts(in_dir("d16.png"), &f));
+	CHECK(f.depth == 16);
+	CHECK(f.px[0] == 32768 && f.px[1] == 16384 && f.px[2] == 65535);
+	CHECK(!f.srgb && !f.cicp);
+	CHECK_STR(f.display, "sRGB - Display");
+	CHECK_STR(f.view, "Raw");
+	o.depth = 8;
+	CHECK(MSG(out_png_write(fb, in_dir("d8.png"), &o, TDG)) == NULL);
+	CHECK(read_facts(in_dir("d8.png"), &f));
+	CHECK(f.depth == 8 && f.px[0] == 128 && f.px[1] == 64 && f.px[2] == 255);
+	fb_free(fb);
+}
+
+/* The sRGB display gets an sRGB chunk; other displays map to cICP codes. */
+static void t_colour_chunks(void)
+{
+	struct framebuffer *fb = make_fb();
+	struct out_png_opts o = {NULL, NULL, NULL, NULL, NULL, 8};
+	struct png_facts f;
+	CHECK(MSG(out_png_write(fb, in_dir("srgb.png"), &o, TDG)) == NULL);
+	CHECK(read_facts(in_dir("srgb.png"), &f));
+	CHECK(f.srgb && !f.cicp);
+	CHECK_STR(f.display, "sRGB - Display");
+	CHECK_STR(f.view, "ACES 1.0 - SDR Video");
+	unsigned char c[4] = {0, 0, 0, 0};
+	CHECK(out_png_signal("Display P3", "Standard", c) == OUT_PNG_CICP);
+	CHECK(c[0] == 12 && c[1] == 13 && c[2] == 0 && c[3] == 1);
+	CHECK(out_png_signal("Rec.2100-PQ - Display", "ACES 1.0 - HDR Video", c) == OUT_PNG_CICP);
+	CHECK(c[0] == 9 && c[1] == 16);
+	CHECK(out_png_signal("Rec.1886 Rec.709 - Display", "Standard", c) == OUT_PNG_CICP);
+	CHECK(c[0] == 1 && c[1] == 1);
+	CHECK(out_png_signal("sRGB - Display", "Standard", c) == OUT_PNG_SRGB);
+	CHECK(out_png_signal("sRGB - Display", "Raw", c) == OUT_PNG_RAW);
+	CHECK(out_png_signal("Projector", "Standard", c) == OUT_PNG_UNKNOWN);
+	fb_free(fb);
+}
+
 int main(void)
 {
 	snprintf(dir, sizeof dir, "%s/arvo-png-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
@@ -299,6 +397,8 @@ int main(void)
 	RUN(t_highlight_desaturation);
 	RUN(t_odd_inputs);
 	RUN(t_failures);
+	RUN(t_png16);
+	RUN(t_colour_chunks);
 	RUN(t_load_png_rgb);
 	RUN(t_load_png_gray_alpha);
 	RUN(t_load_png16);

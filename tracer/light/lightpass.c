@@ -130,6 +130,7 @@ struct worker {
 	long long segments;
 	double emitted[3];
 	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
+	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
 
 static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
@@ -737,7 +738,7 @@ static void run_item(struct worker *w, const struct item *it)
 			if (c != J->o->channel)
 				e0[c] = 0;
 	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
-	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u;
+	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u ^ J->o->seed_key;
 	bool beam = l->kind == LIGHT_PARALLEL;
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
@@ -1486,14 +1487,129 @@ void lp_free(struct lp_result *r)
 
 /* ==== --save-maps / --load-maps ========================================== */
 
-/* File layout (native byte order, for reuse on the same machine): the magic
- * "ARVOMAP1", int32 passes, int32 primitives in the scene; per pass int32
- * maps; per map int32 primitive index (depth-first over the scene's object
- * tree), int32 resolution, double cell, int64 nodes, then per node int64 i,
- * int64 j, double energy[3]. A surface's levels (shafts) are consecutive
- * maps of the same primitive, finest first. Loading deposits each energy
- * exactly on its node (a deposit on a node gives it all) and finishes the
- * maps again. */
+/* File layout (docs/design.md §4, "Map files"): little-endian whatever
+ * the machine, no padding. A header: the magic "ARVOMAPS", uint32 format
+ * version (MAP_FORMAT), 16 bytes of the arvo version that wrote it (NUL
+ * padded), uint64 hash of the scene (lp_scene_hash), int32 passes, int32
+ * primitives in the scene; per pass int32 maps; per map int32 primitive
+ * index (depth-first over the scene's object tree), int32 resolution,
+ * double cell, int64 nodes, then per node int64 i, int64 j, double
+ * energy[3]. A surface's levels (shafts) are consecutive maps of the same
+ * primitive, finest first. Loading deposits each energy exactly on its node
+ * (a deposit on a node gives it all) and finishes the maps again. Format 1
+ * ("ARVOMAP1", native byte order, no version or hash) is refused. */
+
+#define MAP_FORMAT 2u
+
+/* ---- little-endian fields ---- */
+
+static void put_u32(FILE *f, uint32_t v)
+{
+	unsigned char b[4];
+	for (int i = 0; i < 4; i++)
+		b[i] = (unsigned char)(v >> (8 * i));
+	fwrite(b, 4, 1, f);
+}
+
+static void put_u64(FILE *f, uint64_t v)
+{
+	unsigned char b[8];
+	for (int i = 0; i < 8; i++)
+		b[i] = (unsigned char)(v >> (8 * i));
+	fwrite(b, 8, 1, f);
+}
+
+static void put_f64(FILE *f, double d)
+{
+	uint64_t v;
+	memcpy(&v, &d, 8);
+	put_u64(f, v);
+}
+
+static int get_u32(FILE *f, uint32_t *v)
+{
+	unsigned char b[4];
+	if (fread(b, 4, 1, f) != 1)
+		return 0;
+	*v = (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+	return 1;
+}
+
+static int get_i32(FILE *f, int32_t *v)
+{
+	uint32_t u;
+	if (!get_u32(f, &u))
+		return 0;
+	memcpy(v, &u, 4);
+	return 1;
+}
+
+static int get_u64(FILE *f, uint64_t *v)
+{
+	uint32_t lo, hi;
+	if (!get_u32(f, &lo) || !get_u32(f, &hi))
+		return 0;
+	*v = (uint64_t)hi << 32 | lo;
+	return 1;
+}
+
+static int get_i64(FILE *f, int64_t *v)
+{
+	uint64_t u;
+	if (!get_u64(f, &u))
+		return 0;
+	memcpy(v, &u, 8);
+	return 1;
+}
+
+static int get_f64(FILE *f, double *d)
+{
+	uint64_t u;
+	if (!get_u64(f, &u))
+		return 0;
+	memcpy(d, &u, 8);
+	return 1;
+}
+
+/* ---- what the maps belong to ---- */
+
+/* FNV-1a over the scene as --dump-scene prints it, without what the light
+ * pass does not read: the scene's name, the camera block and source
+ * positions ("@line:col"), so moving a comment or the camera keeps the
+ * maps. What it covers: objects, their transforms, textures and interiors,
+ * lights, global settings (illumination included) and the background. */
+uint64_t lp_scene_hash(const struct scene *s)
+{
+	char *text = NULL;
+	size_t len = 0;
+	FILE *f = open_memstream(&text, &len);
+	if (!f)
+		return 0;
+	scene_dump(f, s);
+	fclose(f);
+	uint64_t h = 0xcbf29ce484222325ull;
+	bool camera = false;
+	for (char *line = text; line && *line;) {
+		char *end = strchr(line, '\n');
+		size_t n = end ? (size_t)(end - line) : strlen(line);
+		bool skip = line == text; /* scene "name" version ... */
+		if (!strncmp(line, "camera ", 7))
+			camera = true;
+		else if (strncmp(line, "  ", 2) != 0)
+			camera = false;
+		skip |= camera;
+		for (size_t i = 0; i < n && !skip; i++) {
+			if (line[i] == '@') /* @line:col */
+				while (i + 1 < n && line[i + 1] != ' ')
+					i++;
+			else
+				h = (h ^ (unsigned char)line[i]) * 0x100000001b3ull;
+		}
+		line = end ? end + 1 : NULL;
+	}
+	free(text);
+	return h;
+}
 
 struct prims {
 	const struct object **o; /* primitives in depth-first order */
@@ -1530,9 +1646,10 @@ static void save_node(void *ctx, const struct illum_node *n)
 	struct saver *sv = ctx;
 	if (n->isolated)
 		return;
-	int64_t ij[2] = {n->i, n->j};
-	fwrite(ij, sizeof ij, 1, sv->f);
-	fwrite(n->energy, sizeof n->energy, 1, sv->f);
+	put_u64(sv->f, (uint64_t)(int64_t)n->i);
+	put_u64(sv->f, (uint64_t)(int64_t)n->j);
+	for (int c = 0; c < 3; c++)
+		put_f64(sv->f, n->energy[c]);
 	sv->nodes++;
 }
 
@@ -1557,12 +1674,17 @@ int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, cons
 		free(P.o);
 		return diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(e));
 	}
-	int32_t hdr[2] = {npasses, P.n};
-	fwrite("ARVOMAP1", 8, 1, f);
-	fwrite(hdr, sizeof hdr, 1, f);
+	char version[16] = {0};
+	strncpy(version, ARVO_VERSION, sizeof version - 1);
+	fwrite("ARVOMAPS", 8, 1, f);
+	put_u32(f, MAP_FORMAT);
+	fwrite(version, sizeof version, 1, f);
+	put_u64(f, lp_scene_hash(s));
+	put_u32(f, (uint32_t)npasses);
+	put_u32(f, (uint32_t)P.n);
 	for (int p = 0; p < npasses; p++) {
 		int32_t nm = r[p] ? r[p]->n : 0;
-		fwrite(&nm, sizeof nm, 1, f);
+		put_u32(f, (uint32_t)nm);
 		for (int k = 0; k < nm; k++) {
 			int32_t idx = -1;
 			for (int i = 0; i < P.n; i++)
@@ -1574,10 +1696,10 @@ int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, cons
 			int32_t res = r[p]->specs[k].resolution;
 			double cell = r[p]->specs[k].cell;
 			int64_t nodes = cnt;
-			fwrite(&idx, sizeof idx, 1, f);
-			fwrite(&res, sizeof res, 1, f);
-			fwrite(&cell, sizeof cell, 1, f);
-			fwrite(&nodes, sizeof nodes, 1, f);
+			put_u32(f, (uint32_t)idx);
+			put_u32(f, (uint32_t)res);
+			put_f64(f, cell);
+			put_u64(f, (uint64_t)nodes);
 			struct saver sv = {f, 0};
 			if (r[p]->maps[k])
 				illum_each(r[p]->maps[k], save_node, &sv);
@@ -1596,8 +1718,37 @@ int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, cons
 	return 0;
 }
 
+/* Reads and checks the header: NULL, or why the file is refused (in err). */
+static const char *check_header(FILE *f, const struct scene *s, int nprims, const char *path,
+                                int32_t *passes, char *err, size_t n)
+{
+	char magic[8], version[17] = {0};
+	uint32_t format;
+	uint64_t hash;
+	int32_t prims;
+	if (fread(magic, 8, 1, f) != 1 || (memcmp(magic, "ARVOMAPS", 8) && memcmp(magic, "ARVOMAP1", 8)))
+		snprintf(err, n, "'%s' is not an arvo map file", path);
+	else if (!memcmp(magic, "ARVOMAP1", 8) || !get_u32(f, &format) || format != MAP_FORMAT)
+		snprintf(err, n, "'%s' is a map file of format %u; this arvo reads format %u "
+		         "(save the maps again with --save-maps)", path,
+		         memcmp(magic, "ARVOMAP1", 8) ? format : 1u, MAP_FORMAT);
+	else if (fread(version, 16, 1, f) != 1 || strcmp(version, ARVO_VERSION) != 0)
+		snprintf(err, n, "'%s' was saved by arvo %.16s; this is arvo %s (save the maps again "
+		         "with --save-maps)", path, version, ARVO_VERSION);
+	else if (!get_u64(f, &hash) || hash != lp_scene_hash(s) || !get_i32(f, passes) ||
+	         !get_i32(f, &prims) || prims != nprims)
+		snprintf(err, n, "'%s' was saved for another scene: the objects, lights or settings "
+		         "differ (save the maps again with --save-maps)", path);
+	else if (*passes < 0 || *passes > 3)
+		snprintf(err, n, "'%s' is damaged", path);
+	else
+		return NULL;
+	return err;
+}
+
 /* Is a node saved in a map file one the map can hold? Bounded axes have
- * nodes 0..n-1; unbounded ones stay within the reach of int tile indices. */
+ * nodes 0..n-1; unbounded ones stay within the reach of int tile indices;
+ * energies are finite and not negative. */
 static bool node_ok(const struct illum_map *m, int64_t i, int64_t j, const double e[3])
 {
 	long nu, nv;
@@ -1613,25 +1764,54 @@ static bool node_ok(const struct illum_map *m, int64_t i, int64_t j, const doubl
 	return true;
 }
 
+/* Reads the nodes of map k of r (header fields already past); 0 when the
+ * file is damaged. */
+static int load_map(FILE *f, struct lp_result *r, int k, const struct prims *P, bool discard_isolated)
+{
+	int32_t idx, res;
+	double cell;
+	int64_t nodes;
+	if (!get_i32(f, &idx) || !get_i32(f, &res) || !get_f64(f, &cell) || !get_i64(f, &nodes) ||
+	    idx < 0 || idx >= P->n || nodes < 0 || !(cell >= 0 && cell < 1e30))
+		return 0;
+	r->n = k + 1;
+	r->objs[k] = P->o[idx];
+	r->level[k] = k > 0 && r->objs[k - 1] == r->objs[k] ? r->level[k - 1] + 1 : 0;
+	r->specs[k] = (struct illum_spec){res, cell};
+	r->maps[k] = illum_new(P->o[idx], &r->specs[k]);
+	if (!r->maps[k])
+		return 0;
+	for (int64_t q = 0; q < nodes; q++) {
+		int64_t i, j;
+		double e[3], u, v;
+		if (!get_i64(f, &i) || !get_i64(f, &j) || !get_f64(f, &e[0]) || !get_f64(f, &e[1]) ||
+		    !get_f64(f, &e[2]) || !node_ok(r->maps[k], i, j, e))
+			return 0;
+		illum_node_uv(r->maps[k], (long)i, (long)j, &u, &v);
+		illum_deposit(r->maps[k], u, v, e);
+	}
+	illum_finish(r->maps[k], discard_isolated, NULL);
+	return 1;
+}
+
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
             struct diag *dg)
 {
+	char err[768];
 	struct prims P = scene_prims(s);
 	FILE *f = fopen(path, "rb");
 	int n = 0;
+	int32_t passes = 0;
 	if (!f) {
 		int e = errno;
 		free(P.o);
 		return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot open '%s': %s", path, strerror(e));
 	}
-	char magic[8];
-	int32_t hdr[2];
-	if (fread(magic, 8, 1, f) != 1 || memcmp(magic, "ARVOMAP1", 8) != 0 || fread(hdr, sizeof hdr, 1, f) != 1 ||
-	    hdr[0] < 0 || hdr[0] > 3 || hdr[1] != P.n)
-		goto bad;
-	for (int p = 0; p < hdr[0]; p++) {
+	if (check_header(f, s, P.n, path, &passes, err, sizeof err))
+		goto refused;
+	for (int p = 0; p < passes; p++) {
 		int32_t nm;
-		if (fread(&nm, sizeof nm, 1, f) != 1 || nm < 0 || nm > P.n * LP_LEVELS)
+		if (!get_i32(f, &nm) || nm < 0 || nm > P.n * LP_LEVELS)
 			goto bad;
 		struct lp_result *r = mem_calloc(1, sizeof *r);
 		out[n++] = r;
@@ -1639,32 +1819,9 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 		r->maps = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->maps);
 		r->specs = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->specs);
 		r->level = mem_calloc((size_t)(nm ? nm : 1), sizeof *r->level);
-		for (int k = 0; k < nm; k++) {
-			int32_t idx, res;
-			double cell;
-			int64_t nodes;
-			if (fread(&idx, sizeof idx, 1, f) != 1 || fread(&res, sizeof res, 1, f) != 1 ||
-			    fread(&cell, sizeof cell, 1, f) != 1 || fread(&nodes, sizeof nodes, 1, f) != 1 ||
-			    idx < 0 || idx >= P.n || nodes < 0 || !(cell >= 0 && cell < 1e30))
+		for (int k = 0; k < nm; k++)
+			if (!load_map(f, r, k, &P, discard_isolated))
 				goto bad;
-			r->n = k + 1;
-			r->objs[k] = P.o[idx];
-			r->level[k] = k > 0 && r->objs[k - 1] == r->objs[k] ? r->level[k - 1] + 1 : 0;
-			r->specs[k] = (struct illum_spec){res, cell};
-			r->maps[k] = illum_new(P.o[idx], &r->specs[k]);
-			if (!r->maps[k])
-				goto bad;
-			for (int64_t q = 0; q < nodes; q++) {
-				int64_t ij[2];
-				double e[3], u, v;
-				if (fread(ij, sizeof ij, 1, f) != 1 || fread(e, sizeof e, 1, f) != 1 ||
-				    !node_ok(r->maps[k], ij[0], ij[1], e))
-					goto bad;
-				illum_node_uv(r->maps[k], (long)ij[0], (long)ij[1], &u, &v);
-				illum_deposit(r->maps[k], u, v, e);
-			}
-			illum_finish(r->maps[k], discard_isolated, NULL);
-		}
 		index_maps(r);
 	}
 	if (fgetc(f) != EOF)
@@ -1673,9 +1830,11 @@ int lp_load(struct lp_result **out, const struct scene *s, const char *path, boo
 	free(P.o);
 	return n;
 bad:
+	snprintf(err, sizeof err, "'%s' is damaged (cut short or corrupt)", path);
+refused:
 	fclose(f);
 	free(P.o);
 	for (int i = 0; i < n; i++)
 		lp_free(out[i]);
-	return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "'%s' is not a map file saved for this scene", path);
+	return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "%s", err);
 }

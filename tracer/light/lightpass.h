@@ -42,6 +42,7 @@ struct lp_opts {
 	                         the rays per node: 3N spectral rays get the grid of a
 	                         channel pass of N. Not with shafts: a shaft needs its
 	                         corners on one path, which other wavelengths leave */
+	uint64_t seed_key;    /* --seed, mixed into every ray's key (0: seed 0) */
 };
 
 struct lp_stats {
@@ -102,12 +103,16 @@ double lp_finest_cell(const struct lp_result *r);
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);
 void lp_free(struct lp_result *r);
+/* The hash a map file stores of what the light pass depends on: the scene
+ * as --dump-scene prints it without its name, camera and source positions. */
+uint64_t lp_scene_hash(const struct scene *s);
 /* --save-maps: writes the passes' maps to path (temp file + rename). Returns
  * 0, FAIL_CREATE or FAIL_WRITE (reported to dg). */
 int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, struct diag *dg);
 /* --load-maps: reads maps saved for the same scene into out[0..2]; returns the
- * number of passes, or -FAIL_INPUT after reporting a missing, truncated,
- * corrupt or foreign file (or one saved for another scene). */
+ * number of passes, or -FAIL_INPUT after reporting why: a missing file, not a
+ * map file, an older format, another arvo version, another scene
+ * (lp_scene_hash), or a damaged file. */
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
             struct diag *dg);
 

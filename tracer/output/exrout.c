@@ -95,6 +95,37 @@ static exr_compression_t core_compression(enum out_exr_compression c)
 	return EXR_COMPRESSION_ZIP;
 }
 
+void out_meta_add(struct out_exr_meta *m, const char *key, const char *fmt, ...)
+{
+	if (m->n >= OUT_META_MAX)
+		return;
+	va_list ap;
+	va_start(ap, fmt);
+	snprintf(m->key[m->n], sizeof m->key[0], "%s", key);
+	vsnprintf(m->val[m->n], sizeof m->val[0], fmt, ap);
+	va_end(ap);
+	m->n++;
+}
+
+/* The matrices and string attributes of m (arvo:scene is written apart). */
+static exr_result_t write_meta(exr_context_t ctx, int part, const struct out_exr_meta *m)
+{
+	exr_result_t rv;
+	if (m->has_camera) {
+		exr_attr_m44f_t a;
+		memcpy(a.m, m->world_to_camera, sizeof a.m);
+		TRY(exr_attr_set_m44f(ctx, part, "worldToCamera", &a));
+		memcpy(a.m, m->world_to_ndc, sizeof a.m);
+		TRY(exr_attr_set_m44f(ctx, part, "worldToNDC", &a));
+		memcpy(a.m, m->camera_to_world, sizeof a.m);
+		TRY(exr_attr_set_m44f(ctx, part, "arvo:cameraToWorld", &a));
+	}
+	for (int i = 0; i < m->n; i++)
+		if (strcmp(m->key[i], "arvo:scene") != 0)
+			TRY(exr_attr_set_string(ctx, part, m->key[i], m->val[i]));
+	return EXR_ERR_SUCCESS;
+}
+
 /* Declares the part: size, compression, one channel per plane, attributes. */
 static exr_result_t write_header(exr_context_t ctx, const struct framebuffer *fb,
                                  const struct out_exr_opts *o)
@@ -104,8 +135,14 @@ static exr_result_t write_header(exr_context_t ctx, const struct framebuffer *fb
 	exr_result_t rv;
 	int part;
 	TRY(exr_add_part(ctx, NULL, EXR_STORAGE_SCANLINE, &part));
-	TRY(exr_initialize_required_attr_simple(ctx, part, fb->w, fb->h,
-	                                        core_compression(o->compression)));
+	exr_attr_box2i_t disp, data;
+	exr_attr_v2f_t centre;
+	disp.min.x = 0, disp.min.y = 0, disp.max.x = fb->full_w - 1, disp.max.y = fb->full_h - 1;
+	data.min.x = fb->x0, data.min.y = fb->y0;
+	data.max.x = fb->x0 + fb->w - 1, data.max.y = fb->y0 + fb->h - 1;
+	centre.x = 0, centre.y = 0;
+	TRY(exr_initialize_required_attr(ctx, part, &disp, &data, 1.0f, &centre, 1.0f,
+	                                 EXR_LINEORDER_INCREASING_Y, core_compression(o->compression)));
 	for (int i = 0; i < fb->count; i++) {
 		const char *name = fb->planes[i].name;
 		int half = o->half && strcmp(name, "Z") != 0;
@@ -116,6 +153,8 @@ static exr_result_t write_header(exr_context_t ctx, const struct framebuffer *fb
 	TRY(exr_attr_set_string(ctx, part, "software", "arvo " ARVO_VERSION));
 	if (o->scene)
 		TRY(exr_attr_set_string(ctx, part, "arvo:scene", o->scene));
+	if (o->meta)
+		TRY(write_meta(ctx, part, o->meta));
 	return exr_write_header(ctx);
 }
 
@@ -178,7 +217,7 @@ static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb
 		return rv;
 	for (int y = 0; y < fb->h && rv == EXR_ERR_SUCCESS; y += lpc) {
 		exr_chunk_info_t ci;
-		rv = exr_write_scanline_chunk_info(ctx, 0, y, &ci);
+		rv = exr_write_scanline_chunk_info(ctx, 0, fb->y0 + y, &ci);
 		if (rv == EXR_ERR_SUCCESS)
 			rv = inited ? exr_encoding_update(ctx, 0, &ci, &enc)
 			            : exr_encoding_initialize(ctx, 0, &ci, &enc);
@@ -227,7 +266,7 @@ static int write_file(struct io *io, const char *path, const struct framebuffer 
 int out_exr_write(const struct framebuffer *fb, const char *path, const struct out_exr_opts *opts,
                   struct diag *dg)
 {
-	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL};
+	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL, NULL};
 	const struct out_exr_opts *o = opts ? opts : &defaults;
 	struct srcloc none = srcloc_none();
 	if (!fb || fb->count == 0)
@@ -249,6 +288,30 @@ int out_exr_write(const struct framebuffer *fb, const char *path, const struct o
 
 /* ================= reader ================= */
 
+/* The matrices and the "arvo:…" string attributes of part 0. */
+static void read_meta(exr_const_context_t ctx, struct out_exr_meta *m)
+{
+	exr_attr_m44f_t a[3];
+	if (exr_attr_get_m44f(ctx, 0, "worldToCamera", &a[0]) == EXR_ERR_SUCCESS &&
+	    exr_attr_get_m44f(ctx, 0, "worldToNDC", &a[1]) == EXR_ERR_SUCCESS &&
+	    exr_attr_get_m44f(ctx, 0, "arvo:cameraToWorld", &a[2]) == EXR_ERR_SUCCESS) {
+		m->has_camera = 1;
+		memcpy(m->world_to_camera, a[0].m, sizeof a[0].m);
+		memcpy(m->world_to_ndc, a[1].m, sizeof a[1].m);
+		memcpy(m->camera_to_world, a[2].m, sizeof a[2].m);
+	}
+	int32_t count = 0;
+	if (exr_get_attribute_count(ctx, 0, &count) != EXR_ERR_SUCCESS)
+		return;
+	for (int32_t i = 0; i < count; i++) {
+		const exr_attribute_t *at = NULL;
+		if (exr_get_attribute_by_index(ctx, 0, EXR_ATTR_LIST_FILE_ORDER, i, &at) != EXR_ERR_SUCCESS ||
+		    !at || at->type != EXR_ATTR_STRING || strncmp(at->name, "arvo:", 5) != 0)
+			continue;
+		out_meta_add(m, at->name, "%.*s", (int)at->string->length, at->string->str);
+	}
+}
+
 /* Copies the header facts the caller asked for into info. */
 static void read_info(exr_const_context_t ctx, const exr_attr_chlist_t *cl,
                       struct out_exr_info *info)
@@ -267,10 +330,21 @@ static void read_info(exr_const_context_t ctx, const exr_attr_chlist_t *cl,
 		snprintf(info->software, sizeof info->software, "%.*s", (int)len, s);
 	if (exr_attr_get_string(ctx, 0, "arvo:scene", &len, &s) == EXR_ERR_SUCCESS)
 		snprintf(info->scene, sizeof info->scene, "%.*s", (int)len, s);
-	info->half = 1;
+	read_meta(ctx, &info->meta);
+	exr_compression_t comp;
+	static const exr_compression_t ours[] = {EXR_COMPRESSION_ZIP, EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIPS,
+	                                         EXR_COMPRESSION_PIZ, EXR_COMPRESSION_RLE};
+	if (exr_get_compression(ctx, 0, &comp) == EXR_ERR_SUCCESS)
+		for (int i = 0; i < 5; i++)
+			if (ours[i] == comp)
+				info->compression = (enum out_exr_compression)i;
+	info->half = info->half_but_z = 1;
 	for (int i = 0; i < cl->num_channels; i++)
-		if (cl->entries[i].pixel_type != EXR_PIXEL_HALF)
+		if (cl->entries[i].pixel_type != EXR_PIXEL_HALF) {
 			info->half = 0;
+			if (strcmp(cl->entries[i].name.str, "Z") != 0)
+				info->half_but_z = 0;
+		}
 }
 
 /* Points every channel of the decoder at its plane (ALL channels: decoding a
@@ -339,10 +413,11 @@ static void uint_to_float(struct framebuffer *fb, const exr_attr_chlist_t *cl)
 	}
 }
 
-/* Checks part 0 is a readable scanline image; sets *w *h *ymin and *cl.
- * Returns 0 or FAIL_INPUT (reported). */
-static int check_part(exr_const_context_t ctx, const char *path, int *w, int *h,
-                      int *ymin, const exr_attr_chlist_t **cl, struct diag *dg)
+/* Checks part 0 is a readable scanline image; sets *w *h *ymin, *cl and the
+ * display and data windows. Returns 0 or FAIL_INPUT (reported). */
+static int check_part(exr_const_context_t ctx, const char *path, int *w, int *h, int *ymin,
+                      const exr_attr_chlist_t **cl, exr_attr_box2i_t *disp, exr_attr_box2i_t *data,
+                      struct diag *dg)
 {
 	struct srcloc none = srcloc_none();
 	exr_storage_t st;
@@ -360,7 +435,16 @@ static int check_part(exr_const_context_t ctx, const char *path, int *w, int *h,
 		if ((*cl)->entries[i].x_sampling != 1 || (*cl)->entries[i].y_sampling != 1)
 			return diag_fail(dg, FAIL_INPUT, none, "cannot read '%s': subsampled channel '%s' is not supported",
 			                 path, (*cl)->entries[i].name.str);
-	*w = (int)ww, *h = (int)hh, *ymin = dw.min.y;
+	*w = (int)ww, *h = (int)hh, *ymin = dw.min.y, *data = dw;
+	if (exr_get_display_window(ctx, 0, disp) != EXR_ERR_SUCCESS)
+		*disp = dw;
+	/* a display window too large or too far for int sizes and offsets (a
+	 * damaged or hostile header): take the data window as the frame */
+	const int64_t lim = (int64_t)1 << 24;
+	int64_t fw = (int64_t)disp->max.x - disp->min.x + 1, fh = (int64_t)disp->max.y - disp->min.y + 1;
+	int64_t ox = (int64_t)dw.min.x - disp->min.x, oy = (int64_t)dw.min.y - disp->min.y;
+	if (fw < 1 || fh < 1 || fw > lim || fh > lim || ox < -lim || ox > lim || oy < -lim || oy > lim)
+		*disp = dw;
 	return 0;
 }
 
@@ -382,10 +466,13 @@ int out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info
 	}
 	const exr_attr_chlist_t *cl = NULL;
 	int w = 0, h = 0, ymin = 0;
-	int err = check_part(ctx, path, &w, &h, &ymin, &cl, dg);
+	exr_attr_box2i_t disp = {0}, data = {0};
+	int err = check_part(ctx, path, &w, &h, &ymin, &cl, &disp, &data, dg);
 	struct framebuffer *fb = NULL;
 	if (!err) {
 		fb = fb_new(w, h);
+		fb->x0 = data.min.x - disp.min.x, fb->y0 = data.min.y - disp.min.y;
+		fb->full_w = disp.max.x - disp.min.x + 1, fb->full_h = disp.max.y - disp.min.y + 1;
 		for (int i = 0; i < cl->num_channels; i++)
 			fb_plane(fb, cl->entries[i].name.str);
 		if ((rv = read_pixels(ctx, fb, ymin)) != EXR_ERR_SUCCESS)

@@ -13,6 +13,8 @@ struct framebuffer *fb_new(int w, int h)
 	struct framebuffer *fb = mem_calloc(1, sizeof *fb);
 	fb->w = w > 0 ? w : 1;
 	fb->h = h > 0 ? h : 1;
+	fb->full_w = fb->w;
+	fb->full_h = fb->h;
 	return fb;
 }
 

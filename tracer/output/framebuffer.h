@@ -16,13 +16,17 @@ struct fb_plane {
 };
 
 struct framebuffer {
-	int w, h;                /* size in pixels */
+	int w, h;                /* size in pixels (the EXR data window) */
+	int x0, y0;              /* where pixel (0,0) sits in the full frame (0, 0) */
+	int full_w, full_h;      /* the full frame (the EXR display window): w, h
+	                            unless this is a region of it (--region, --tile) */
 	int count;               /* planes in use */
 	int cap;                 /* allocated entries of planes[] */
 	struct fb_plane *planes; /* sorted in the stable iteration order */
 };
 
-/* A framebuffer with no planes; w and h must be >= 1. Never returns NULL. */
+/* A framebuffer with no planes, the whole of a w×h frame; w and h must be
+ * >= 1. Never returns NULL. */
 struct framebuffer *fb_new(int w, int h);
 /* The plane called name, created (zeroed) if absent. The pointer stays valid
  * until fb_free, even when more planes are added. */

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 #include <png.h>
@@ -177,47 +178,95 @@ static float *pack_rgb(const struct framebuffer *fb, size_t n)
 	return rgb;
 }
 
-/* Builds the display processor for opts; *cfg must be freed by the caller. */
+/* Builds the display processor for opts; *cfg must be freed by the caller.
+ * The display and view used are stored in disp and view (the config's
+ * strings, valid while *cfg lives). */
 static int make_proc(const struct out_png_opts *o, struct ocio_config **cfg, struct ocio_proc **proc,
-                     struct diag *dg)
+                     const char **disp, const char **view, struct diag *dg)
 {
 	char msg[512];
-	const char *disp, *view;
 	int err = out_ocio_load(o->ocio_config, cfg, dg);
 	if (!err)
-		err = out_ocio_pick_view(*cfg, o->display, o->view, &disp, &view, dg);
-	if (!err && !o->view && o->scene_view && has_view(*cfg, disp, o->scene_view))
-		view = o->scene_view;
+		err = out_ocio_pick_view(*cfg, o->display, o->view, disp, view, dg);
+	if (!err && !o->view && o->scene_view && has_view(*cfg, *disp, o->scene_view))
+		*view = o->scene_view;
 	if (err)
 		return err;
-	*proc = ocio_proc_display(*cfg, o->source, disp, view, msg, sizeof msg);
+	*proc = ocio_proc_display(*cfg, o->source, *disp, *view, msg, sizeof msg);
 	return *proc ? 0 : diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
+}
+
+/* What the PNG records of the display encoding (out_png_tags). */
+struct png_tags {
+	char display[128], view[128]; /* the OCIO display and view */
+};
+
+/* pack → OCIO display/view; rgb gets w*h*3 display values (free it). */
+static int encode_float(const struct framebuffer *fb, const struct out_png_opts *o, float **rgb,
+                        struct png_tags *tags, struct diag *dg)
+{
+	*rgb = NULL;
+	if (!fb_find(fb, "R"))
+		return diag_fail(dg, FAIL_INTERNAL, srcloc_none(), "the image has no beauty channels (R, G, B)");
+	struct ocio_config *cfg = NULL;
+	struct ocio_proc *proc = NULL;
+	const char *disp = NULL, *view = NULL;
+	int err = make_proc(o, &cfg, &proc, &disp, &view, dg);
+	if (!err) {
+		char msg[512];
+		size_t n = (size_t)fb->w * (size_t)fb->h;
+		*rgb = pack_rgb(fb, n);
+		if (ocio_proc_apply_rgb(proc, *rgb, (long)n, msg, sizeof msg) != 0) {
+			err = diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
+			free(*rgb);
+			*rgb = NULL;
+		}
+		if (tags) {
+			snprintf(tags->display, sizeof tags->display, "%s", disp);
+			snprintf(tags->view, sizeof tags->view, "%s", view);
+		}
+	}
+	ocio_proc_free(proc);
+	ocio_config_free(cfg);
+	return err;
 }
 
 /* pack → OCIO display/view → clamp → round to bytes (deterministic, no dither). */
 int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
                    struct diag *dg)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL};
-	const struct out_png_opts *o = opts ? opts : &defaults;
-	if (!fb_find(fb, "R"))
-		return diag_fail(dg, FAIL_INTERNAL, srcloc_none(), "the image has no beauty channels (R, G, B)");
-	struct ocio_config *cfg = NULL;
-	struct ocio_proc *proc = NULL;
-	int err = make_proc(o, &cfg, &proc, dg);
-	if (!err) {
-		char msg[512];
-		size_t n = (size_t)fb->w * (size_t)fb->h;
-		float *rgb = pack_rgb(fb, n);
-		if (ocio_proc_apply_rgb(proc, rgb, (long)n, msg, sizeof msg) != 0)
-			err = diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
-		for (size_t i = 0; !err && i < 3 * n; i++)
-			rgb8[i] = quantise(rgb[i]);
-		free(rgb);
-	}
-	ocio_proc_free(proc);
-	ocio_config_free(cfg);
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
+	float *rgb;
+	int err = encode_float(fb, opts ? opts : &defaults, &rgb, NULL, dg);
+	for (size_t i = 0; !err && i < 3 * (size_t)fb->w * (size_t)fb->h; i++)
+		rgb8[i] = quantise(rgb[i]);
+	free(rgb);
 	return err;
+}
+
+/* Display value → 16 bits, stored big-endian as PNG wants. */
+static void quantise16(float v, unsigned char *out)
+{
+	unsigned q = !(v > 0.0f) ? 0 : v >= 1.0f ? 65535 : (unsigned)(v * 65535.0f + 0.5f);
+	out[0] = (unsigned char)(q >> 8);
+	out[1] = (unsigned char)(q & 255);
+}
+
+int out_png_signal(const char *display, const char *view, unsigned char cicp[4])
+{
+	static const struct { const char *name; unsigned char prim, tf; } known[] = {
+		{"P3", 12, 13}, {"Rec.1886", 1, 1}, {"BT.1886", 1, 1}, {"Rec.709", 1, 1},
+		{"PQ", 9, 16}, {"ST2084", 9, 16}, {"HLG", 9, 18}};
+	if (view && !strcasecmp(view, "Raw"))
+		return OUT_PNG_RAW;
+	if (!display)
+		return OUT_PNG_UNKNOWN;
+	for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+		if (strstr(display, known[i].name)) {
+			cicp[0] = known[i].prim, cicp[1] = known[i].tf, cicp[2] = 0, cicp[3] = 1;
+			return OUT_PNG_CICP;
+		}
+	return strstr(display, "sRGB") ? OUT_PNG_SRGB : OUT_PNG_UNKNOWN;
 }
 
 /* ================= libpng ================= */
@@ -242,8 +291,33 @@ static void on_png_warning(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
-/* Writes w*h RGB8 pixels as a PNG to fp; returns 0 or -1 with e->msg set. */
-static int write_rows(FILE *fp, const unsigned char *rgb8, int w, int h, struct png_err *e)
+/* The colour chunks for the display: sRGB, or cICP (an unknown chunk to
+ * libpng 1.6.39, written before PLTE/IDAT); none for the Raw view (scene
+ * values in the config's scene-linear space, which no chunk names) or for
+ * a display arvo does not recognise. */
+static void set_colour_chunks(png_structp png, png_infop info, const struct png_tags *t,
+                              png_unknown_chunk *cicp)
+{
+	switch (out_png_signal(t->display, t->view, cicp->data)) {
+	case OUT_PNG_SRGB:
+		png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+		break;
+	case OUT_PNG_CICP:
+		memcpy(cicp->name, "cICP", 5);
+		cicp->size = 4;
+		cicp->location = PNG_HAVE_IHDR;
+		png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_ALWAYS, (png_const_bytep) "cICP", 1);
+		png_set_unknown_chunks(png, info, cicp, 1);
+		break;
+	default:
+		break;
+	}
+}
+
+/* Writes w*h RGB pixels (depth 8 or 16 bits, rows packed) as a PNG to fp;
+ * returns 0 or -1 with e->msg set. */
+static int write_rows(FILE *fp, const unsigned char *px, int w, int h, int depth,
+                      const struct png_tags *tags, struct png_err *e)
 {
 	png_structp png =
 	    png_create_write_struct(PNG_LIBPNG_VER_STRING, e, on_png_error, on_png_warning);
@@ -258,22 +332,31 @@ static int write_rows(FILE *fp, const unsigned char *rgb8, int w, int h, struct 
 		return -1;
 	}
 	png_init_io(png, fp);
-	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
+	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, PNG_COLOR_TYPE_RGB,
 	             PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-	png_text text = {.compression = PNG_TEXT_COMPRESSION_NONE,
-	                 .key = (png_charp) "Software",
-	                 .text = (png_charp) "arvo " ARVO_VERSION};
-	png_set_text(png, info, &text, 1);
+	static unsigned char cicp_data[4];
+	png_unknown_chunk cicp = {.data = cicp_data};
+	set_colour_chunks(png, info, tags, &cicp);
+	png_text text[3] = {
+		{.compression = PNG_TEXT_COMPRESSION_NONE, .key = (png_charp) "Software",
+		 .text = (png_charp) "arvo " ARVO_VERSION},
+		{.compression = PNG_TEXT_COMPRESSION_NONE, .key = (png_charp) "OCIO display",
+		 .text = (png_charp)tags->display},
+		{.compression = PNG_TEXT_COMPRESSION_NONE, .key = (png_charp) "OCIO view",
+		 .text = (png_charp)tags->view}};
+	png_set_text(png, info, text, 3);
 	png_write_info(png, info);
+	size_t row = (size_t)w * 3 * (size_t)(depth / 8);
 	for (int y = 0; y < h; y++)
-		png_write_row(png, rgb8 + (size_t)y * (size_t)w * 3);
+		png_write_row(png, px + (size_t)y * row);
 	png_write_end(png, info);
 	png_destroy_write_struct(&png, &info);
 	return 0;
 }
 
 /* Writes the PNG into the already-open temp file fd (which it closes). */
-static int write_png_fd(int fd, const char *path, const unsigned char *rgb8, int w, int h, struct diag *dg)
+static int write_png_fd(int fd, const char *path, const unsigned char *px, int w, int h, int depth,
+                        const struct png_tags *tags, struct diag *dg)
 {
 	struct png_err e = {.msg = ""};
 	FILE *fp = fdopen(fd, "wb");
@@ -281,7 +364,7 @@ static int write_png_fd(int fd, const char *path, const unsigned char *rgb8, int
 		close(fd);
 		return diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path, strerror(errno));
 	}
-	int rc = write_rows(fp, rgb8, w, h, &e);
+	int rc = write_rows(fp, px, w, h, depth, tags, &e);
 	if (fflush(fp) != 0 || ferror(fp)) {
 		if (rc == 0)
 			snprintf(e.msg, sizeof e.msg, "%s", strerror(errno));
@@ -298,20 +381,33 @@ static int write_png_fd(int fd, const char *path, const unsigned char *rgb8, int
 int out_png_write(const struct framebuffer *fb, const char *path, const struct out_png_opts *opts,
                   struct diag *dg)
 {
-	unsigned char *rgb8 = mem_alloc((size_t)fb->w * (size_t)fb->h * 3);
-	int err = out_png_encode(fb, opts, rgb8, dg);
-	if (!err) {
-		char tmp[4096];
-		int fd = out_tmp_create(path, tmp, sizeof tmp);
-		if (fd < 0) {
-			err = diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(errno));
-		} else {
-			err = write_png_fd(fd, path, rgb8, fb->w, fb->h, dg);
-			if (out_tmp_finish(tmp, path, err == 0) != 0)
-				err = diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': rename: %s", path,
-				                strerror(errno));
-		}
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
+	const struct out_png_opts *o = opts ? opts : &defaults;
+	int depth = o->depth == 16 ? 16 : 8;
+	size_t n = (size_t)fb->w * (size_t)fb->h * 3;
+	struct png_tags tags;
+	float *rgb;
+	int err = encode_float(fb, o, &rgb, &tags, dg);
+	if (err)
+		return err;
+	unsigned char *px = mem_alloc(n * (size_t)(depth / 8));
+	for (size_t i = 0; i < n; i++) {
+		if (depth == 16)
+			quantise16(rgb[i], px + 2 * i);
+		else
+			px[i] = quantise(rgb[i]);
 	}
-	free(rgb8);
+	free(rgb);
+	char tmp[4096];
+	int fd = out_tmp_create(path, tmp, sizeof tmp);
+	if (fd < 0) {
+		err = diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(errno));
+	} else {
+		err = write_png_fd(fd, path, px, fb->w, fb->h, depth, &tags, dg);
+		if (out_tmp_finish(tmp, path, err == 0) != 0)
+			err = diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': rename: %s", path,
+			                strerror(errno));
+	}
+	free(px);
 	return err;
 }

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* pngout.h: 8-bit PNG output of the beauty (R,G,B) through an OCIO display
+/* pngout.h: 8- or 16-bit PNG output of the beauty (R,G,B) through an OCIO display
  * and view, and the resolution of which OCIO config to use.
  *
  * Config resolution: an explicit path (the CLI's --ocio-config) > $OCIO >
@@ -24,7 +24,19 @@ struct out_png_opts {
 	const char *view;        /* NULL: OUT_DEFAULT_VIEW, or the display's default if absent */
 	const char *source;      /* colour space of the pixels; NULL: the scene_linear role */
 	const char *scene_view;  /* the scene's view when view is NULL, if the display has it */
+	int depth;               /* bits per channel: 16, else 8 */
 };
+
+/* How a PNG says what its values mean, from the OCIO display and view. */
+enum out_png_signal {
+	OUT_PNG_UNKNOWN, /* a display arvo does not recognise: no colour chunk */
+	OUT_PNG_SRGB,    /* a display named "sRGB…": sRGB chunk (with gAMA and cHRM) */
+	OUT_PNG_CICP,    /* P3, Rec.1886/Rec.709, PQ, HLG displays: a cICP chunk */
+	OUT_PNG_RAW      /* the Raw view (scene-linear values unchanged): no chunk */
+};
+/* The signal for display/view; for OUT_PNG_CICP fills cicp (colour
+ * primaries, transfer, matrix 0, full range 1; ITU-T H.273 codes). */
+int out_png_signal(const char *display, const char *view, unsigned char cicp[4]);
 
 /* The shipped config "ocio/config.ocio", searched in $ARVO_DATA_DIR, then the
  * compile-time ARVO_DATA_DIR (installed share/arvo), then beside the
@@ -57,9 +69,11 @@ int out_ocio_list_views(const char *explicit_path, char *buf, size_t len, struct
 int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
                    struct diag *dg);
 
-/* out_png_encode, then writes an 8-bit RGB PNG to "<path>.tmp.XXXXXX" and
- * renames it to path only on success (path untouched on failure). Returns
- * 0, or the encoder's status, FAIL_CREATE or FAIL_WRITE. */
+/* Encodes as out_png_encode (to opts->depth bits), then writes an RGB PNG
+ * to "<path>.tmp.XXXXXX" and renames it to path only on success (path
+ * untouched on failure). The PNG carries the colour chunk out_png_signal
+ * picks and text chunks "Software", "OCIO display" and "OCIO view".
+ * Returns 0, or the encoder's status, FAIL_CREATE or FAIL_WRITE. */
 int out_png_write(const struct framebuffer *fb, const char *path, const struct out_png_opts *opts,
                   struct diag *dg);
 

@@ -1,0 +1,157 @@
+#!/bin/sh
+# SPDX-License-Identifier: MIT
+# bench/speed/run.sh: issue 13's speed targets, arvo against POV-Ray 3.7 in
+# one script (../shared/POVRAY.md: same scenes, sizes, threads, -A).
+#
+#   ARVO=$PWD/arvo sh bench/speed/run.sh          (about 5 minutes idle)
+#
+# Uses ${ARVO:-./arvo} and ${POVRAY:-povray}; builds nothing. Every figure is
+# the median of $RUNS runs (default 3). The machine may be shared: compare
+# the ratios, which come from runs made side by side, and the CPU times.
+#   eye       bench/eye/spheres.scn (.pov) with N in $SIZES, ${W}x${H}, $THREADS
+#             threads: arvo's eye-pass time (--stats) against POV-Ray's
+#             "Trace Time" (no start-up, parsing or bounding); ratio =
+#             povray / arvo (target >= 3); and arvo's rays/s/core (target
+#             >= 5e6 at 100k spheres)
+#   scaling   arvo's eye pass at the largest N over the smallest (target <= 3)
+#   threads   eye pass (spheres, N = 100000) and light pass (scene B,
+#             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
+#             threads: time(1) / time(2) (target >= 1.85)
+#   light     light-pass segments/s/core on 2 threads, 1M rays, isolated-
+#             sample rule on, deposits included (target >= 1e7)
+#   frontend  bench/frontend/loop1m.scn (1M spheres) evaluated and bounded
+#             (arvo: a 1x1 render without light pass; POV-Ray: its parse,
+#             which bounds too): wall s, CPU s (user + sys) and peak MB
+#             (/usr/bin/time); targets <= 1.5 s and <= 300 MB
+# Writes bench/results/speed.csv (section,name,objects,threads,arvo,povray,
+# ratio,unit,target,met), bench/results/speed.txt and, with gnuplot,
+# docs/speed.png (eye pass against POV-Ray's trace, by sphere count).
+set -eu
+
+ARVO=${ARVO:-./arvo}
+POVRAY=${POVRAY:-povray}
+W=${W:-640} H=${H:-480} THREADS=${THREADS:-2} RUNS=${RUNS:-3}
+SIZES=${SIZES:-1000 10000 100000 1000000}
+FRONT_N=${FRONT_N:-1000000}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$here/../..
+res=$here/../results
+mkdir -p "$res"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-bench-speed.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT INT TERM
+have_pov=0
+command -v "$POVRAY" > /dev/null 2>&1 && have_pov=1
+csv=$res/speed.csv
+
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR) print v[int((NR + 1) / 2)] }'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a == "" || b == "" || b + 0 == 0) print ""; else printf "%.2f", a / b }'; }
+# met VALUE OP TARGET: yes/no (empty when the value is)
+met() { awk -v v="$1" -v op="$2" -v t="$3" 'BEGIN { if (v == "") print ""; else if (op == ">=") print (v + 0 >= t + 0 ? "yes" : "no"); else print (v + 0 <= t + 0 ? "yes" : "no") }'; }
+row() { echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"; }
+stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
+
+# arvo_eye N THREADS: median eye-pass seconds; rays of the last run in $tmp/rays
+arvo_eye() {
+	for i in $(seq "$RUNS"); do
+		"$ARVO" -q --stats --rays 0 --threads "$2" --spp 1 --width "$W" --height "$H" \
+			-D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
+		stat_of "eye pass" "$tmp/a.log"
+	done | median
+	stat_of "rays traced" "$tmp/a.log" > "$tmp/rays"
+}
+
+# pov_trace N: median "Trace Time" seconds
+pov_trace() {
+	for i in $(seq "$RUNS"); do
+		(cd "$tmp" && "$POVRAY" +I"$root/bench/eye/spheres.pov" +O"$tmp/p.png" +FN +W"$W" +H"$H" -A -D \
+			+WT"$THREADS" Declare=N="$1" > /dev/null 2> "$tmp/p.log")
+		awk -F'[()]' '/Trace Time:/ { split($2, a, " "); print a[1]; exit }' "$tmp/p.log"
+	done | median
+}
+
+# arvo_light THREADS: median light-pass seconds; segments in $tmp/segs
+arvo_light() {
+	for i in $(seq "$RUNS"); do
+		"$ARVO" -q --stats --method point --rays 1000000 --threads "$1" --width 64 --height 64 \
+			-o "$tmp/b.exr" "$root/tests/accuracy/sphere.scn" 2> "$tmp/l.log"
+		stat_of "light pass" "$tmp/l.log"
+	done | median
+	awk '/light pass/ { for (i = 1; i <= NF; i++) if ($i ~ /^segments/) print $(i - 1) }' "$tmp/l.log" > "$tmp/segs"
+}
+
+# timed FILE CMD...: runs CMD under /usr/bin/time; "wall cpu MB" to FILE
+timed() {
+	f=$1; shift
+	/usr/bin/time -f "%e %U %S %M" -o "$tmp/time" "$@" > /dev/null 2>&1 || true
+	awk '{ printf "%s %.2f %.0f\n", $1, $2 + $3, $4 / 1024 }' "$tmp/time" >> "$f"
+}
+col_median() { awk -v c="$2" '{ print $c }' "$1" | median; }
+
+echo "section,name,objects,threads,arvo,povray,ratio,unit,target,met" > "$csv"
+
+# ---- eye pass against POV-Ray's trace time ----
+first= last=
+for n in $SIZES; do
+	a=$(arvo_eye "$n" "$THREADS"); rays=$(cat "$tmp/rays")
+	p=
+	[ "$have_pov" = 1 ] && p=$(pov_trace "$n")
+	r=$(ratio "$p" "$a")
+	row eye spheres "$n" "$THREADS" "$a" "$p" "$r" s ">=3x" "$(met "$r" ">=" 3)"
+	rate=$(awk -v r="$rays" -v t="$a" -v n="$THREADS" 'BEGIN { printf "%.0f", r / t / n }')
+	if [ "$n" = 100000 ]; then
+		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" ">=5e6" "$(met "$rate" ">=" 5000000)"
+	else
+		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" "" ""
+	fi
+	[ -n "$first" ] || first=$a
+	last=$a
+done
+g=$(ratio "$last" "$first")
+row scaling "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x" "<=3x" "$(met "$g" "<=" 3)"
+
+# ---- 1 -> 2 threads ----
+e1=$(arvo_eye 100000 1); e2=$(arvo_eye 100000 2); r=$(ratio "$e1" "$e2")
+row threads "eye pass" 100000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
+l1=$(arvo_light 1); l2=$(arvo_light 2); segs=$(cat "$tmp/segs"); r=$(ratio "$l1" "$l2")
+row threads "light pass" 1000000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
+rate=$(awk -v s="$segs" -v t="$l2" 'BEGIN { printf "%.0f", s / t / 2 }')
+row light "segments/s/core" 1000000 2 "$rate" "" "" "segments/s/core" ">=1e7" "$(met "$rate" ">=" 10000000)"
+
+# ---- front end: 1M spheres evaluated and bounded ----
+: > "$tmp/fa"; : > "$tmp/fp"
+for i in $(seq "$RUNS"); do
+	timed "$tmp/fa" "$ARVO" -q --rays 0 --threads "$THREADS" --width 1 --height 1 -o "$tmp/f.exr" \
+		-D N="$FRONT_N" "$root/bench/frontend/loop1m.scn"
+	[ "$have_pov" = 1 ] && [ "$i" = 1 ] &&
+		(cd "$tmp" && timed "$tmp/fp" "$POVRAY" +I"$root/bench/frontend/loop1m.scn" +O"$tmp/f.png" -D +W1 +H1 -GA +WT1 Declare=N="$FRONT_N")
+done
+aw=$(col_median "$tmp/fa" 1) ac=$(col_median "$tmp/fa" 2) am=$(col_median "$tmp/fa" 3)
+pw=$(col_median "$tmp/fp" 1) pc=$(col_median "$tmp/fp" 2) pm=$(col_median "$tmp/fp" 3)
+row frontend "loop1m wall" "$FRONT_N" "$THREADS" "$aw" "$pw" "$(ratio "$pw" "$aw")" s "<=1.5" "$(met "$aw" "<=" 1.5)"
+row frontend "loop1m cpu" "$FRONT_N" "$THREADS" "$ac" "$pc" "$(ratio "$pc" "$ac")" "s (user+sys)" "<=1.5" "$(met "$ac" "<=" 1.5)"
+row frontend "loop1m memory" "$FRONT_N" "$THREADS" "$am" "$pm" "$(ratio "$pm" "$am")" MB "<=300" "$(met "$am" "<=" 300)"
+
+{
+	echo "bench/speed: ${W}x${H}, $THREADS threads, median of $RUNS (POV-Ray front end: 1 run)"
+	echo "arvo: $("$ARVO" --version)   povray: $([ $have_pov = 1 ] && "$POVRAY" --version 2>&1 | grep -m1 "POV-Ray" || echo none)"
+	echo "cpu: $(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo), $(nproc) online"
+	echo "load average at the end: $(cut -d" " -f1-3 /proc/loadavg) (other work on the machine inflates times)"
+	column -s, -t < "$csv"
+} > "$res/speed.txt"
+cat "$res/speed.txt"
+
+if command -v gnuplot > /dev/null 2>&1; then
+	awk -F, '$1 == "eye" { print $3, $5, ($6 == "" ? "?" : $6) }' "$csv" > "$tmp/eye.dat"
+	gnuplot <<GP
+set terminal pngcairo size 800,500
+set output "$root/docs/speed.png"
+set title "Eye pass, N spheres, ${W}x${H}, $THREADS threads (median of $RUNS)"
+set logscale xy
+set xlabel "spheres"
+set ylabel "seconds"
+set key left top
+set datafile missing "?"
+plot "$tmp/eye.dat" using 1:2 with linespoints title "arvo eye pass", \
+     "$tmp/eye.dat" using 1:3 with linespoints title "POV-Ray trace time"
+GP
+fi

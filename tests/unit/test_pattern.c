@@ -1,0 +1,88 @@
+/* SPDX-License-Identifier: MIT */
+/* test_pattern.c: POV-Ray's patterns (tracer/pattern.c) at points where
+ * their values are known in closed form, and the waves. */
+#include <math.h>
+
+#include "../../tracer/pattern.h"
+#include "test.h"
+
+static struct pigment pig(enum pigment_kind k, enum pattern_kind p)
+{
+	struct pigment g = scene_default_texture().pigment;
+	g.kind = k;
+	g.pattern = p;
+	return g;
+}
+
+static void t_continuous(void)
+{
+	struct pigment g = pig(PIG_PATTERN, PAT_ONION);
+	CHECK_NEAR(pattern_value(&g, v3(0, 0.3, 0.4)), 0.5, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(0, 0, 1.75)), 1.75 - 1.00001, 1e-12); /* POV-Ray's modulus */
+	g.pattern = PAT_RADIAL; /* 0.25 at -z (less POV-Ray's 1.00001), 0.5 at -x, 1 at +x */
+	CHECK_NEAR(pattern_value(&g, v3(0, 0, -1)), 1.25 - 1.00001, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(-1, 0, 0)), 0.5, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(1, 0, 0)), 1.0, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(0, 5, 0)), 0.25, 1e-12); /* on the axis */
+	g.pattern = PAT_SPHERICAL;
+	CHECK_NEAR(pattern_value(&g, v3(0.6, 0, 0)), 0.4, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(2, 0, 0)), 0, 1e-12);
+	g.pattern = PAT_CYLINDRICAL;
+	CHECK_NEAR(pattern_value(&g, v3(0.3, 9, 0.4)), 0.5, 1e-12);
+	g.pattern = PAT_BOXED;
+	CHECK_NEAR(pattern_value(&g, v3(0.2, -0.7, 0.1)), 0.3, 1e-12);
+	g.pattern = PAT_PLANAR;
+	CHECK_NEAR(pattern_value(&g, v3(5, -0.25, 5)), 0.75, 1e-12);
+	g.pattern = PAT_LEOPARD;
+	CHECK_NEAR(pattern_value(&g, v3(M_PI / 2, M_PI / 2, M_PI / 2)), 1, 1e-12);
+}
+
+static void t_waves(void)
+{
+	struct pigment g = scene_default_texture().pigment;
+	g.kind = PIG_GRADIENT;
+	g.axis = v3(1, 0, 0);
+	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.25, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(-0.25, 0, 0)), 0.75, 1e-12); /* negative wraps */
+	g.frequency = 2, g.phase = 0.1;
+	CHECK_NEAR(pattern_value(&g, v3(0.2, 0, 0)), 0.5, 1e-12);
+	g.frequency = 1, g.phase = 0;
+	g.wave = WAVE_TRIANGLE;
+	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.5, 1e-12);
+	CHECK_NEAR(pattern_value(&g, v3(0.75, 0, 0)), 0.5, 1e-12);
+	g.wave = WAVE_SINE;
+	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 1, 1e-12);
+	g.wave = WAVE_SCALLOP;
+	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), sqrt(0.5), 1e-12);
+	g.wave = WAVE_CUBIC;
+	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.15625, 1e-12);
+	g.wave = WAVE_POLY, g.exponent = 3;
+	CHECK_NEAR(pattern_value(&g, v3(0.5, 0, 0)), 0.125, 1e-12);
+}
+
+static void t_blocks(void)
+{
+	struct pigment g = pig(PIG_CHECKER, PAT_RADIAL);
+	CHECK(pattern_block(&g, v3(0.5, 0.5, 0.5)) == 0);
+	CHECK(pattern_block(&g, v3(1.5, 0.5, 0.5)) == 1);
+	CHECK(pattern_block(&g, v3(-0.5, 0.5, 0.5)) == 1);
+	g.kind = PIG_HEXAGON; /* cells of 0.5 × √3/2: rows of colours 0 1 1 2 2 0 */
+	CHECK(pattern_block(&g, v3(0.1, 0, 0.1)) == 0);
+	CHECK(pattern_block(&g, v3(0.1, 0, 1.0)) == 1);
+	CHECK(pattern_block(&g, v3(0.1, 0, 2.7)) == 2);
+	CHECK(pattern_block(&g, v3(1.1, 0, 0.1)) == 2);
+	CHECK(pattern_block(&g, v3(-1.1, 0, 0.1)) == 2); /* mirrored in x */
+	g.kind = PIG_BRICK; /* <8, 3, 4.5>, mortar 0.5 */
+	CHECK(pattern_block(&g, v3(0.2, 0.1, 0.2)) == 1);
+	CHECK(pattern_block(&g, v3(0.2, -0.3, 0.2)) == 0); /* the bed joint */
+	CHECK(pattern_block(&g, v3(-0.3, 1, 2)) == 0);      /* a head joint (x) */
+	CHECK(pattern_block(&g, v3(-0.3, 4, 2)) == 1);      /* next course: offset by half a brick */
+}
+
+int main(void)
+{
+	RUN(t_continuous);
+	RUN(t_waves);
+	RUN(t_blocks);
+	return test_done();
+}

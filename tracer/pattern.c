@@ -1,0 +1,142 @@
+/* SPDX-License-Identifier: MIT */
+/* pattern.c: POV-Ray's patterns. Each raw function follows the definition
+ * of POV-Ray 3.7 (its documentation and pattern.cpp): the value before the
+ * wave, then pattern_value applies frequency, phase and the wave exactly as
+ * POV-Ray does, including its modulus of 1.00001 (docs/design.md §3). */
+#include "pattern.h"
+
+#include <math.h>
+
+/* 1 − v for v in [0,1], 0 beyond, 1 below 0 (POV-Ray's CLIP_DENSITY). */
+static double clip_density(double v) { return v < 0 ? 1 : v > 1 ? 0 : 1 - v; }
+
+/* Raw gradient: q·axis, reduced modulo 1 above 1 (negative values are
+ * wrapped by the wave step). */
+static double gradient_raw(const struct pigment *pg, struct vec3 q)
+{
+	double v = v_dot(q, pg->axis);
+	return v > 1 ? fmod(v, 1) : v;
+}
+
+/* The angle about y, starting a quarter turn from -z, in turns. */
+static double radial_raw(struct vec3 q)
+{
+	if (fabs(q.x) < 0.001 && fabs(q.z) < 0.001)
+		return 0.25;
+	return 0.25 + (atan2(q.x, q.z) + M_PI) / (2 * M_PI);
+}
+
+static double leopard_raw(struct vec3 q)
+{
+	double s = (sin(q.x) + sin(q.y) + sin(q.z)) / 3;
+	return s * s;
+}
+
+static double raw(const struct pigment *pg, struct vec3 q)
+{
+	if (pg->kind == PIG_GRADIENT)
+		return gradient_raw(pg, q);
+	switch (pg->pattern) {
+	case PAT_RADIAL: return radial_raw(q);
+	case PAT_ONION: return sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
+	case PAT_SPHERICAL: return clip_density(sqrt(q.x * q.x + q.y * q.y + q.z * q.z));
+	case PAT_CYLINDRICAL: return clip_density(sqrt(q.x * q.x + q.z * q.z));
+	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
+	case PAT_PLANAR: return clip_density(fabs(q.y));
+	case PAT_LEOPARD: return leopard_raw(q);
+	default: return 0;
+	}
+}
+
+/* The cycloidal wave of POV-Ray: sin of a full turn. */
+static double cycloidal(double v) { return sin(v * 2 * M_PI); }
+
+double pattern_value(const struct pigment *pg, struct vec3 q)
+{
+	double v = raw(pg, q);
+	if (pg->frequency != 0)
+		v = fmod(v * pg->frequency + pg->phase, 1.00001);
+	if (v < 0)
+		v -= floor(v);
+	switch (pg->wave) {
+	case WAVE_TRIANGLE: {
+		double t = v - floor(v);
+		return t < 0.5 ? 2 * t : 2 - 2 * t;
+	}
+	case WAVE_SINE: return (1 + cycloidal(v)) * 0.5;
+	case WAVE_SCALLOP: return fabs(cycloidal(v * 0.5));
+	case WAVE_CUBIC: return v * v * (3 - 2 * v);
+	case WAVE_POLY: return pow(v, pg->exponent);
+	default: return v;
+	}
+}
+
+/* POV-Ray's hexagon: the x-z plane tiled by hexagons of unit side, three
+ * colours, none touching another of its own. The plane is cut into a 6×6
+ * grid of half-triangle cells (0.5 × √3/2); most cells are one colour,
+ * the rest are split by a hexagon edge at 45° in grid units. */
+static int hexagon(struct vec3 q)
+{
+	const double xf = 0.5, zf = 0.866025404, zrep = 5.196152424; /* √3/2, 6·√3/2 */
+	double x = fabs(q.x), z = q.z < 0 ? zrep - fabs(q.z) : q.z;
+	double xs = x / xf, zs = z / zf;
+	xs -= floor(xs / 6) * 6;
+	zs -= floor(zs / 6) * 6;
+	int xm = (int)floor(xs) % 6, zm = (int)floor(zs) % 6;
+	/* colour of each row zm for columns 0/5 and 2/3 */
+	static const int even[6] = {0, 1, 1, 2, 2, 0}, odd[6] = {2, 2, 0, 0, 1, 1};
+	/* split columns 1/4: below and above the edge */
+	static const int below[6] = {0, 2, 1, 0, 2, 1}, above[6] = {2, 1, 0, 2, 1, 0};
+	switch (xm) {
+	case 0: case 5: return even[zm];
+	case 2: case 3: return odd[zm];
+	default: {
+		double xl = xs - xm, zl = zs - zm;
+		if ((xm + zm) % 2 == 1)
+			xl = 1 - xl;
+		if (xl == 0)
+			xl = 0.0001;
+		return zl / xl < 1 ? below[zm] : above[zm];
+	}
+	}
+}
+
+/* The fractional part as POV-Ray's brick takes it: truncation, then +1
+ * below zero. */
+static double frac_trunc(double v)
+{
+	double f = v - (double)(long)v;
+	return f < 0 ? f + 1 : f;
+}
+
+/* POV-Ray's brick: 0 in the mortar, 1 in a brick. Courses alternate every
+ * brick height, each offset by half a brick along x (ends) and z (faces). */
+static int brick(const struct pigment *pg, struct vec3 q)
+{
+	const double small = 1e-6; /* POV-Ray's Small_Tolerance */
+	double m = pg->mortar, fudge = small + m;
+	double x = q.x + fudge, y = q.y + fudge, z = q.z + fudge;
+	struct vec3 sz = pg->brick_size;
+	double mw = m / sz.x, mh = m / sz.y, md = m / sz.z;
+	if (frac_trunc(y / sz.y) <= mh)
+		return 0;
+	bool odd = frac_trunc(y / sz.y * 0.5) <= 0.5;
+	if (frac_trunc(x / sz.x + (odd ? 0 : 0.5)) <= mw)
+		return 0;
+	if (frac_trunc(z / sz.z + (odd ? 0.5 : 0)) <= md)
+		return 0;
+	return 1;
+}
+
+int pattern_block(const struct pigment *pg, struct vec3 q)
+{
+	const double small = 1e-6;
+	switch (pg->kind) {
+	case PIG_HEXAGON: return hexagon(q);
+	case PIG_BRICK: return brick(pg, q);
+	default: {
+		long s = (long)floor(q.x + small) + (long)floor(q.y + small) + (long)floor(q.z + small);
+		return (int)(s & 1);
+	}
+	}
+}
