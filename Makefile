@@ -57,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus
+.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus gallery
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -131,7 +131,7 @@ fuzz: deps-fuzz all
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine libembree-dev
+           povray povray-includes povray-examples hyperfine libembree-dev parallel time
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -163,11 +163,14 @@ test: check
 
 demo: deps
 	$(Q)$(MAKE) --no-print-directory all
-	./arvo -o demo.exr stdlib-scenes/demo.scn
-	./arvo -o demo.png stdlib-scenes/demo.scn
+	./arvo -o demo.exr -o demo.png stdlib-scenes/demo.scn
 
 bench: deps all
 	sh bench/run.sh
+
+# the README gallery: every demo at its defaults, with its render time
+gallery: deps all
+	sh docs/gallery/make.sh
 
 # caustic error against time: arvo's light-pass methods and POV-Ray's photons
 # on the analytic references A, B, C (bench/results/accuracy.*, docs/accuracy.*)

@@ -22,9 +22,9 @@
 #include "tracer/output/exrout.h"
 #include "tracer/output/ocio_shim.h"
 #include "tracer/output/pngout.h"
+#include "tracer/output/tmpfile.h"
 #include "tools/tools.h"
 #include "tracer/camera.h"
-#include "tracer/output/tmpfile.h"
 #include "tracer/render.h"
 #include "tracer/scene.h"
 
@@ -42,7 +42,8 @@ enum action { ACT_RENDER, ACT_CHECK, ACT_TOKENS, ACT_AST, ACT_SCENE };
 struct options {
 	enum action action;
 	const char *scene;           /* input file */
-	const char *output;          /* -o */
+	const char *outputs[16];     /* -o (several: one render, several files) */
+	int noutputs;
 	const char *depfile;         /* -M / --depfile */
 	const char *includes[64];    /* -I */
 	int ninclude;
@@ -53,6 +54,11 @@ struct options {
 	int width, height, spp, threads;
 	double clock;
 	int frame;
+	int clock_given;             /* --clock, +K or --frame given: clock_on */
+	int anim;                    /* --frames or +KFF: the internal animation loop */
+	long first_frame, last_frame;   /* --frames A:B (+KFI, +KFF; default 1:1) */
+	double first_clock, last_clock; /* +KI, +KF (default 0, 1) */
+	long sub_first, sub_last;       /* --subset C:D (+SF, +EF; -1: the whole range) */
 	long max_iterations, max_calls, max_objects; /* --max-iterations, --max-calls, --max-objects */
 	size_t max_memory;                           /* --max-memory (0: not given) */
 	int quiet, stats;
@@ -79,7 +85,8 @@ struct options {
 static void usage(FILE *out)
 {
 	fputs("usage: arvo [options] scene.scn\n"
-	      "  -o FILE            output image (.exr or .png; default: scene name .exr)\n"
+	      "  -o FILE            output image (.exr or .png; default: scene name .exr); repeat\n"
+	      "                     -o to write several files from one render\n"
 	      "  --width W, --height H   image size (default 320x240); also +WW +HH\n"
 	      "  --spp N            samples per pixel (+A: 4);  --threads N  render threads (+WTN)\n"
 	      "  --half             16-bit half EXR (default float)\n"
@@ -100,11 +107,14 @@ static void usage(FILE *out)
 	      "  -I DIR             add an include directory (also +LDIR)\n"
 	      "  --allow-read DIR   let the scene read files below DIR too\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
+	      "  --frames A:B       render frames A to B in turn (+KFIA +KFFB); clock runs from\n"
+	      "                     0 to 1 (+KIx +KFy: from x to y); -o name.%04d.exr numbers them\n"
+	      "  --subset C:D       only frames C to D of the range (+SFC +EFD)\n"
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
 	      "  --max-calls N      limit on macro calls (default 1000000)\n"
 	      "  --max-objects N    limit on objects and lights (default 1000000)\n"
 	      "  --max-memory SIZE  memory budget, e.g. 512M or 4G (default: half the machine's)\n"
-	      "  -M, --depfile FILE write Make dependencies of the scene and its includes\n"
+	      "  -M, --depfile FILE write Make dependencies: every file the render reads\n"
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
 	      "  --dump-tokens | --dump-ast | --dump-scene   print a stage's text and stop\n"
 	      "  --quiet, --stats, --help, --version\n"
@@ -204,6 +214,49 @@ done:
 		snprintf(o->stdlib_dir, sizeof o->stdlib_dir, "%s/include", o->data_dir);
 }
 
+/* -o and +O: one more output file (at most 16). */
+static int add_output(struct options *o, const char *path)
+{
+	if (o->noutputs >= 16)
+		return 0;
+	o->outputs[o->noutputs++] = path;
+	return 1;
+}
+
+/* POV-Ray's animation switches (s after the sign): +KFIn +KFFn (first and
+ * last frame), +KIn.n +KFn.n (clock at them), +SFn +EFn (a subset). */
+static int pov_anim_switch(struct options *o, const char *s)
+{
+	long v;
+	double f;
+	if (s[0] != 'K' && s[0] != 'S' && s[0] != 'E')
+		return 0;
+	if (!strncmp(s, "KFI", 3) && parse_int(s + 3, 0, 999999999, &v))
+		return o->first_frame = v, 1;
+	if (!strncmp(s, "KFF", 3) && parse_int(s + 3, 0, 999999999, &v))
+		return o->last_frame = v, o->anim = 1, 1;
+	if (!strncmp(s, "KI", 2) && parse_double(s + 2, &f))
+		return o->first_clock = f, 1;
+	if (!strncmp(s, "KF", 2) && parse_double(s + 2, &f))
+		return o->last_clock = f, 1;
+	if (!strncmp(s, "SF", 2) && parse_int(s + 2, 0, 999999999, &v))
+		return o->sub_first = v, 1;
+	if (!strncmp(s, "EF", 2) && parse_int(s + 2, 0, 999999999, &v))
+		return o->sub_last = v, 1;
+	return 0;
+}
+
+/* "A:B" with 0 <= A <= B: the frames of --frames and --subset. */
+static int parse_range(const char *s, long *a, long *b)
+{
+	char buf[64];
+	const char *colon = strchr(s, ':');
+	if (!colon || colon - s >= (long)sizeof buf)
+		return 0;
+	snprintf(buf, sizeof buf, "%.*s", (int)(colon - s), s);
+	return parse_int(buf, 0, 999999999, a) && parse_int(colon + 1, 0, 999999999, b) && *a <= *b;
+}
+
 #ifndef POVRAY_INCLUDE_DIR
 #define POVRAY_INCLUDE_DIR "/usr/share/povray-3.7/include" /* Debian's povray-includes */
 #endif
@@ -218,7 +271,8 @@ static const char *pov_include_dir(void)
 	return access(POVRAY_INCLUDE_DIR, R_OK) == 0 ? POVRAY_INCLUDE_DIR : NULL;
 }
 
-/* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K. */
+/* The POV-Ray switches arvo accepts: +W +H +O +I +L +A -A +D -D +WT +K
+ * +KFI +KFF +KI +KF +SF +EF. */
 static int pov_switch(struct options *o, const char *a)
 {
 	long v;
@@ -232,18 +286,43 @@ static int pov_switch(struct options *o, const char *a)
 	if ((s[0] == 'H' || s[0] == 'h') && parse_int(s + 1, 1, 65536, &v))
 		return o->height = (int)v, 1;
 	if ((s[0] == 'O' || s[0] == 'o') && s[1] && sign == '+')
-		return o->output = s + 1, 1;
+		return add_output(o, s + 1);
 	if ((s[0] == 'I' || s[0] == 'i') && s[1] && sign == '+')
 		return o->scene = s + 1, 1;
 	if ((s[0] == 'L' || s[0] == 'l') && s[1] && sign == '+' && o->ninclude < 64)
 		return o->includes[o->ninclude++] = s + 1, 1;
+	if (pov_anim_switch(o, s))
+		return 1;
 	if ((s[0] == 'K' || s[0] == 'k') && parse_double(s + 1, &f))
-		return o->clock = f, 1;
+		return o->clock = f, o->clock_given = 1, 1;
 	if ((s[0] == 'A' || s[0] == 'a') && (s[1] == '\0' || parse_double(s + 1, &f)))
 		return o->spp = sign == '+' ? (o->spp > 1 ? o->spp : 4) : 1, 1;
 	if ((s[0] == 'D' || s[0] == 'd') && s[1] == '\0' && sign == '+')
 		return 1; /* +D display on: arvo has no preview window */
 	return 0;
+}
+
+/* The animation options agree: a subset inside the range, no --clock or
+ * --frame with --frames (the loop sets them). Returns -1 or EX_USAGE. */
+static int check_animation(struct options *o)
+{
+	if (!o->anim && (o->sub_first >= 0 || o->sub_last >= 0))
+		return usage_error("--subset (+SF, +EF) needs a frame range (--frames or +KFF)");
+	if (!o->anim)
+		return -1;
+	if (o->first_frame > o->last_frame)
+		return usage_error("the first frame (%ld) is after the last (%ld)", o->first_frame, o->last_frame);
+	if (o->clock_given)
+		return usage_error("--clock and --frame cannot be combined with a frame range (--frames, +KFF): "
+		                   "the range sets clock and frame_number");
+	if (o->sub_first < 0)
+		o->sub_first = o->first_frame;
+	if (o->sub_last < 0)
+		o->sub_last = o->last_frame;
+	if (o->sub_first < o->first_frame || o->sub_last > o->last_frame || o->sub_first > o->sub_last)
+		return usage_error("--subset %ld:%ld is not inside --frames %ld:%ld", o->sub_first, o->sub_last,
+		                   o->first_frame, o->last_frame);
+	return -1;
 }
 
 /* --region, --tile, --seed, --png-depth (value v): returns -1, or an exit code. */
@@ -348,7 +427,17 @@ static int parse_args(int argc, char **argv, struct options *o)
 				return usage_error("unknown compression '%s' (expected none, zip, zips, piz or rle)", next);
 		} else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
 			NEED_ARG();
-			o->output = next;
+			if (!add_output(o, next))
+				return usage_error("too many output files (at most %s)", "16");
+		} else if (!strcmp(a, "--frames") || !strcmp(a, "--subset")) {
+			NEED_ARG();
+			long fa, fb;
+			if (!parse_range(next, &fa, &fb))
+				return usage_error("bad value for %s: '%s' (expected FIRST:LAST, 0 <= FIRST <= LAST)", a, next);
+			if (a[2] == 'f')
+				o->first_frame = fa, o->last_frame = fb, o->anim = 1;
+			else
+				o->sub_first = fa, o->sub_last = fb;
 		} else if (!strcmp(a, "-M") || !strcmp(a, "--depfile")) {
 			NEED_ARG();
 			o->depfile = next;
@@ -388,10 +477,12 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if ((a[2] == 'w' || a[2] == 'h') && v > 65536)
 				return usage_error("image size too large: '%s' (at most 65536)", next);
 			*dst = (int)v;
+			o->clock_given |= dst == &o->frame;
 		} else if (!strcmp(a, "--clock")) {
 			NEED_ARG();
 			if (!parse_double(next, &o->clock))
 				return usage_error("bad value for --clock: '%s'", next);
+			o->clock_given = 1;
 		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects")) {
 			NEED_ARG();
 			if (!parse_int(next, 1, 1L << 40, &v))
@@ -421,7 +512,7 @@ static int parse_args(int argc, char **argv, struct options *o)
 	if ((long long)o->width * o->height > MAX_PIXELS)
 		return usage_error("image too large: %dx%d is %lld pixels (at most %lld)", o->width, o->height,
 		                   (long long)o->width * o->height, (long long)MAX_PIXELS);
-	return -1;
+	return check_animation(o);
 }
 
 /* -M: collects the files a scene reads. */
@@ -440,9 +531,24 @@ static void dep_add(const char *path, void *ctx)
 	d->files[d->n++] = mem_strdup(path);
 }
 
-static int write_depfile(const struct options *o, const struct deps *d, const char *target)
+/* Writes a path for make: spaces and '#' escaped with '\\', '$' doubled. */
+static void put_make_path(FILE *f, const char *p)
 {
-	char tmp[PATH_MAX + 16];
+	for (; *p; p++) {
+		if (*p == ' ' || *p == '#' || *p == '\t')
+			fputc('\\', f);
+		else if (*p == '$')
+			fputc('$', f);
+		fputc(*p, f);
+	}
+}
+
+/* The depfile, like gcc -MMD -MP: "targets: the scene and every file it
+ * read", then an empty rule for each file but the scene, so make does not
+ * fail when one disappears. */
+static int write_depfile(const struct options *o, const struct deps *d, const struct deps *targets)
+{
+	char tmp[PATH_MAX + 32];
 	int fd = out_tmp_create(o->depfile, tmp, sizeof tmp);
 	FILE *f = fd < 0 ? NULL : fdopen(fd, "w");
 	if (!f) {
@@ -452,12 +558,22 @@ static int write_depfile(const struct options *o, const struct deps *d, const ch
 		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(e));
 		return EX_CANTCREAT;
 	}
-	fprintf(f, "%s:", target);
-	for (int i = 0; i < d->n; i++)
-		fprintf(f, " %s", d->files[i]);
+	for (int i = 0; i < targets->n; i++) {
+		if (i)
+			fputc(' ', f);
+		put_make_path(f, targets->files[i]);
+	}
+	fputc(':', f);
+	for (int i = 0; i < d->n; i++) {
+		fputs(i % 4 == 3 ? " \\\n " : " ", f);
+		put_make_path(f, d->files[i]);
+	}
 	fputc('\n', f);
-	for (int i = 1; i < d->n; i++)
-		fprintf(f, "%s:\n", d->files[i]);
+	for (int i = 1; i < d->n; i++) {
+		fputc('\n', f);
+		put_make_path(f, d->files[i]);
+		fputs(":\n", f);
+	}
 	int bad = fflush(f) != 0 || ferror(f), e = errno;
 	if (fclose(f) != 0 && !bad)
 		bad = 1, e = errno;
@@ -521,7 +637,7 @@ static int output_kind(const char *path)
 
 /* Can path be written? Creates and removes a temporary beside it, as the
  * writers will, so every reason (no directory, no permission, read-only
- * file system) shows now, before any work. Reports and returns 73 if not. */
+ * file system) shows before any work. Reports and returns 73 if not. */
 static int check_creatable(const char *path)
 {
 	char tmp[PATH_MAX + 32];
@@ -600,8 +716,7 @@ static const char *volatile mem_phase = "reading the scene";
 
 /* Over the --max-memory budget outside the evaluator (which reports at the
  * statement it was running): reading the scene file, or rendering (the
- * light pass's maps, the acceleration structure, the framebuffer). Exit 70,
- * after removing any temporary being written. */
+ * light pass's maps, the acceleration structure, the framebuffer). Exit 70. */
 static void over_budget(size_t request)
 {
 	static atomic_int once;
@@ -616,79 +731,249 @@ static void over_budget(size_t request)
 	exit(EX_SOFTWARE);
 }
 
-/* Checks everything a render will write or look up before any work: the
- * output format (64), the region (64), the OCIO config (66) and
- * display/view (64) for PNG output or when named, every output path (73),
- * the --load-maps file (66). */
-static int check_outputs(struct options *o, const char *output, struct diag *dg)
+/* Expands a frame pattern in a file name: %d, %Nd or %0Nd become the frame
+ * number, %% a '%'. In an animation (digits > 0) a name without a pattern
+ * gets POV-Ray's numbering: the number, zero-padded to digits, before the
+ * extension. Returns 0 for any other '%' or a name too long. */
+static int frame_name(const char *pat, long frame, int digits, char *buf, size_t size)
 {
-	int kind = output_kind(output);
-	if (!kind)
-		return usage_error("unknown output format '%s' (expected a .exr or .png name)", output);
-	int rc = resolve_region(o, kind);
-	if (rc >= 0)
+	size_t k = 0;
+	int pattern = 0;
+	for (const char *p = pat; *p; p++) {
+		char piece[32];
+		if (*p != '%') {
+			piece[0] = *p, piece[1] = '\0';
+		} else if (p[1] == '%') {
+			strcpy(piece, "%"), p++;
+		} else {
+			int zero = p[1] == '0', width = 0;
+			const char *q = p + 1 + zero;
+			while (*q >= '0' && *q <= '9' && width < 100)
+				width = width * 10 + (*q++ - '0');
+			if (*q != 'd')
+				return 0;
+			snprintf(piece, sizeof piece, zero ? "%0*ld" : "%*ld", width, frame);
+			p = q, pattern = 1;
+		}
+		size_t n = strlen(piece);
+		if (k + n >= size)
+			return 0;
+		memcpy(buf + k, piece, n + 1), k += n;
+	}
+	if (pattern || digits == 0)
+		return 1;
+	const char *slash = strrchr(buf, '/'), *dot = strrchr(buf, '.');
+	size_t stem = dot && (!slash || dot > slash) ? (size_t)(dot - buf) : k;
+	char tail[PATH_MAX];
+	snprintf(tail, sizeof tail, "%s", buf + stem);
+	int n = snprintf(buf + stem, size - stem, "%0*ld%s", digits, frame, tail);
+	return n > 0 && (size_t)n < size - stem;
+}
+
+/* The digits of POV-Ray's frame numbering (those of the last frame), or 0
+ * when there is no animation. */
+static int frame_digits(const struct options *o)
+{
+	int d = 1;
+	if (!o->anim)
+		return 0;
+	for (long f = o->last_frame; f >= 10; f /= 10)
+		d++;
+	return d;
+}
+
+/* Checks the output names before any work: a known format, a valid frame
+ * pattern, and a pattern in --save-maps when several frames are rendered. */
+static int check_outputs(const struct options *o)
+{
+	char name[PATH_MAX], def[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1;
+	for (int i = 0; i < n; i++) {
+		const char *pat = o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def);
+		if (!frame_name(pat, 0, frame_digits(o), name, sizeof name))
+			return usage_error("bad frame pattern in '%s' (expected %%d, %%4d or %%04d; %%%% for a '%%')", pat);
+		if (o->action == ACT_RENDER && !output_kind(name))
+			return usage_error("unknown output format '%s' (expected a .exr or .png name)", pat);
+	}
+	const char *maps[2] = {o->save_maps, o->load_maps};
+	for (int i = 0; i < 2; i++)
+		if (maps[i] && !frame_name(maps[i], 0, 0, name, sizeof name))
+			return usage_error("bad frame pattern in '%s' (expected %%d, %%4d or %%04d; %%%% for a '%%')", maps[i]);
+	if (o->anim && o->sub_last > o->sub_first && o->save_maps && !strchr(o->save_maps, '%'))
+		return usage_error("--save-maps '%s' would be overwritten by every frame: give it a frame "
+		                   "pattern such as %%04d", o->save_maps);
+	return EX_OK;
+}
+
+/* Are all the outputs EXRs (a partial render needs it)? */
+static int all_exr(const struct options *o)
+{
+	char def[PATH_MAX];
+	for (int i = 0; i < (o->noutputs ? o->noutputs : 1); i++)
+		if (output_kind(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def)) != 'e')
+			return 0;
+	return 1;
+}
+
+/* Sets clock, frame_number and the animation constants for one frame, as
+ * POV-Ray 3.7 does: clock runs linearly from the first clock at the first
+ * frame to the last clock at the last frame, and clock_on is true in every
+ * frame of an animation (and whenever --clock or --frame is given). */
+static void set_frame(const struct options *o, struct eval_options *eo, long frame)
+{
+	eo->clock = o->clock;
+	eo->frame = o->frame;
+	eo->clock_on = o->clock_given;
+	if (!o->anim)
+		return;
+	long span = o->last_frame - o->first_frame;
+	eo->clock_on = 1;
+	eo->frame = (int)frame;
+	eo->initial_frame = (int)o->first_frame, eo->final_frame = (int)o->last_frame;
+	eo->initial_clock = o->first_clock, eo->final_clock = o->last_clock;
+	eo->clock_delta = span > 0 ? (o->last_clock - o->first_clock) / (double)span : 0;
+	eo->clock = o->first_clock + eo->clock_delta * (double)(frame - o->first_frame);
+}
+
+/* Render: the light pass and the eye pass into one framebuffer, then each
+ * output: the EXR, or the PNG through OCIO. */
+static int render_and_write(const struct options *o, const struct scene *scene, char (*outputs)[PATH_MAX],
+                            int noutputs, const char *save_maps, const char *load_maps, struct diag *dg)
+{
+	int rc = EX_OK;
+	for (int i = 0; i < noutputs && !rc; i++) /* each frame's names (the first were checked before any work) */
+		rc = check_creatable(outputs[i]);
+	if (!rc && save_maps)
+		rc = check_creatable(save_maps);
+	if (rc)
 		return rc;
-	if (kind == 'p' || o->ocio_config || o->display || o->view) {
+	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
+	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
+	                         save_maps, load_maps, o->method, o->tolerance, o->passes,
+	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
+	struct render_stats st;
+	struct framebuffer *fb;
+	if ((rc = render(scene, &ro, dg, &fb, &st)) != 0)
+		return rc;
+	for (int i = 0; i < noutputs && !rc; i++) {
+		if (output_kind(outputs[i]) == 'e') {
+			static struct out_exr_meta meta;
+			exr_meta(o, scene, &meta);
+			struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
+			rc = out_exr_write(fb, outputs[i], &eo, dg);
+		} else {
+			struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
+			                          o->png_depth};
+			rc = out_png_write(fb, outputs[i], &po, dg);
+		}
+	}
+	fb_free(fb);
+	if (!rc && o->stats)
+		render_print_stats(stderr, &st);
+	return rc;
+}
+
+/* One frame: evaluates the scene with this frame's clock, then dumps it or
+ * renders it into every output. The output names, with the frame number
+ * filled in, are added to targets (the depfile's targets). */
+static int run_frame(const struct options *o, struct eval_options *eo, struct diag *dg, long frame,
+                     struct deps *targets)
+{
+	char names[16][PATH_MAX], def[PATH_MAX], save[PATH_MAX], load[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1, digits = frame_digits(o);
+	for (int i = 0; i < n; i++) {
+		frame_name(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def), frame, digits,
+		           names[i], sizeof names[i]);
+		dep_add(names[i], targets);
+	}
+	if (o->save_maps)
+		frame_name(o->save_maps, frame, 0, save, sizeof save);
+	if (o->load_maps)
+		frame_name(o->load_maps, frame, 0, load, sizeof load);
+	set_frame(o, eo, frame);
+	if (o->anim && !o->quiet && o->action == ACT_RENDER)
+		fprintf(stderr, "arvo: frame %ld (%ld to %ld), clock %g: %s\n", frame, o->sub_first, o->sub_last,
+		        eo->clock, names[0]);
+	struct scene scene;
+	mem_phase = "reading the scene";
+	int rc = eval_scene(o->scene, eo, dg, &scene);
+	if (o->load_maps && eo->on_file) /* after the scene: the depfile lists the scene first */
+		eo->on_file(load, eo->on_file_ctx);
+	if (rc == EX_OK) {
+		if (o->action == ACT_SCENE)
+			scene_dump(stdout, &scene);
+		else if (o->action == ACT_RENDER) {
+			mem_phase = "rendering";
+			rc = render_and_write(o, &scene, names, n, o->save_maps ? save : NULL,
+			                      o->load_maps ? load : NULL, dg);
+		}
+	}
+	scene_free(&scene);
+	return rc;
+}
+
+/* -M also names the OCIO config when the render reads it: for a PNG output
+ * or a PNG image_map. */
+static void dep_add_ocio(const struct options *o, const struct deps *targets, struct deps *deps)
+{
+	int png = 0;
+	for (int i = 0; i < targets->n; i++)
+		png |= output_kind(targets->files[i]) == 'p' && o->action == ACT_RENDER;
+	for (int i = 0; i < deps->n; i++)
+		png |= output_kind(deps->files[i]) == 'p';
+	const char *cfg = png ? out_ocio_config_path(o->ocio_config) : NULL;
+	if (cfg) {
+		char real[PATH_MAX];
+		dep_add(realpath(cfg, real) ? real : cfg, deps);
+	}
+}
+
+/* Checks before any work what a render will write or read besides the
+ * scene: the OCIO config (66) and display/view (64) when a PNG is written
+ * or an OCIO option is given; every output of the first frame, the
+ * --save-maps file, a --dump-maps file and the depfile can be created (73);
+ * the --load-maps file can be read (66). */
+static int check_before_work(const struct options *o, struct diag *dg)
+{
+	char name[PATH_MAX], def[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1, png = o->ocio_config || o->display || o->view, rc = EX_OK;
+	long frame = o->anim ? o->sub_first : 0;
+	for (int i = 0; i < n; i++) {
+		frame_name(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def), frame,
+		           frame_digits(o), name, sizeof name);
+		png |= output_kind(name) == 'p';
+		if (!rc)
+			rc = check_creatable(name);
+	}
+	if (png) {
 		struct ocio_config *cfg;
 		const char *disp, *view;
-		rc = out_ocio_load(o->ocio_config, &cfg, dg);
-		if (rc)
-			return rc;
-		rc = out_ocio_pick_view(cfg, o->display, o->view, &disp, &view, dg);
+		int r = out_ocio_load(o->ocio_config, &cfg, dg);
+		if (r)
+			return r;
+		r = out_ocio_pick_view(cfg, o->display, o->view, &disp, &view, dg);
 		ocio_config_free(cfg);
-		if (rc)
-			return rc;
+		if (r)
+			return r;
 	}
-	rc = check_creatable(output);
 	struct stat sb;
 	if (!rc && o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
 		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
 		return EX_CANTCREAT;
 	}
 	if (!rc && o->dump_maps) {
-		char probe[PATH_MAX + 16];
-		snprintf(probe, sizeof probe, "%s/map", o->dump_maps);
-		rc = check_creatable(probe);
+		snprintf(name, sizeof name, "%s/map", o->dump_maps);
+		rc = check_creatable(name);
 	}
-	if (!rc && o->save_maps)
-		rc = check_creatable(o->save_maps);
+	if (!rc && o->save_maps && frame_name(o->save_maps, frame, 0, name, sizeof name))
+		rc = check_creatable(name);
 	if (!rc && o->depfile)
 		rc = check_creatable(o->depfile);
-	if (!rc && o->load_maps && access(o->load_maps, R_OK) != 0) {
-		fprintf(stderr, "arvo: error: cannot open '%s': %s\n", o->load_maps, strerror(errno));
+	if (!rc && o->load_maps && frame_name(o->load_maps, frame, 0, name, sizeof name) &&
+	    access(name, R_OK) != 0) {
+		fprintf(stderr, "arvo: error: cannot open '%s': %s\n", name, strerror(errno));
 		return EX_NOINPUT;
 	}
-	return rc;
-}
-
-/* Render: the light pass and the eye pass into a framebuffer, then the EXR
- * or the PNG through OCIO. Errors are reported to dg; the tracer's status
- * is the exit code. */
-static int render_and_write(const struct options *o, const struct scene *scene, const char *output,
-                            struct diag *dg)
-{
-	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
-	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
-	                         o->save_maps, o->load_maps, o->method, o->tolerance, o->passes,
-	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
-	struct render_stats st;
-	struct framebuffer *fb;
-	int rc = render(scene, &ro, dg, &fb, &st);
-	if (rc)
-		return rc;
-	if (output_kind(output) == 'e') {
-		static struct out_exr_meta meta;
-		exr_meta(o, scene, &meta);
-		struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
-		rc = out_exr_write(fb, output, &eo, dg);
-	} else {
-		struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
-		                          o->png_depth};
-		rc = out_png_write(fb, output, &po, dg);
-	}
-	fb_free(fb);
-	if (!rc && o->stats)
-		render_print_stats(stderr, &st);
 	return rc;
 }
 
@@ -720,6 +1005,7 @@ int main(int argc, char **argv)
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
 	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000;
+	o.first_frame = o.last_frame = 1, o.first_clock = 0, o.last_clock = 1, o.sub_first = o.sub_last = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
 		return rc;
@@ -732,6 +1018,13 @@ int main(int argc, char **argv)
 		srcfile_free_all();
 		return rc;
 	}
+	if ((rc = check_outputs(&o)) != EX_OK)
+		return rc;
+	if (o.action == ACT_RENDER && (rc = resolve_region(&o, all_exr(&o) ? 'e' : 'p')) >= 0)
+		return rc;
+	if (o.action == ACT_RENDER && (rc = check_before_work(&o, &dg)) != EX_OK)
+		return rc;
+	rc = EX_OK;
 	find_data_dir(&o);
 
 	struct eval_options eo;
@@ -744,42 +1037,31 @@ int main(int argc, char **argv)
 	eo.nallow = o.nallow;
 	eo.defines = o.defines;
 	eo.ndefines = o.ndefines;
-	eo.clock = o.clock;
-	eo.frame = o.frame;
 	eo.width = o.width;
 	eo.height = o.height;
 	eo.max_iterations = o.max_iterations;
 	eo.max_calls = o.max_calls;
 	eo.max_objects = o.max_objects;
-	struct deps deps = {NULL, 0};
+	struct deps deps = {NULL, 0}, targets = {NULL, 0};
 	if (o.depfile) {
 		eo.on_file = dep_add;
 		eo.on_file_ctx = &deps;
 	}
-	char outbuf[PATH_MAX];
-	const char *output = o.output ? o.output : default_output(o.scene, outbuf, sizeof outbuf);
-	if (o.action == ACT_RENDER && (rc = check_outputs(&o, output, &dg)) != EX_OK) {
-		srcfile_free_all();
-		return rc;
-	}
-	struct scene scene;
-	rc = eval_scene(o.scene, &eo, &dg, &scene);
-	if (rc == EX_OK && o.depfile)
-		rc = write_depfile(&o, &deps, output);
-	if (rc == EX_OK) {
-		if (o.action == ACT_SCENE) {
-			scene_dump(stdout, &scene);
-		} else if (o.action == ACT_RENDER) {
-			mem_phase = "rendering";
-			rc = render_and_write(&o, &scene, output, &dg);
-		}
+	long first = o.anim ? o.sub_first : 0, last = o.anim ? o.sub_last : 0;
+	for (long f = first; f <= last && rc == EX_OK; f++)
+		rc = run_frame(&o, &eo, &dg, f, &targets);
+	if (rc == EX_OK && o.depfile) {
+		dep_add_ocio(&o, &targets, &deps);
+		rc = write_depfile(&o, &deps, &targets);
 	}
 	if (fflush(stdout) != 0 && rc == EX_OK)
 		rc = EX_IOERR;
 	for (int i = 0; i < deps.n; i++)
 		free(deps.files[i]);
+	for (int i = 0; i < targets.n; i++)
+		free(targets.files[i]);
 	free(deps.files);
-	scene_free(&scene);
+	free(targets.files);
 	srcfile_free_all();
 	return rc;
 }

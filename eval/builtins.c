@@ -17,9 +17,7 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out)
 		{"pi", {M_PI}, 1}, {"tau", {2 * M_PI}, 1}, {"true", {1}, 1}, {"yes", {1}, 1},
 		{"on", {1}, 1}, {"false", {0}, 1}, {"no", {0}, 1}, {"off", {0}, 1},
 		{"x", {1, 0, 0}, 3}, {"y", {0, 1, 0}, 3}, {"z", {0, 0, 1}, 3},
-		{"u", {1, 0}, 2}, {"v", {0, 1}, 2}, {"clock_delta", {0}, 1},
-		{"initial_clock", {0}, 1}, {"final_clock", {0}, 1}, {"initial_frame", {0}, 1},
-		{"final_frame", {0}, 1},
+		{"u", {1, 0}, 2}, {"v", {0, 1}, 2},
 	};
 	for (size_t i = 0; i < sizeof consts / sizeof consts[0]; i++) {
 		if (strcmp(consts[i].name, name) == 0) {
@@ -33,9 +31,19 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out)
 	} else if (strcmp(name, "clock") == 0) {
 		*out = val_float(E->opt->clock);
 	} else if (strcmp(name, "clock_on") == 0) {
-		*out = val_float(E->opt->clock != 0 || E->opt->frame != 0);
+		*out = val_float(E->opt->clock_on);
 	} else if (strcmp(name, "frame_number") == 0) {
 		*out = val_float(E->opt->frame);
+	} else if (strcmp(name, "clock_delta") == 0) {
+		*out = val_float(E->opt->clock_delta);
+	} else if (strcmp(name, "initial_clock") == 0) {
+		*out = val_float(E->opt->initial_clock);
+	} else if (strcmp(name, "final_clock") == 0) {
+		*out = val_float(E->opt->final_clock);
+	} else if (strcmp(name, "initial_frame") == 0) {
+		*out = val_float(E->opt->initial_frame);
+	} else if (strcmp(name, "final_frame") == 0) {
+		*out = val_float(E->opt->final_frame);
 	} else if (strcmp(name, "image_width") == 0) {
 		*out = val_float(E->opt->width);
 	} else if (strcmp(name, "image_height") == 0) {

@@ -20,12 +20,17 @@ struct eval_options {
 	int ndefines;
 	double clock;                    /* clock */
 	int frame;                       /* frame_number */
+	/* animation (all 0 without one, as POV-Ray): clock_on, clock_delta,
+	 * initial_clock, final_clock, initial_frame, final_frame */
+	int clock_on;
+	double clock_delta, initial_clock, final_clock;
+	int initial_frame, final_frame;
 	int width, height;               /* image_width, image_height */
 	long max_iterations;             /* #while/#for iterations in total */
 	long max_calls;                  /* macro calls in total */
 	long max_objects;                /* objects and lights in the scene */
 	FILE *debug_out;                 /* where #debug writes (stdout) */
-	/* Called for each file read (the scene and every include), for -M. */
+	/* Called for each file read (the scene, every include and image_map), for -M. */
 	void (*on_file)(const char *path, void *ctx);
 	void *on_file_ctx;
 };

@@ -44,6 +44,8 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 void image_set(struct eval *E, struct pigment *p, struct srcloc loc, const char *name)
 {
 	char *real = eval_find_file(E, name, loc, "image file", NULL);
+	if (E->opt->on_file) /* -M: the image is a dependency */
+		E->opt->on_file(real, E->opt->on_file_ctx);
 	p->image = arena_strndup(&SC(E)->arena, real, strlen(real));
 	p->image_name = arena_strndup(&SC(E)->arena, name, strlen(name));
 	p->image_loc = loc;

@@ -14,6 +14,7 @@
 #include "../common/arena.h"
 #include "../common/diag.h"
 #include "../common/pool.h"
+#include "../common/progress.h"
 #include "bvh.h"
 #include "eyepass.h"
 #include "light/lightpass.h"
@@ -34,8 +35,7 @@ struct eye_job {
 	int tx, ty;                /* tiles across and down */
 	atomic_int done;           /* tiles finished */
 	long long *rays;           /* rays traced, per worker */
-	int progress;              /* draw a progress bar on stderr */
-	pthread_mutex_t lock;      /* serialises the progress bar */
+	struct progress *progress; /* tiles done (common/progress.h) */
 };
 
 static double now(void)
@@ -65,18 +65,6 @@ static void store(struct eye_job *j, size_t i, const struct eye_px *px)
 		j->pl[k][i] = *src[k];
 }
 
-/* Redraws the progress bar after a tile (only when stderr is a terminal). */
-static void progress(struct eye_job *j, int done)
-{
-	int total = j->tx * j->ty, width = 40, fill = (int)((long)done * width / total);
-	pthread_mutex_lock(&j->lock);
-	fprintf(stderr, "\rarvo: eye pass [%.*s%*s] %3d%%", fill,
-	        "########################################", width - fill, "", done * 100 / total);
-	if (done == total)
-		fputc('\n', stderr);
-	pthread_mutex_unlock(&j->lock);
-}
-
 /* Renders tile t (a parallel_for item). */
 static void do_tile(void *arg, long t, int worker)
 {
@@ -90,13 +78,12 @@ static void do_tile(void *arg, long t, int worker)
 			store(j, (size_t)y * (size_t)j->w + (size_t)x, &px);
 		}
 	j->rays[worker] += rays;
-	int d = atomic_fetch_add(&j->done, 1) + 1;
-	if (j->progress)
-		progress(j, d);
+	atomic_fetch_add(&j->done, 1);
+	progress_step(j->progress, 1);
 }
 
 /* Runs the eye pass on nthreads threads (the caller's thread included). */
-static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads, int show,
+static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads, struct progress *show,
                      long long *rays)
 {
 	struct eye_job j;
@@ -111,9 +98,9 @@ static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthr
 	atomic_init(&j.done, 0);
 	j.rays = mem_calloc((size_t)nthreads, sizeof *j.rays);
 	j.progress = show;
-	pthread_mutex_init(&j.lock, NULL);
+	progress_begin(show, "eye pass", (long)j.tx * j.ty);
 	parallel_for((long)j.tx * j.ty, nthreads, do_tile, &j);
-	pthread_mutex_destroy(&j.lock);
+	progress_end(show);
 	*rays = 0;
 	for (int i = 0; i < nthreads; i++)
 		*rays += j.rays[i];
@@ -133,7 +120,7 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
  * (a shaft's corners would part ways). With a tolerance each pass is
  * progressive (lp_run). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
-                      const struct render_opts *o, int threads, struct lp_result *out[3],
+                      const struct render_opts *o, int threads, struct progress *prog, struct lp_result *out[3],
                       struct render_stats *st, struct diag *dg)
 {
 	if (s->nlights == 0 || o->rays < 0)
@@ -147,7 +134,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		      : s->gs.illum.count > 0 ? s->gs.illum.count : 1000000,
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
-		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1,
+		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1, .progress = prog,
 		.shafts = (o->method > 0 ? (enum illum_method)(o->method - 1) : s->gs.illum.method) == ILLUM_SHAFT,
 		.seed_key = render_seed_key(o->seed),
 	};
@@ -286,12 +273,14 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 
 	struct lp_result *maps[3] = {NULL, NULL, NULL};
 	int nmaps = 0;
+	struct progress prog; /* the light pass's and the eye pass's report */
+	progress_init(&prog, progress_mode_for(o->quiet), stderr);
 	if (o->load_maps) {
 		nmaps = lp_load(maps, s, o->load_maps, false, dg); /* isolated nodes were not saved */
 		if (nmaps < 0)
 			err = -nmaps, nmaps = 0;
 	} else {
-		nmaps = light_pass(s, b, &mats, o, st.threads, maps, &st, dg);
+		nmaps = light_pass(s, b, &mats, o, st.threads, &prog, maps, &st, dg);
 	}
 	if (!err && o->save_maps)
 		err = lp_save(maps, nmaps, s, o->save_maps, dg);
@@ -307,11 +296,12 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	ctx.seed_key = render_seed_key(o->seed);
 	if (!err)
-		eye_pass(&ctx, fb, st.threads, !o->quiet && isatty(2), &st.rays);
+		eye_pass(&ctx, fb, st.threads, &prog, &st.rays);
 	st.t_eye = now() - t2;
 	for (int i = 0; i < nmaps; i++)
 		lp_free(maps[i]);
 
+	progress_destroy(&prog);
 	bvh_free(b);
 	mat_cache_free(&mats);
 	struct rusage ru;

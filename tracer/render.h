@@ -22,7 +22,7 @@ struct render_opts {
 	int width, height;       /* image size in pixels */
 	int spp;                 /* camera samples per pixel (>= 1) */
 	int threads;             /* worker threads (0: one per online CPU) */
-	int quiet;               /* no progress bar */
+	int quiet;               /* no progress report (common/progress.h) */
 	const char *ocio_config; /* config for image_map colour conversion, or NULL */
 	long rays;               /* light-pass rays per light: > 0 this many; 0 the scene's
 	                            (else 1e6); < 0 no light pass */

@@ -10,7 +10,8 @@
 #   // stderr: TEXT             the exact first line of stderr (omit only for
 #                               exit 0); "$TMP" in TEXT stands for the case's
 #                               directory
-# The runner adds `--width 32 --height 24 --rays 2000 -o $TMP/out.exr` unless the args
+# The runner adds `--quiet --width 32 --height 24 --rays 2000 -o $TMP/out.exr`
+# (--quiet: no progress lines before the message checked) unless the args
 # say --check. Checked for every case: the exit status, the first line of
 # stderr, no signal death (a status >= 128 fails unless the case expects 130
 # or 143), nothing left in $TMP when the status is not 0 (no output, no
@@ -103,7 +104,7 @@ for f; do
 	eval "set -- $args"
 	case " $args " in
 	*" --check "*) ;;
-	*) set -- --width 32 --height 24 --rays 2000 -o "$TMP/out.exr" "$@" ;;
+	*) set -- --quiet --width 32 --height 24 --rays 2000 -o "$TMP/out.exr" "$@" ;;
 	esac
 	timeout "$TIMEOUT" "$ARVO" "$@" "$f" > "$root/out" 2> "$root/err" < /dev/null
 	rc=$?

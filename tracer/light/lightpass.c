@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "../../common/pool.h"
+#include "../../common/progress.h"
 #include "../optics.h"
 #include "../output/tmpfile.h"
 #include "../sampler.h"
@@ -786,6 +787,7 @@ static void work(void *ctx, long k, int worker)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
+	progress_step(J->o->progress, 1);
 }
 
 /* ==== maps =============================================================== */
@@ -1164,11 +1166,18 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	J.targets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.targets);
 	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
 	J.nitems = plan(&J);
+	char what[64], round[32] = "";
+	if (o->tolerance > 0) /* a round of the progressive pass */
+		snprintf(round, sizeof round, ", %ld rays", o->rays);
+	snprintf(what, sizeof what, "light pass%s%s", o->channel < 0 ? "" : o->channel == 0 ? " R"
+	         : o->channel == 1 ? " G" : " B", round);
+	progress_begin(o->progress, what, J.nitems);
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	for (int i = 0; i < nt; i++)
 		ws[i].job = &J;
 	parallel_for(J.nitems, nt, work, ws);
+	progress_end(o->progress);
 	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;

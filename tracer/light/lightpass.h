@@ -15,6 +15,8 @@
 #include "../material.h"
 #include "../scene.h"
 
+struct progress;
+
 struct lp_opts {
 	long rays;            /* light-ray budget per light (> 0) */
 	int max_depth;        /* specular bounces followed (> 0) */
@@ -34,6 +36,8 @@ struct lp_opts {
 	                         until lp_difference between rounds is at most this */
 	int channel;          /* -1: one pass for all channels; 0, 1, 2: only that channel,
 	                         refracting with its dispersed index */
+	struct progress *progress; /* reports the work items shot (common/progress.h;
+	                         NULL: none) */
 	bool spectral;        /* each ray at its own wavelength (spectrum.h), stratified
 	                         over the spectrum, carrying f_c(λ) of the light's energy
 	                         per channel (channel must be -1). A ray then carries one
