@@ -27,8 +27,8 @@ ifeq ($(SANITIZE),thread)
   OPT += -fsanitize=thread -fno-omit-frame-pointer
   LDSAN = -fsanitize=thread
 else ifdef SANITIZE
-  OPT += -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-  LDSAN = -fsanitize=address,undefined
+  OPT += -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
+  LDSAN = -fsanitize=address,undefined,float-cast-overflow
 endif
 
 PKGS     = OpenEXR OpenColorIO libpng
@@ -123,6 +123,7 @@ $(FUZZ_BUILD)/fuzz_%: $(FUZZ_BUILD)/tests/fuzz/fuzz_%.o $(FUZZ_OBJ)
 unit: $(FUZZ_REPLAY)
 
 fuzz-build: $(FUZZ_TARGETS:%=$(FUZZ_BUILD)/fuzz_%)
+.PRECIOUS: $(FUZZ_BUILD)/%.o
 
 fuzz: deps-fuzz all
 	$(Q)$(MAKE) --no-print-directory fuzz-build

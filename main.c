@@ -59,7 +59,7 @@ struct options {
 	long first_frame, last_frame;   /* --frames A:B (+KFI, +KFF; default 1:1) */
 	double first_clock, last_clock; /* +KI, +KF (default 0, 1) */
 	long sub_first, sub_last;       /* --subset C:D (+SF, +EF; -1: the whole range) */
-	long max_iterations, max_calls, max_objects; /* --max-iterations, --max-calls, --max-objects */
+	long max_iterations, max_calls, max_objects, max_steps; /* --max-iterations, -calls, -objects, -steps */
 	size_t max_memory;                           /* --max-memory (0: not given) */
 	int quiet, stats;
 	const char *display;         /* --display (PNG) */
@@ -113,6 +113,7 @@ static void usage(FILE *out)
 	      "  --max-iterations N limit on #while/#for iterations (default 10000000)\n"
 	      "  --max-calls N      limit on macro calls (default 1000000)\n"
 	      "  --max-objects N    limit on objects and lights (default 1000000)\n"
+	      "  --max-steps N      limit on evaluation steps (default 1000000000)\n"
 	      "  --max-memory SIZE  memory budget, e.g. 512M or 4G (default: half the machine's)\n"
 	      "  -M, --depfile FILE write Make dependencies: every file the render reads\n"
 	      "  --check            parse and evaluate only (errors and #debug output)\n"
@@ -483,11 +484,13 @@ static int parse_args(int argc, char **argv, struct options *o)
 			if (!parse_double(next, &o->clock))
 				return usage_error("bad value for --clock: '%s'", next);
 			o->clock_given = 1;
-		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects")) {
+		} else if (!strcmp(a, "--max-iterations") || !strcmp(a, "--max-calls") || !strcmp(a, "--max-objects") ||
+		           !strcmp(a, "--max-steps")) {
 			NEED_ARG();
-			if (!parse_int(next, 1, 1L << 40, &v))
+			if (!parse_int(next, 1, 1L << 50, &v))
 				return usage_error("bad value for %s: '%s'", a, next);
-			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : &o->max_objects) = v;
+			*(a[6] == 'i' ? &o->max_iterations : a[6] == 'c' ? &o->max_calls : a[6] == 'o' ? &o->max_objects
+			  : &o->max_steps) = v;
 		} else if (!strcmp(a, "--max-memory")) {
 			NEED_ARG();
 			o->max_memory = mem_parse_size(next);
@@ -1004,7 +1007,7 @@ int main(int argc, char **argv)
 	struct options o;
 	memset(&o, 0, sizeof o);
 	o.width = 320, o.height = 240, o.spp = 1, o.threads = 0, o.rays = -1;
-	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000;
+	o.max_iterations = 10000000, o.max_calls = 1000000, o.max_objects = 1000000, o.max_steps = 1000000000;
 	o.first_frame = o.last_frame = 1, o.first_clock = 0, o.last_clock = 1, o.sub_first = o.sub_last = -1;
 	int rc = parse_args(argc, argv, &o);
 	if (rc >= 0)
@@ -1042,6 +1045,7 @@ int main(int argc, char **argv)
 	eo.max_iterations = o.max_iterations;
 	eo.max_calls = o.max_calls;
 	eo.max_objects = o.max_objects;
+	eo.max_steps = o.max_steps;
 	struct deps deps = {NULL, 0}, targets = {NULL, 0};
 	if (o.depfile) {
 		eo.on_file = dep_add;

@@ -138,14 +138,20 @@ void *mem_realloc(void *p, size_t n)
 
 void *mem_alloc(size_t n) { return mem_realloc(NULL, n); }
 
+/* calloc, not malloc + memset: a big zeroed block (a framebuffer plane, an
+ * image a header declares) costs no memory until it is written. */
 void *mem_calloc(size_t n, size_t size)
 {
 	if (size && n > SIZE_MAX / size) {
 		oom_handler(SIZE_MAX);
 		abort();
 	}
-	void *p = mem_alloc(n * size);
-	memset(p, 0, n * size);
+	budget_check(n * size);
+	void *p = inject() ? NULL : calloc(n ? n : 1, size ? size : 1);
+	if (!p) {
+		oom_handler(n * size);
+		abort();
+	}
 	return p;
 }
 

@@ -468,6 +468,8 @@ static void enter(struct eval *E, struct srcloc loc)
 		          MAX_EVAL_DEPTH);
 	if ((size_t)(E->stack_base - &here) > E->stack_max)
 		eval_fail(E, loc, "nesting too deep (the evaluator's stack is used up)");
+	if (++E->steps > E->opt->max_steps) /* bounds the time any scene can take */
+		eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
 	E->depth++;
 }
 
@@ -807,6 +809,7 @@ void eval_default_options(struct eval_options *o)
 	o->height = 240;
 	o->max_iterations = 10000000;
 	o->max_calls = 1000000;
+	o->max_steps = 1000000000;
 	o->max_objects = 1000000;
 	o->debug_out = stdout;
 }

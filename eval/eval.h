@@ -28,6 +28,7 @@ struct eval_options {
 	int width, height;               /* image_width, image_height */
 	long max_iterations;             /* #while/#for iterations in total */
 	long max_calls;                  /* macro calls in total */
+	long max_steps;                  /* evaluation steps (item lists and expressions) in total */
 	long max_objects;                /* objects and lights in the scene */
 	FILE *debug_out;                 /* where #debug writes (stdout) */
 	/* Called for each file read (the scene, every include and image_map), for -M. */

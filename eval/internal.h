@@ -60,6 +60,7 @@ struct eval {
 	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
 	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
 	long calls;                /* macro calls so far */
+	long steps;                /* item lists and expressions evaluated so far */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
@@ -73,6 +74,7 @@ struct eval {
 	const char *dir_stack[MAX_INCLUDE_DEPTH + 2]; /* directory of each open file */
 	struct texture default_tex; /* #default */
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
+	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
@@ -148,6 +150,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 /* A finish { } block n on a texture's finish *f: it changes a copy, since
  * textures share finishes (the default one, a declared texture's). */
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
+/* p's pattern settings, made its own to be written (pigments share them). */
+struct pattern *pat_w(struct eval *E, struct pigment *p);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
@@ -166,7 +170,7 @@ void propagate(struct object *o, struct texture *tex, struct interior *in, unsig
 struct colour_map *colour_map_block(struct eval *E, const struct node *blk);
 void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n); /* [pos colour] */
 /* Resolves an image file like an include: only allowed directories. */
-void image_set(struct eval *E, struct pigment *p, struct srcloc loc, const char *name);
+void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char *name);
 void image_map_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

@@ -160,10 +160,15 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 void finish_block(struct eval *E, const struct node *n, const struct finish **f)
 {
 	struct sink sub;
-	struct finish *c = NEW(E, struct finish);
-	*c = **f;
-	run_block(E, n, SK_FINISH, c, &sub);
-	*f = c;
+	struct finish c = **f;
+	run_block(E, n, SK_FINISH, &c, &sub);
+	if (E->last_finish && memcmp(E->last_finish, &c, sizeof c) == 0) {
+		*f = E->last_finish; /* a loop writing the same finish shares one */
+		return;
+	}
+	struct finish *k = NEW(E, struct finish);
+	*k = c;
+	*f = E->last_finish = k;
 }
 
 /* Evaluates a block's items into a fresh sink of the given kind. */
@@ -397,7 +402,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_IMAGE_MAP:
 		if (v->kind != V_STRING)
 			eval_fail(E, loc, "expected an image file name, found %s", val_type_name(v));
-		image_set(E, s->target, loc, v->p.s);
+		image_set(E, pat_w(E, s->target), loc, v->p.s);
 		return;
 	default: break;
 	}

@@ -41,7 +41,7 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 /* Resolves an image file like an include (only allowed directories) into
  * the pigment, keeping the name as written and where, for the tracer's
  * messages. */
-void image_set(struct eval *E, struct pigment *p, struct srcloc loc, const char *name)
+void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char *name)
 {
 	char *real = eval_find_file(E, name, loc, "image file", NULL);
 	if (E->opt->on_file) /* -M: the image is a dependency */
@@ -60,17 +60,25 @@ void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
 		struct value v = arg1(E, n);
 		if (v.kind != V_STRING)
 			eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
-		image_set(E, p, n->loc, v.p.s);
+		image_set(E, pat_w(E, p), n->loc, v.p.s);
 		return;
 	}
-	case TK_INTERPOLATE: p->interpolate = arg_int(E, n, 0, 4); return;
-	case TK_ONCE: p->once = true; return;
+	case TK_INTERPOLATE: pat_w(E, p)->interpolate = arg_int(E, n, 0, 4); return;
+	case TK_ONCE: pat_w(E, p)->once = true; return;
 	case TK_MAP_TYPE:
 		if (arg_int(E, n, 0, 7) != 0)
 			eval_fail(E, n->kids[0]->loc, "only map_type 0 (planar) is supported");
 		return;
 	default: misplaced(E, s, n);
 	}
+}
+
+struct pattern *pat_w(struct eval *E, struct pigment *p)
+{
+	struct pattern *c = NEW(E, struct pattern);
+	*c = *pig_pattern(p);
+	p->pat = c;
+	return c;
 }
 
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -83,62 +91,64 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK:
+	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK: {
 		/* POV-Ray's default colours: checker blue, green; hexagon blue,
 		 * green, red; brick grey mortar, red brick */
 		p->kind = n->op == TK_CHECKER ? PIG_CHECKER : n->op == TK_HEXAGON ? PIG_HEXAGON : PIG_BRICK;
 		p->c[0] = n->op == TK_BRICK ? c_rgb(0.5, 0.5, 0.5) : c_rgb(0, 0, 1);
-		p->c[1] = n->op == TK_BRICK ? c_rgb(0.6, 0.15, 0.15) : c_rgb(0, 1, 0);
-		p->c[2] = c_rgb(1, 0, 0);
+		struct pattern *pt = pat_w(E, p);
+		pt->more[0] = n->op == TK_BRICK ? c_rgb(0.6, 0.15, 0.15) : c_rgb(0, 1, 0);
+		pt->more[1] = c_rgb(1, 0, 0);
 		s->nparams = 0;
 		s->modified = 0;
 		return;
+	}
 	case TK_RADIAL: case TK_ONION: case TK_SPHERICAL: case TK_CYLINDRICAL: case TK_BOXED:
 	case TK_PLANAR: case TK_LEOPARD:
 		p->kind = PIG_PATTERN;
-		p->pattern = n->op == TK_RADIAL ? PAT_RADIAL : n->op == TK_ONION ? PAT_ONION
+		pat_w(E, p)->pattern = n->op == TK_RADIAL ? PAT_RADIAL : n->op == TK_ONION ? PAT_ONION
 		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
 		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
 		return;
-	case TK_FREQUENCY: p->frequency = arg_float(E, n); return;
-	case TK_PHASE: p->phase = arg_float(E, n); return;
-	case TK_RAMP_WAVE: p->wave = WAVE_RAMP; return;
-	case TK_TRIANGLE_WAVE: p->wave = WAVE_TRIANGLE; return;
-	case TK_SINE_WAVE: p->wave = WAVE_SINE; return;
-	case TK_SCALLOP_WAVE: p->wave = WAVE_SCALLOP; return;
-	case TK_CUBIC_WAVE: p->wave = WAVE_CUBIC; return;
+	case TK_FREQUENCY: pat_w(E, p)->frequency = arg_float(E, n); return;
+	case TK_PHASE: pat_w(E, p)->phase = arg_float(E, n); return;
+	case TK_RAMP_WAVE: pat_w(E, p)->wave = WAVE_RAMP; return;
+	case TK_TRIANGLE_WAVE: pat_w(E, p)->wave = WAVE_TRIANGLE; return;
+	case TK_SINE_WAVE: pat_w(E, p)->wave = WAVE_SINE; return;
+	case TK_SCALLOP_WAVE: pat_w(E, p)->wave = WAVE_SCALLOP; return;
+	case TK_CUBIC_WAVE: pat_w(E, p)->wave = WAVE_CUBIC; return;
 	case TK_POLY_WAVE:
-		p->wave = WAVE_POLY;
-		p->exponent = n->nkids ? arg_float(E, n) : 1;
+		pat_w(E, p)->wave = WAVE_POLY;
+		pat_w(E, p)->exponent = n->nkids ? arg_float(E, n) : 1;
 		return;
 	case TK_BRICK_SIZE: {
 		struct vec3 b = arg_vec3(E, n);
 		if (!(b.x > 0 && b.y > 0 && b.z > 0))
 			eval_fail(E, n->kids[0]->loc, "brick_size must be positive in x, y and z");
-		p->brick_size = b;
+		pat_w(E, p)->brick_size = b;
 		return;
 	}
-	case TK_MORTAR: p->mortar = arg_float(E, n); return;
+	case TK_MORTAR: pat_w(E, p)->mortar = arg_float(E, n); return;
 	case TK_GRADIENT: {
 		struct vec3 a = arg_vec3(E, n);
 		if (v_len(a) == 0)
 			eval_fail(E, n->kids[0]->loc, "gradient direction has zero length");
 		p->kind = PIG_GRADIENT;
-		p->axis = a;
+		pat_w(E, p)->axis = a;
 		return;
 	}
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: {
 		struct colour_map *m = colour_map_block(E, n);
-		p->map = m->e;
-		p->nmap = m->n;
+		pat_w(E, p)->map = m->e;
+		pat_w(E, p)->nmap = m->n;
 		return;
 	}
 	case TK_IMAGE_MAP: {
 		struct sink sub;
 		p->kind = PIG_IMAGE;
-		p->interpolate = 0;
+		pat_w(E, p)->interpolate = 0;
 		run_block(E, n, SK_IMAGE_MAP, p, &sub);
-		if (!p->image)
+		if (!pig_pattern(p)->image)
 			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
 		return;
 	}
@@ -155,8 +165,8 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 		return;
 	}
 	if (v->kind == V_COLOUR_MAP && (p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN)) {
-		p->map = v->p.cmap->e;
-		p->nmap = v->p.cmap->n;
+		pat_w(E, p)->map = v->p.cmap->e;
+		pat_w(E, p)->nmap = v->p.cmap->n;
 		return;
 	}
 	if (v->kind != V_COLOUR && v->kind != V_FLOAT && v->kind != V_VECTOR)
@@ -167,7 +177,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 		if (s->nparams >= most)
 			eval_fail(E, loc, "%s takes %s colours, found more", p->kind == PIG_HEXAGON ? "hexagon" :
 			          p->kind == PIG_BRICK ? "brick" : "checker", most == 3 ? "three" : "two");
-		p->c[s->nparams++] = c;
+		if (s->nparams == 0)
+			p->c[0] = c;
+		else
+			pat_w(E, p)->more[s->nparams - 1] = c;
+		s->nparams++;
 		return;
 	}
 	if (s->modified)

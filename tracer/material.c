@@ -21,7 +21,7 @@ static const struct img *cache_find(const struct mat_cache *c, const char *path)
 }
 
 /* Loads a pigment's image into the cache unless it is there already. */
-static int cache_add(struct mat_cache *c, const struct pigment *pg, const char *ocio, struct diag *dg)
+static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *ocio, struct diag *dg)
 {
 	const char *path = pg->image;
 	if (!path || cache_find(c, path))
@@ -43,7 +43,7 @@ static int cache_add(struct mat_cache *c, const struct pigment *pg, const char *
 static int load_tree(struct mat_cache *c, const struct object *o, const char *ocio, struct diag *dg)
 {
 	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
-		int err = cache_add(c, &o->tex->pigment, ocio, dg);
+		int err = cache_add(c, pig_pattern(&o->tex->pigment), ocio, dg);
 		if (err)
 			return err;
 	}
@@ -111,17 +111,17 @@ static struct colour c_lerp(struct colour a, struct colour b, double t)
  * without a map, black to white. */
 static struct colour colour_map(const struct pigment *pg, double v)
 {
-	if (!pg->map || pg->nmap == 0)
+	if (!pig_pattern(pg)->map || pig_pattern(pg)->nmap == 0)
 		return c_rgb(v, v, v);
-	const struct map_entry *m = pg->map;
+	const struct map_entry *m = pig_pattern(pg)->map;
 	if (v <= m[0].pos)
 		return m[0].c;
-	for (int i = 1; i < pg->nmap; i++)
+	for (int i = 1; i < pig_pattern(pg)->nmap; i++)
 		if (v <= m[i].pos) {
 			double span = m[i].pos - m[i - 1].pos;
 			return span > 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
 		}
-	return m[pg->nmap - 1].c;
+	return m[pig_pattern(pg)->nmap - 1].c;
 }
 
 /* One texel (x, y) of im, clamped or wrapped at the edges. */
@@ -140,15 +140,15 @@ static struct colour texel(const struct img *im, long x, long y)
  * bottom-left at the origin, repeating unless `once`. */
 static struct colour image_map(const struct mat_cache *c, const struct pigment *pg, struct vec3 q)
 {
-	const struct img *im = cache_find(c, pg->image ? pg->image : "");
+	const struct img *im = cache_find(c, pig_pattern(pg)->image ? pig_pattern(pg)->image : "");
 	if (!im || im->w <= 0)
 		return c_rgb(1, 0, 1);
-	if (pg->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
+	if (pig_pattern(pg)->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
 		return (struct colour){0, 0, 0, 0, 1};
 	double u = q.x - floor(q.x), v = q.y - floor(q.y);
 	double fx = u * im->w, fy = (1 - v) * im->h;
 	struct colour out;
-	if (pg->interpolate == 2) {
+	if (pig_pattern(pg)->interpolate == 2) {
 		double x0 = floor(fx - 0.5), y0 = floor(fy - 0.5), tx = fx - 0.5 - x0, ty = fy - 0.5 - y0;
 		struct colour a = c_lerp(texel(im, (long)x0, (long)y0), texel(im, (long)x0 + 1, (long)y0), tx);
 		struct colour b = c_lerp(texel(im, (long)x0, (long)y0 + 1), texel(im, (long)x0 + 1, (long)y0 + 1), tx);
@@ -156,8 +156,6 @@ static struct colour image_map(const struct mat_cache *c, const struct pigment *
 	} else {
 		out = texel(im, (long)floor(fx), (long)floor(fy));
 	}
-	out.f += pg->filter_all.f;
-	out.t += pg->filter_all.t;
 	return out;
 }
 
@@ -167,7 +165,7 @@ struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, s
 		return pg->c[0];
 	struct vec3 q = xf_inv_point(pg->xf ? pg->xf : &xf_ident, p);
 	switch (pg->kind) {
-	case PIG_CHECKER: case PIG_HEXAGON: case PIG_BRICK: return pg->c[pattern_block(pg, q)];
+	case PIG_CHECKER: case PIG_HEXAGON: case PIG_BRICK: return pig_colour(pg, pattern_block(pg, q));
 	case PIG_GRADIENT: case PIG_PATTERN: return colour_map(pg, pattern_value(pg, q));
 	case PIG_IMAGE: return image_map(c, pg, q);
 	default: return pg->c[0];

@@ -14,7 +14,7 @@ static double clip_density(double v) { return v < 0 ? 1 : v > 1 ? 0 : 1 - v; }
  * wrapped by the wave step). */
 static double gradient_raw(const struct pigment *pg, struct vec3 q)
 {
-	double v = v_dot(q, pg->axis);
+	double v = v_dot(q, pig_pattern(pg)->axis);
 	return v > 1 ? fmod(v, 1) : v;
 }
 
@@ -36,7 +36,7 @@ static double raw(const struct pigment *pg, struct vec3 q)
 {
 	if (pg->kind == PIG_GRADIENT)
 		return gradient_raw(pg, q);
-	switch (pg->pattern) {
+	switch (pig_pattern(pg)->pattern) {
 	case PAT_RADIAL: return radial_raw(q);
 	case PAT_ONION: return sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
 	case PAT_SPHERICAL: return clip_density(sqrt(q.x * q.x + q.y * q.y + q.z * q.z));
@@ -54,11 +54,11 @@ static double cycloidal(double v) { return sin(v * 2 * M_PI); }
 double pattern_value(const struct pigment *pg, struct vec3 q)
 {
 	double v = raw(pg, q);
-	if (pg->frequency != 0)
-		v = fmod(v * pg->frequency + pg->phase, 1.00001);
+	if (pig_pattern(pg)->frequency != 0)
+		v = fmod(v * pig_pattern(pg)->frequency + pig_pattern(pg)->phase, 1.00001);
 	if (v < 0)
 		v -= floor(v);
-	switch (pg->wave) {
+	switch (pig_pattern(pg)->wave) {
 	case WAVE_TRIANGLE: {
 		double t = v - floor(v);
 		return t < 0.5 ? 2 * t : 2 - 2 * t;
@@ -66,7 +66,7 @@ double pattern_value(const struct pigment *pg, struct vec3 q)
 	case WAVE_SINE: return (1 + cycloidal(v)) * 0.5;
 	case WAVE_SCALLOP: return fabs(cycloidal(v * 0.5));
 	case WAVE_CUBIC: return v * v * (3 - 2 * v);
-	case WAVE_POLY: return pow(v, pg->exponent);
+	case WAVE_POLY: return pow(v, pig_pattern(pg)->exponent);
 	default: return v;
 	}
 }
@@ -114,9 +114,9 @@ static double frac_trunc(double v)
 static int brick(const struct pigment *pg, struct vec3 q)
 {
 	const double small = 1e-6; /* POV-Ray's Small_Tolerance */
-	double m = pg->mortar, fudge = small + m;
+	double m = pig_pattern(pg)->mortar, fudge = small + m;
 	double x = q.x + fudge, y = q.y + fudge, z = q.z + fudge;
-	struct vec3 sz = pg->brick_size;
+	struct vec3 sz = pig_pattern(pg)->brick_size;
 	double mw = m / sz.x, mh = m / sz.y, md = m / sz.z;
 	if (frac_trunc(y / sz.y) <= mh)
 		return 0;

@@ -27,17 +27,26 @@ static const struct finish default_finish = {
 	.phong_size = 40, .refl_falloff = 1,
 };
 
+static const struct pattern default_pattern = {
+	.axis = {0, 1, 0}, .frequency = 1, .exponent = 1, .brick_size = {8, 3, 4.5}, .mortar = 0.5,
+};
+
+const struct pattern *pig_pattern(const struct pigment *p)
+{
+	return p->pat ? p->pat : &default_pattern;
+}
+
+struct colour pig_colour(const struct pigment *p, int k)
+{
+	return k == 0 ? p->c[0] : pig_pattern(p)->more[k - 1];
+}
+
 struct texture scene_default_texture(void)
 {
 	struct texture t;
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
-	t.pigment.axis = v3(0, 1, 0);
-	t.pigment.frequency = 1;
-	t.pigment.exponent = 1;
-	t.pigment.brick_size = v3(8, 3, 4.5);
-	t.pigment.mortar = 0.5;
 	t.finish = &default_finish;
 	t.loc = (struct srcloc){-1, 0, 0};
 	return t;
@@ -150,24 +159,24 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	fprintf(o, "pigment %s ", kinds[p->kind]);
 	switch (p->kind) {
 	case PIG_SOLID: pc(o, p->c[0]); break;
-	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]); break;
-	case PIG_GRADIENT: pv(o, p->axis); break;
-	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", p->image, p->interpolate, p->once); break;
-	case PIG_PATTERN: fputs(pats[p->pattern], o); break;
-	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputc(' ', o), pc(o, p->c[2]); break;
+	case PIG_CHECKER: pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)); break;
+	case PIG_GRADIENT: pv(o, pig_pattern(p)->axis); break;
+	case PIG_IMAGE: fprintf(o, "\"%s\" interpolate %d once %d", pig_pattern(p)->image, pig_pattern(p)->interpolate, pig_pattern(p)->once); break;
+	case PIG_PATTERN: fputs(pats[pig_pattern(p)->pattern], o); break;
+	case PIG_HEXAGON: pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)), fputc(' ', o), pc(o, pig_colour(p, 2)); break;
 	case PIG_BRICK:
-		pc(o, p->c[0]), fputc(' ', o), pc(o, p->c[1]), fputs(" brick_size ", o), pv(o, p->brick_size);
-		fprintf(o, " mortar %.6g", p->mortar);
+		pc(o, p->c[0]), fputc(' ', o), pc(o, pig_colour(p, 1)), fputs(" brick_size ", o), pv(o, pig_pattern(p)->brick_size);
+		fprintf(o, " mortar %.6g", pig_pattern(p)->mortar);
 		break;
 	}
 	if ((p->kind == PIG_GRADIENT || p->kind == PIG_PATTERN) &&
-	    (p->wave != WAVE_RAMP || p->frequency != 1 || p->phase != 0))
-		fprintf(o, " %s_wave %.6g frequency %.6g phase %.6g", waves[p->wave], p->exponent, p->frequency, p->phase);
+	    (pig_pattern(p)->wave != WAVE_RAMP || pig_pattern(p)->frequency != 1 || pig_pattern(p)->phase != 0))
+		fprintf(o, " %s_wave %.6g frequency %.6g phase %.6g", waves[pig_pattern(p)->wave], pig_pattern(p)->exponent, pig_pattern(p)->frequency, pig_pattern(p)->phase);
 	fputc('\n', o);
-	for (int i = 0; i < p->nmap; i++) {
+	for (int i = 0; i < pig_pattern(p)->nmap; i++) {
 		indent(o, d + 1);
-		fprintf(o, "[%.6g ", p->map[i].pos);
-		pc(o, p->map[i].c);
+		fprintf(o, "[%.6g ", pig_pattern(p)->map[i].pos);
+		pc(o, pig_pattern(p)->map[i].c);
 		fputs("]\n", o);
 	}
 	dump_xform(o, p->xf ? p->xf : &xf_ident, d + 1);

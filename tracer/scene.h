@@ -40,9 +40,9 @@ struct map_entry {
 	struct colour c;  /* colour there */
 };
 
-struct pigment {
-	enum pigment_kind kind;   /* which pattern */
-	struct colour c[3];       /* solid colour; checker's, brick's two, hexagon's three */
+/* What a pigment other than a plain colour needs: kept apart and shared, so
+ * that a scene of many coloured objects stores only their colours. */
+struct pattern {
 	struct vec3 axis;         /* gradient direction */
 	enum pattern_kind pattern; /* PIG_PATTERN: which */
 	enum wave_kind wave;      /* gradient, PIG_PATTERN: ramp_wave (default) … */
@@ -55,12 +55,22 @@ struct pigment {
 	const char *image;        /* image_map file, resolved path */
 	const char *image_name;   /* image_map file as the scene named it (for messages) */
 	struct srcloc image_loc;  /* where the scene named it */
-	int image_type;           /* image_map: 0 planar (map_type 0) */
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
-	struct colour filter_all; /* image_map filter all / transmit all (f,t used) */
+	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
+};
+
+struct pigment {
+	enum pigment_kind kind;   /* which pattern */
+	struct colour c[1];       /* solid colour; the first of checker's, brick's, hexagon's */
+	const struct pattern *pat; /* NULL: the defaults (pig_pattern) */
 	const struct xform *xf;   /* pattern space → world; NULL: identity */
 };
+
+/* The pattern settings of p (the defaults when it has none of its own). */
+const struct pattern *pig_pattern(const struct pigment *p);
+/* Colour k of a checker, brick or hexagon (0: c[0], then the pattern's). */
+struct colour pig_colour(const struct pigment *p, int k);
 
 struct finish {
 	struct colour ambient; /* ambient colour (rgb) */

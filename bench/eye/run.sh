@@ -50,7 +50,7 @@ run_arvo() {
 	: > "$tmp/a.eyes"
 	for i in $(seq "$RUNS"); do
 		t0=$(now)
-		"$ARVO" -q --stats --rays 0 --threads "$THREADS" --spp 1 --width "$W" --height "$H" \
+		"$ARVO" -q --stats --max-objects 2000000 --rays 0 --threads "$THREADS" --spp 1 --width "$W" --height "$H" \
 			-D N="$2" -o "$tmp/a.png" "$1" 2> "$tmp/a.log"
 		elapsed "$t0" "$(now)"; echo
 		stat_arvo "eye pass" >> "$tmp/a.eyes"

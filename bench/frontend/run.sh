@@ -73,9 +73,9 @@ run_arvo() {
 	while [ $i -lt "$RUNS" ]; do
 		t0=$(now)
 		if [ -n "$TIMEV" ]; then
-			$TIMEV -f %M -o "$tmp/mem" "$ARVO" --check "$@" >/dev/null 2>"$tmp/err" || { cat "$tmp/err" >&2; return 1; }
+			$TIMEV -f %M -o "$tmp/mem" "$ARVO" --check --max-objects 2000000 "$@" >/dev/null 2>"$tmp/err" || { cat "$tmp/err" >&2; return 1; }
 		else
-			"$ARVO" --check "$@" >/dev/null 2>"$tmp/err" || { cat "$tmp/err" >&2; return 1; }
+			"$ARVO" --check --max-objects 2000000 "$@" >/dev/null 2>"$tmp/err" || { cat "$tmp/err" >&2; return 1; }
 		fi
 		t1=$(now)
 		sub "$t0" "$t1" >>"$tmp/t"; echo >>"$tmp/t"

@@ -12,7 +12,9 @@
 #             threads: arvo's eye-pass time (--stats) against POV-Ray's
 #             "Trace Time" (no start-up, parsing or bounding); ratio =
 #             povray / arvo (target >= 3); and arvo's rays/s/core (target
-#             >= 5e6 at 100k spheres)
+#             >= 5e6 at 100k spheres); eye_cpu: the same in CPU seconds
+#             (POV-Ray's trace CPU-seconds; arvo's render less a 1x1 render
+#             of the scene), steadier than wall time on a busy machine
 #   scaling   arvo's eye pass at the largest N over the smallest (target <= 3)
 #   threads   eye pass (spheres, N = 100000) and light pass (scene B,
 #             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
@@ -50,23 +52,35 @@ met() { awk -v v="$1" -v op="$2" -v t="$3" 'BEGIN { if (v == "") print ""; else 
 row() { echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"; }
 stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
 
-# arvo_eye N THREADS: median eye-pass seconds; rays of the last run in $tmp/rays
+# arvo_eye N THREADS: median eye-pass seconds; rays of the last run in
+# $tmp/rays; the eye pass's median CPU seconds in $tmp/acpu (CPU of the
+# render less CPU of the same scene rendered at 1x1: parse, bounding, start)
 arvo_eye() {
+	: > "$tmp/ac"; : > "$tmp/ac0"
 	for i in $(seq "$RUNS"); do
-		"$ARVO" -q --stats --rays 0 --threads "$2" --spp 1 --width "$W" --height "$H" \
-			-D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
+		/usr/bin/time -f "%U %S" -o "$tmp/t" "$ARVO" -q --stats --max-objects 2000000 --rays 0 --threads "$2" \
+			--spp 1 --width "$W" --height "$H" -D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
+		awk '{ print $1 + $2 }' "$tmp/t" >> "$tmp/ac"
+		/usr/bin/time -f "%U %S" -o "$tmp/t" "$ARVO" -q --max-objects 2000000 --rays 0 --threads "$2" \
+			--width 1 --height 1 -D N="$1" -o "$tmp/a1.png" "$root/bench/eye/spheres.scn" 2> /dev/null
+		awk '{ print $1 + $2 }' "$tmp/t" >> "$tmp/ac0"
 		stat_of "eye pass" "$tmp/a.log"
 	done | median
 	stat_of "rays traced" "$tmp/a.log" > "$tmp/rays"
+	awk -v a="$(median < "$tmp/ac")" -v b="$(median < "$tmp/ac0")" 'BEGIN { printf "%.3f\n", a - b }' > "$tmp/acpu"
 }
 
-# pov_trace N: median "Trace Time" seconds
+# pov_trace N: median "Trace Time" seconds; its median CPU seconds in $tmp/pcpu
 pov_trace() {
+	: > "$tmp/pc"
 	for i in $(seq "$RUNS"); do
 		(cd "$tmp" && "$POVRAY" +I"$root/bench/eye/spheres.pov" +O"$tmp/p.png" +FN +W"$W" +H"$H" -A -D \
 			+WT"$THREADS" Declare=N="$1" > /dev/null 2> "$tmp/p.log")
+		awk '/Trace Time:/ { getline; for (i = 1; i <= NF; i++) if ($i == "CPU-seconds") print $(i - 1); exit }' \
+			"$tmp/p.log" >> "$tmp/pc"
 		awk -F'[()]' '/Trace Time:/ { split($2, a, " "); print a[1]; exit }' "$tmp/p.log"
 	done | median
+	median < "$tmp/pc" > "$tmp/pcpu"
 }
 
 # arvo_light THREADS: median light-pass seconds; segments in $tmp/segs
@@ -97,6 +111,10 @@ for n in $SIZES; do
 	[ "$have_pov" = 1 ] && p=$(pov_trace "$n")
 	r=$(ratio "$p" "$a")
 	row eye spheres "$n" "$THREADS" "$a" "$p" "$r" s ">=3x" "$(met "$r" ">=" 3)"
+	ac=$(cat "$tmp/acpu") pc=
+	[ "$have_pov" = 1 ] && pc=$(cat "$tmp/pcpu")
+	r=$(ratio "$pc" "$ac")
+	row eye_cpu spheres "$n" "$THREADS" "$ac" "$pc" "$r" "CPU s" ">=3x" "$(met "$r" ">=" 3)"
 	rate=$(awk -v r="$rays" -v t="$a" -v n="$THREADS" 'BEGIN { printf "%.0f", r / t / n }')
 	if [ "$n" = 100000 ]; then
 		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" ">=5e6" "$(met "$rate" ">=" 5000000)"
@@ -120,7 +138,7 @@ row light "segments/s/core" 1000000 2 "$rate" "" "" "segments/s/core" ">=1e7" "$
 # ---- front end: 1M spheres evaluated and bounded ----
 : > "$tmp/fa"; : > "$tmp/fp"
 for i in $(seq "$RUNS"); do
-	timed "$tmp/fa" "$ARVO" -q --rays 0 --threads "$THREADS" --width 1 --height 1 -o "$tmp/f.exr" \
+	timed "$tmp/fa" "$ARVO" -q --max-objects 2000000 --rays 0 --threads "$THREADS" --width 1 --height 1 -o "$tmp/f.exr" \
 		-D N="$FRONT_N" "$root/bench/frontend/loop1m.scn"
 	[ "$have_pov" = 1 ] && [ "$i" = 1 ] &&
 		(cd "$tmp" && timed "$tmp/fp" "$POVRAY" +I"$root/bench/frontend/loop1m.scn" +O"$tmp/f.png" -D +W1 +H1 -GA +WT1 Declare=N="$FRONT_N")

@@ -6,7 +6,8 @@
 # repository's scenes and images (copied, never written back to the repo).
 # Crashes, hangs and leaks land in build/fuzz/artifacts/TARGET/; each one
 # found is minimised and kept as a regression input in tests/fuzz/TARGET/.
-# FUZZ_FORK=1: keep going after a crash, hang or leak (long unattended runs).
+# FUZZ_FORK=1: keep going after a crash, hang or leak (long unattended runs);
+# FUZZ_TIMEOUT=S: seconds per input (default 10; more on a loaded machine).
 set -u
 cd "$(dirname "$0")/../.." || exit 2
 secs=${1:-60}
@@ -43,7 +44,7 @@ for t in "$@"; do
 	dict=
 	[ -f "$B/$t.dict" ] && dict=-dict=$B/$t.dict
 	echo "fuzz.sh: $t for $secs s"
-	"$B/fuzz_$t" $dict -max_total_time="$secs" -timeout=10 -rss_limit_mb=3072 -max_len=65536 \
+	"$B/fuzz_$t" $dict -max_total_time="$secs" -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=3072 -max_len=65536 \
 		-print_final_stats=1 ${FUZZ_FORK:+-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1} \
 		-artifact_prefix="$B/artifacts/$t/" "$B/corpus/$t" > "$B/$t.log" 2>&1 || status=1
 	grep -E "^#[0-9]+[[:space:]].*(DONE|cov:)" "$B/$t.log" | tail -1

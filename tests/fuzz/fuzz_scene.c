@@ -31,6 +31,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	eo.debug_out = null;
 	eo.max_iterations = 100000;
 	eo.max_calls = 100000;
+	eo.max_steps = 20000000;
 	eo.max_objects = 20000;
 	if (access("stdlib-scenes/include", R_OK) == 0)
 		eo.stdlib_dir = "stdlib-scenes/include";

@@ -6,11 +6,22 @@
 #include "../../tracer/pattern.h"
 #include "test.h"
 
+/* g's pattern settings made its own, to be set (pigments share them). */
+static struct pattern *own(struct pigment *g)
+{
+	static struct pattern ring[64];
+	static unsigned next;
+	struct pattern *p = &ring[next++ % 64];
+	*p = *pig_pattern(g);
+	g->pat = p;
+	return p;
+}
+
 static struct pigment pig(enum pigment_kind k, enum pattern_kind p)
 {
 	struct pigment g = scene_default_texture().pigment;
 	g.kind = k;
-	g.pattern = p;
+	own(&g)->pattern = p;
 	return g;
 }
 
@@ -19,21 +30,21 @@ static void t_continuous(void)
 	struct pigment g = pig(PIG_PATTERN, PAT_ONION);
 	CHECK_NEAR(pattern_value(&g, v3(0, 0.3, 0.4)), 0.5, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(0, 0, 1.75)), 1.75 - 1.00001, 1e-12); /* POV-Ray's modulus */
-	g.pattern = PAT_RADIAL; /* 0.25 at -z (less POV-Ray's 1.00001), 0.5 at -x, 1 at +x */
+	own(&g)->pattern = PAT_RADIAL; /* 0.25 at -z (less POV-Ray's 1.00001), 0.5 at -x, 1 at +x */
 	CHECK_NEAR(pattern_value(&g, v3(0, 0, -1)), 1.25 - 1.00001, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(-1, 0, 0)), 0.5, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(1, 0, 0)), 1.0, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(0, 5, 0)), 0.25, 1e-12); /* on the axis */
-	g.pattern = PAT_SPHERICAL;
+	own(&g)->pattern = PAT_SPHERICAL;
 	CHECK_NEAR(pattern_value(&g, v3(0.6, 0, 0)), 0.4, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(2, 0, 0)), 0, 1e-12);
-	g.pattern = PAT_CYLINDRICAL;
+	own(&g)->pattern = PAT_CYLINDRICAL;
 	CHECK_NEAR(pattern_value(&g, v3(0.3, 9, 0.4)), 0.5, 1e-12);
-	g.pattern = PAT_BOXED;
+	own(&g)->pattern = PAT_BOXED;
 	CHECK_NEAR(pattern_value(&g, v3(0.2, -0.7, 0.1)), 0.3, 1e-12);
-	g.pattern = PAT_PLANAR;
+	own(&g)->pattern = PAT_PLANAR;
 	CHECK_NEAR(pattern_value(&g, v3(5, -0.25, 5)), 0.75, 1e-12);
-	g.pattern = PAT_LEOPARD;
+	own(&g)->pattern = PAT_LEOPARD;
 	CHECK_NEAR(pattern_value(&g, v3(M_PI / 2, M_PI / 2, M_PI / 2)), 1, 1e-12);
 }
 
@@ -41,22 +52,22 @@ static void t_waves(void)
 {
 	struct pigment g = scene_default_texture().pigment;
 	g.kind = PIG_GRADIENT;
-	g.axis = v3(1, 0, 0);
+	own(&g)->axis = v3(1, 0, 0);
 	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.25, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(-0.25, 0, 0)), 0.75, 1e-12); /* negative wraps */
-	g.frequency = 2, g.phase = 0.1;
+	own(&g)->frequency = 2, own(&g)->phase = 0.1;
 	CHECK_NEAR(pattern_value(&g, v3(0.2, 0, 0)), 0.5, 1e-12);
-	g.frequency = 1, g.phase = 0;
-	g.wave = WAVE_TRIANGLE;
+	own(&g)->frequency = 1, own(&g)->phase = 0;
+	own(&g)->wave = WAVE_TRIANGLE;
 	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.5, 1e-12);
 	CHECK_NEAR(pattern_value(&g, v3(0.75, 0, 0)), 0.5, 1e-12);
-	g.wave = WAVE_SINE;
+	own(&g)->wave = WAVE_SINE;
 	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 1, 1e-12);
-	g.wave = WAVE_SCALLOP;
+	own(&g)->wave = WAVE_SCALLOP;
 	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), sqrt(0.5), 1e-12);
-	g.wave = WAVE_CUBIC;
+	own(&g)->wave = WAVE_CUBIC;
 	CHECK_NEAR(pattern_value(&g, v3(0.25, 0, 0)), 0.15625, 1e-12);
-	g.wave = WAVE_POLY, g.exponent = 3;
+	own(&g)->wave = WAVE_POLY, own(&g)->exponent = 3;
 	CHECK_NEAR(pattern_value(&g, v3(0.5, 0, 0)), 0.125, 1e-12);
 }
 
