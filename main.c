@@ -3,6 +3,7 @@
  *   lex → parse (AST) → eval (scene) → render (light pass, eye pass) → output
  * and maps each stage's result to an exit code (docs/design.md §8). */
 #include <errno.h>
+#include <signal.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -19,7 +20,9 @@
 #include "lexer/lexer.h"
 #include "parser/parser.h"
 #include "tracer/output/exrout.h"
+#include "tracer/output/ocio_shim.h"
 #include "tracer/output/pngout.h"
+#include "tracer/output/tmpfile.h"
 #include "tools/tools.h"
 #include "tracer/camera.h"
 #include "tracer/render.h"
@@ -44,6 +47,8 @@ struct options {
 	const char *depfile;         /* -M / --depfile */
 	const char *includes[64];    /* -I */
 	int ninclude;
+	const char *allow_read[64];  /* --allow-read */
+	int nallow;
 	const char *defines[256];    /* -D */
 	int ndefines;
 	int width, height, spp, threads;
@@ -100,6 +105,7 @@ static void usage(FILE *out)
 	      "  --png-depth 8|16   bits per PNG channel (default 8)\n"
 	      "  -D NAME=VALUE      declare a float (or \"string\") before the scene is read\n"
 	      "  -I DIR             add an include directory (also +LDIR)\n"
+	      "  --allow-read DIR   let the scene read files below DIR too\n"
 	      "  --clock F          value of clock;  --frame N  value of frame_number\n"
 	      "  --frames A:B       render frames A to B in turn (+KFIA +KFFB); clock runs from\n"
 	      "                     0 to 1 (+KIx +KFy: from x to y); -o name.%04d.exr numbers them\n"
@@ -446,6 +452,14 @@ static int parse_args(int argc, char **argv, struct options *o)
 		} else if (!strcmp(a, "-M") || !strcmp(a, "--depfile")) {
 			NEED_ARG();
 			o->depfile = next;
+		} else if (!strcmp(a, "--allow-read")) {
+			NEED_ARG();
+			struct stat sb;
+			if (stat(next, &sb) != 0 || !S_ISDIR(sb.st_mode))
+				return usage_error("bad value for --allow-read: '%s' is not a directory", next);
+			if (o->nallow >= 64)
+				return usage_error("too many --allow-read directories (at most %s)", "64");
+			o->allow_read[o->nallow++] = next;
 		} else if (!strcmp(a, "-I")) {
 			NEED_ARG();
 			if (o->ninclude >= 64)
@@ -554,11 +568,14 @@ static void put_make_path(FILE *f, const char *p)
  * fail when one disappears. */
 static int write_depfile(const struct options *o, const struct deps *d, const struct deps *targets)
 {
-	char tmp[PATH_MAX + 16];
-	snprintf(tmp, sizeof tmp, "%s.tmp%ld", o->depfile, (long)getpid());
-	FILE *f = fopen(tmp, "w");
+	char tmp[PATH_MAX + 32];
+	int fd = out_tmp_create(o->depfile, tmp, sizeof tmp);
+	FILE *f = fd < 0 ? NULL : fdopen(fd, "w");
 	if (!f) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(errno));
+		int e = errno;
+		if (fd >= 0)
+			close(fd), out_tmp_finish(tmp, o->depfile, 0);
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", o->depfile, strerror(e));
 		return EX_CANTCREAT;
 	}
 	for (int i = 0; i < targets->n; i++) {
@@ -577,9 +594,13 @@ static int write_depfile(const struct options *o, const struct deps *d, const st
 		put_make_path(f, d->files[i]);
 		fputs(":\n", f);
 	}
-	if (fclose(f) != 0 || rename(tmp, o->depfile) != 0) {
-		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(errno));
-		remove(tmp);
+	int bad = fflush(f) != 0 || ferror(f), e = errno;
+	if (fclose(f) != 0 && !bad)
+		bad = 1, e = errno;
+	if (out_tmp_finish(tmp, o->depfile, !bad) != 0)
+		bad = 1, e = errno;
+	if (bad) {
+		fprintf(stderr, "arvo: error: cannot write '%s': %s\n", o->depfile, strerror(e));
 		return EX_IOERR;
 	}
 	return EX_OK;
@@ -634,15 +655,26 @@ static int output_kind(const char *path)
 	return 0;
 }
 
-/* Can a file be created in path's directory? */
-static int can_create(const char *path)
+/* Can path be written? Creates and removes a temporary beside it, as the
+ * writers will, so every reason (no directory, no permission, read-only
+ * file system) shows before any work. Reports and returns 73 if not. */
+static int check_creatable(const char *path)
 {
-	char dir[PATH_MAX];
-	const char *slash = strrchr(path, '/');
-	if (!slash)
-		return access(".", W_OK | X_OK) == 0;
-	snprintf(dir, sizeof dir, "%.*s", (int)(slash - path) + (slash == path), path);
-	return access(dir, W_OK | X_OK) == 0;
+	char tmp[PATH_MAX + 32];
+	struct stat sb;
+	if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) { /* a rename would replace a device or a directory */
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", path,
+		        S_ISDIR(sb.st_mode) ? strerror(EISDIR) : "not a regular file");
+		return EX_CANTCREAT;
+	}
+	int fd = out_tmp_create(path, tmp, sizeof tmp);
+	if (fd < 0) {
+		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", path, strerror(errno));
+		return EX_CANTCREAT;
+	}
+	close(fd);
+	out_tmp_finish(tmp, path, 0);
+	return EX_OK;
 }
 
 /* --tile i/n becomes a region (the i-th band of rows); checks the region
@@ -715,6 +747,7 @@ static void over_budget(size_t request)
 	mem_format_size(size, sizeof size, mem_budget());
 	(void)request;
 	fprintf(stderr, "arvo: error: out of memory: %s needs more than the %s that --max-memory allows\n", mem_phase, size);
+	out_tmp_remove_all();
 	exit(EX_SOFTWARE);
 }
 
@@ -825,53 +858,39 @@ static void set_frame(const struct options *o, struct eval_options *eo, long fra
 /* Render: the light pass and the eye pass into one framebuffer, then each
  * output: the EXR, or the PNG through OCIO. */
 static int render_and_write(const struct options *o, const struct scene *scene, char (*outputs)[PATH_MAX],
-                            int noutputs, const char *save_maps, const char *load_maps)
+                            int noutputs, const char *save_maps, const char *load_maps, struct diag *dg)
 {
-	for (int i = 0; i < noutputs; i++)
-		if (!can_create(outputs[i])) {
-			fprintf(stderr, "arvo: error: cannot create '%s': %s\n", outputs[i], strerror(errno));
-			return EX_CANTCREAT;
-		}
-	struct stat sb;
-	if (o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
-		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
-		return EX_CANTCREAT;
-	}
-	if (save_maps && !can_create(save_maps)) {
-		fprintf(stderr, "arvo: error: cannot create '%s': %s\n", save_maps, strerror(errno));
-		return EX_CANTCREAT;
-	}
+	int rc = EX_OK;
+	for (int i = 0; i < noutputs && !rc; i++) /* each frame's names (the first were checked before any work) */
+		rc = check_creatable(outputs[i]);
+	if (!rc && save_maps)
+		rc = check_creatable(save_maps);
+	if (rc)
+		return rc;
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
 	                         save_maps, load_maps, o->method, o->tolerance, o->passes,
 	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
 	struct render_stats st;
 	struct framebuffer *fb;
-	const char *err = render(scene, &ro, &fb, &st);
-	if (err) { /* an image_map that cannot be read: bad input */
-		fprintf(stderr, "arvo: error: %s\n", err);
-		return EX_NOINPUT;
-	}
-	for (int i = 0; i < noutputs && !err; i++) {
+	if ((rc = render(scene, &ro, dg, &fb, &st)) != 0)
+		return rc;
+	for (int i = 0; i < noutputs && !rc; i++) {
 		if (output_kind(outputs[i]) == 'e') {
 			static struct out_exr_meta meta;
 			exr_meta(o, scene, &meta);
 			struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
-			err = out_exr_write(fb, outputs[i], &eo);
+			rc = out_exr_write(fb, outputs[i], &eo, dg);
 		} else {
 			struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
 			                          o->png_depth};
-			err = out_png_write(fb, outputs[i], &po);
+			rc = out_png_write(fb, outputs[i], &po, dg);
 		}
 	}
 	fb_free(fb);
-	if (err) {
-		fprintf(stderr, "arvo: error: %s\n", err);
-		return EX_IOERR;
-	}
-	if (o->stats)
+	if (!rc && o->stats)
 		render_print_stats(stderr, &st);
-	return EX_OK;
+	return rc;
 }
 
 /* One frame: evaluates the scene with this frame's clock, then dumps it or
@@ -906,7 +925,7 @@ static int run_frame(const struct options *o, struct eval_options *eo, struct di
 		else if (o->action == ACT_RENDER) {
 			mem_phase = "rendering";
 			rc = render_and_write(o, &scene, names, n, o->save_maps ? save : NULL,
-			                      o->load_maps ? load : NULL);
+			                      o->load_maps ? load : NULL, dg);
 		}
 	}
 	scene_free(&scene);
@@ -929,6 +948,75 @@ static void dep_add_ocio(const struct options *o, const struct deps *targets, st
 	}
 }
 
+/* Checks before any work what a render will write or read besides the
+ * scene: the OCIO config (66) and display/view (64) when a PNG is written
+ * or an OCIO option is given; every output of the first frame, the
+ * --save-maps file, a --dump-maps file and the depfile can be created (73);
+ * the --load-maps file can be read (66). */
+static int check_before_work(const struct options *o, struct diag *dg)
+{
+	char name[PATH_MAX], def[PATH_MAX];
+	int n = o->noutputs ? o->noutputs : 1, png = o->ocio_config || o->display || o->view, rc = EX_OK;
+	long frame = o->anim ? o->sub_first : 0;
+	for (int i = 0; i < n; i++) {
+		frame_name(o->noutputs ? o->outputs[i] : default_output(o->scene, def, sizeof def), frame,
+		           frame_digits(o), name, sizeof name);
+		png |= output_kind(name) == 'p';
+		if (!rc)
+			rc = check_creatable(name);
+	}
+	if (png) {
+		struct ocio_config *cfg;
+		const char *disp, *view;
+		int r = out_ocio_load(o->ocio_config, &cfg, dg);
+		if (r)
+			return r;
+		r = out_ocio_pick_view(cfg, o->display, o->view, &disp, &view, dg);
+		ocio_config_free(cfg);
+		if (r)
+			return r;
+	}
+	struct stat sb;
+	if (!rc && o->dump_maps && (stat(o->dump_maps, &sb) != 0 || !S_ISDIR(sb.st_mode))) {
+		fprintf(stderr, "arvo: error: cannot write maps into '%s': not a directory\n", o->dump_maps);
+		return EX_CANTCREAT;
+	}
+	if (!rc && o->dump_maps) {
+		snprintf(name, sizeof name, "%s/map", o->dump_maps);
+		rc = check_creatable(name);
+	}
+	if (!rc && o->save_maps && frame_name(o->save_maps, frame, 0, name, sizeof name))
+		rc = check_creatable(name);
+	if (!rc && o->depfile)
+		rc = check_creatable(o->depfile);
+	if (!rc && o->load_maps && frame_name(o->load_maps, frame, 0, name, sizeof name) &&
+	    access(name, R_OK) != 0) {
+		fprintf(stderr, "arvo: error: cannot open '%s': %s\n", name, strerror(errno));
+		return EX_NOINPUT;
+	}
+	return rc;
+}
+
+/* SIGINT, SIGTERM, SIGHUP: remove the temporaries being written (the files
+ * they would replace stay untouched) and exit 128 + the signal. */
+static void on_signal(int sig)
+{
+	out_tmp_remove_all();
+	_exit(128 + sig);
+}
+
+static void install_signals(void)
+{
+	struct sigaction sa;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+	for (int i = 0; i < 3; i++)
+		sigaction(sigs[i], &sa, NULL);
+	signal(SIGXFSZ, SIG_IGN); /* past ulimit -f: write fails with EFBIG, exit 74 */
+}
+
 int main(int argc, char **argv)
 {
 	if (argc > 1 && (!strcmp(argv[1], "compare") || !strcmp(argv[1], "merge")))
@@ -944,6 +1032,7 @@ int main(int argc, char **argv)
 	mem_set_budget(o.max_memory ? o.max_memory : mem_default_budget(), over_budget);
 	struct diag dg;
 	diag_init(&dg, stderr);
+	install_signals();
 	if (o.action == ACT_TOKENS || o.action == ACT_AST) {
 		rc = dump_front(&o, &dg);
 		srcfile_free_all();
@@ -952,6 +1041,8 @@ int main(int argc, char **argv)
 	if ((rc = check_outputs(&o)) != EX_OK)
 		return rc;
 	if (o.action == ACT_RENDER && (rc = resolve_region(&o, all_exr(&o) ? 'e' : 'p')) >= 0)
+		return rc;
+	if (o.action == ACT_RENDER && (rc = check_before_work(&o, &dg)) != EX_OK)
 		return rc;
 	rc = EX_OK;
 	find_data_dir(&o);
@@ -962,6 +1053,8 @@ int main(int argc, char **argv)
 	eo.ninclude = o.ninclude;
 	eo.stdlib_dir = o.stdlib_dir[0] ? o.stdlib_dir : NULL;
 	eo.pov_include_dir = pov_include_dir();
+	eo.allow_read = o.allow_read;
+	eo.nallow = o.nallow;
 	eo.defines = o.defines;
 	eo.ndefines = o.ndefines;
 	eo.width = o.width;

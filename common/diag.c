@@ -28,28 +28,50 @@ static void quote_line(FILE *out, const struct srcfile *f, struct srcloc loc)
 	fputs("^\n", out);
 }
 
-void diag_report(struct diag *d, enum diag_kind kind, struct srcloc loc, const char *fmt, ...)
+/* Reports one message; the va_list form behind diag_report and diag_fail. */
+__attribute__((format(printf, 4, 0)))
+static void report(struct diag *d, enum diag_kind kind, struct srcloc loc, const char *fmt, va_list ap)
 {
 	static const char *const names[] = {"error", "warning", "note"};
+	if (kind != DIAG_NOTE)
+		vsnprintf(d->last, sizeof d->last, fmt, ap);
 	if (kind == DIAG_ERROR)
 		d->errors++;
 	else if (kind == DIAG_WARNING)
 		d->warnings++;
 	if (kind == DIAG_ERROR && d->max_errors > 0 && d->errors > d->max_errors) {
-		if (d->errors == d->max_errors + 1)
+		if (d->errors == d->max_errors + 1 && d->out)
 			fprintf(d->out, "arvo: too many errors; stopping here\n");
 		return;
 	}
+	if (!d->out)
+		return;
 	const struct srcfile *f = srcfile_get(loc.file);
 	if (f)
 		fprintf(d->out, "%s:%d:%d: %s: ", f->name, loc.line, loc.col, names[kind]);
 	else
 		fprintf(d->out, "arvo: %s: ", names[kind]);
-	va_list ap;
-	va_start(ap, fmt);
-	vfprintf(d->out, fmt, ap);
-	va_end(ap);
+	fputs(kind == DIAG_NOTE ? "" : d->last, d->out);
+	if (kind == DIAG_NOTE)
+		vfprintf(d->out, fmt, ap);
 	fputc('\n', d->out);
 	if (f && loc.line > 0)
 		quote_line(d->out, f, loc);
+}
+
+void diag_report(struct diag *d, enum diag_kind kind, struct srcloc loc, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	report(d, kind, loc, fmt, ap);
+	va_end(ap);
+}
+
+int diag_fail(struct diag *d, int status, struct srcloc loc, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	report(d, DIAG_ERROR, loc, fmt, ap);
+	va_end(ap);
+	return status;
 }

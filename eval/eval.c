@@ -507,6 +507,8 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 		struct value r;
 		if (builtin_call(E, n, &r))
 			return r;
+		if (strcmp(n->str, "file_exists") == 0) /* POV-Ray's; a scene may not probe files */
+			eval_fail(E, n->loc, "file_exists() is not supported: a scene cannot look for files");
 		eval_fail(E, n->loc, "undeclared macro or function '%s'", n->str);
 	}
 	case N_MEMBER: return member(E, n);
@@ -641,51 +643,6 @@ static void exec_message(struct eval *E, const struct node *n)
 
 /* ==== include ============================================================= */
 
-static int is_dir_prefix(const char *dir, const char *path)
-{
-	size_t n = strlen(dir);
-	return strncmp(dir, path, n) == 0 && (path[n] == '/' || n == 1);
-}
-
-/* Finds a file the scene names (#include, image_map) in the directories a
- * scene may read: the including file's, the -I directories, the standard
- * library. Returns a malloc'd real path, and in *found_dir (if not NULL) the
- * directory, as given, where it was found. `what` names the file kind in errors. */
-char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
-{
-	const char *dirs[68];
-	int nd = 0;
-	dirs[nd++] = E->dir_stack[E->include_depth];
-	for (int i = 0; i < E->opt->ninclude && nd < 64; i++)
-		dirs[nd++] = E->opt->include_dirs[i];
-	char libreal[PATH_MAX] = "";
-	if (E->opt->stdlib_dir && !realpath(dirs[nd++] = E->opt->stdlib_dir, libreal))
-		libreal[0] = '\0';
-	if (E->opt->pov_include_dir)
-		dirs[nd++] = E->opt->pov_include_dir;
-	/* a library file that includes its own name reads the next file of that
-	 * name on the path (as C's #include_next): arvo's glass.inc adds POV-Ray's */
-	const struct srcfile *from = srcfile_get(loc.file);
-	char self[PATH_MAX];
-	if (!from || !realpath(from->name, self))
-		self[0] = '\0';
-	if (name[0] == '/')
-		eval_fail(E, loc, "%s needs a relative path, found '%s'", what, name);
-	for (int i = 0; i < nd; i++) {
-		char cand[PATH_MAX * 2], real[PATH_MAX], realdir[PATH_MAX];
-		snprintf(cand, sizeof cand, "%s/%s", dirs[i], name);
-		if (!realpath(cand, real) || !realpath(dirs[i], realdir) || (strcmp(real, self) == 0 && strcmp(realdir, libreal) == 0))
-			continue;
-		if (!is_dir_prefix(realdir, real))
-			eval_fail(E, loc, "'%s' is outside the directory it was found in; scenes may only read the scene's directory, -I directories and the standard library", name);
-		if (found_dir)
-			*found_dir = dirs[i];
-		return mem_strdup(real);
-	}
-	E->missing = 1;
-	eval_fail(E, loc, "cannot find %s '%s'", what, name);
-}
-
 static char *dir_of(struct eval *E, const char *path)
 {
 	const char *slash = strrchr(path, '/');
@@ -730,6 +687,8 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	/* messages name the file as found in its directory */
 	char *shown = mem_alloc(strlen(dir) + strlen(name) + 2);
 	sprintf(shown, "%s/%s", dir, name);
+	if (name[0] == '/')
+		strcpy(shown, name);
 	if (strncmp(shown, "./", 2) == 0)
 		memmove(shown, shown + 2, strlen(shown + 2) + 1);
 	struct inc_cache *c = ARENA_NEW(&E->arena, struct inc_cache);

@@ -14,6 +14,8 @@ struct eval_options {
 	int ninclude;
 	const char *stdlib_dir;          /* stdlib-scenes/include (NULL: none) */
 	const char *pov_include_dir;     /* POV-Ray's include files (NULL: none) */
+	const char *const *allow_read;   /* --allow-read directories: more a scene may read */
+	int nallow;
 	const char *const *defines;      /* -D NAME=VALUE strings */
 	int ndefines;
 	double clock;                    /* clock */
@@ -37,8 +39,8 @@ struct eval_options {
 void eval_default_options(struct eval_options *o);
 /* Reads, parses and evaluates the scene file at path into *out (which
  * eval_scene initialises). Returns 0 on success, 65 when the scene has errors
- * (reported to diag), 66 when the file itself, an include or an image_map
- * cannot be found or read (reported with its location). */
+ * (reported to diag), 66 when the file itself, or a file it includes or
+ * names, is missing or cannot be read. */
 int eval_scene(const char *path, const struct eval_options *opt, struct diag *diag, struct scene *out);
 
 #endif

@@ -78,7 +78,7 @@ struct eval {
 	int warned_normal;         /* 'normal' ignored warning given */
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
-	int missing;               /* the error was a missing or unreadable file (exit 66) */
+	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
 
 /* Reports an error at loc and unwinds to eval_scene. */
@@ -99,6 +99,7 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 void eval_items(struct eval *E, const struct node *list, struct sink *s);
 void eval_item(struct eval *E, const struct node *item, struct sink *s);
 char *eval_strdup(struct eval *E, const char *s, int len);
+/* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
 
@@ -172,7 +173,7 @@ void propagate(struct object *o, struct texture *tex, struct interior *in, unsig
 struct colour_map *colour_map_block(struct eval *E, const struct node *blk);
 void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n); /* [pos colour] */
 /* Resolves an image file like an include: only allowed directories. */
-const char *image_path(struct eval *E, const struct node *at, const char *name);
+void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char *name);
 void image_map_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

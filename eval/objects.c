@@ -437,7 +437,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_IMAGE_MAP:
 		if (v->kind != V_STRING)
 			eval_fail(E, loc, "expected an image file name, found %s", val_type_name(v));
-		pat_w(E, s->target)->image = image_path(E, &(struct node){.loc = loc}, v->p.s);
+		image_set(E, pat_w(E, s->target), loc, v->p.s);
 		return;
 	default: break;
 	}

@@ -38,15 +38,18 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 	m->e = e;
 }
 
-/* Resolves an image file like an include: only allowed directories. */
-const char *image_path(struct eval *E, const struct node *at, const char *name)
+/* Resolves an image file like an include (only allowed directories) into
+ * the pigment, keeping the name as written and where, for the tracer's
+ * messages. */
+void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char *name)
 {
-	char *real = eval_find_file(E, name, at->loc, "image file", NULL);
+	char *real = eval_find_file(E, name, loc, "image file", NULL);
 	if (E->opt->on_file) /* -M: the image is a dependency */
 		E->opt->on_file(real, E->opt->on_file_ctx);
-	const char *r = arena_strndup(&SC(E)->arena, real, strlen(real));
+	p->image = arena_strndup(&SC(E)->arena, real, strlen(real));
+	p->image_name = arena_strndup(&SC(E)->arena, name, strlen(name));
+	p->image_loc = loc;
 	free(real);
-	return r;
 }
 
 void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -57,7 +60,7 @@ void image_map_keyword(struct eval *E, struct sink *s, const struct node *n)
 		struct value v = arg1(E, n);
 		if (v.kind != V_STRING)
 			eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
-		pat_w(E, p)->image = image_path(E, n, v.p.s);
+		image_set(E, pat_w(E, p), n->loc, v.p.s);
 		return;
 	}
 	case TK_INTERPOLATE: pat_w(E, p)->interpolate = arg_int(E, n, 0, 4); return;

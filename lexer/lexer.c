@@ -299,6 +299,17 @@ static enum tok scan_punct(const char *p, const char *end, int *len)
 	}
 }
 
+/* POV-Ray's directives that reach outside the scene (file I/O) and the
+ * shell-outs other tools have: refused by name (docs/design.md §9, "Files"). */
+static int file_directive(const char *w, int len)
+{
+	static const char *const names[] = {"fopen", "fclose", "read", "write", "system", "exec", "shell"};
+	for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+		if ((int)strlen(names[i]) == len && memcmp(names[i], w, (size_t)len) == 0)
+			return 1;
+	return 0;
+}
+
 /* #word: a directive token. */
 static void scan_directive(struct lexer *lx, struct token *t)
 {
@@ -313,6 +324,9 @@ static void scan_directive(struct lexer *lx, struct token *t)
 	if (t->kind == TK_ERROR) {
 		if (p == w)
 			diag_error(lx->diag, t->loc, "expected a directive name after '#'");
+		else if (file_directive(w, (int)(p - w)))
+			diag_error(lx->diag, t->loc, "'#%.*s' is not supported: a scene cannot open, read or write "
+			           "files or run commands", (int)(p - w), w);
 		else
 			diag_error(lx->diag, t->loc, "unknown directive '#%.*s'", p - w > 40 ? 40 : (int)(p - w), w);
 	}

@@ -15,6 +15,11 @@
 #include "../common/arena.h"
 #include "../tracer/output/exrout.h"
 
+/* The EXR reader and writer report to a diag; the tool prints their message
+ * with its own prefix. QUIET(call) is NULL on success, else the message. */
+static struct diag quiet;
+#define QUIET(call) (diag_init(&quiet, NULL), (call) ? (const char *)quiet.last : (const char *)NULL)
+
 enum { EX_MATCH = 0, EX_DIFFER = 1, EX_TROUBLE = 2, EX_USAGE = 64, EX_IOERR = 74 };
 
 /* The layer a channel belongs to: what comes before its last '.', "" for
@@ -203,7 +208,7 @@ static const char *write_diff(const struct framebuffer *a, const struct framebuf
 		for (size_t i = 0; i < n; i++)
 			pd[i] = (float)diff(pa[i], pb[i]);
 	}
-	const char *err = out_exr_write(d, path, NULL);
+	const char *err = QUIET(out_exr_write(d, path, NULL, &quiet));
 	fb_free(d);
 	return err;
 }
@@ -247,9 +252,9 @@ int tool_compare(int argc, char **argv)
 	if (rc >= 0)
 		return rc;
 	struct framebuffer *a = NULL, *b = NULL;
-	const char *err = out_exr_read(o.a, &a, NULL);
+	const char *err = QUIET(out_exr_read(o.a, &a, NULL, &quiet));
 	if (!err)
-		err = out_exr_read(o.b, &b, NULL);
+		err = QUIET(out_exr_read(o.b, &b, NULL, &quiet));
 	if (err) {
 		fprintf(stderr, "arvo compare: error: %s\n", err);
 		fb_free(a);

@@ -15,6 +15,11 @@
 #include "../common/arena.h"
 #include "../tracer/output/exrout.h"
 
+/* The EXR reader and writer report to a diag; the tool prints their message
+ * with its own prefix. QUIET(call) is NULL on success, else the message. */
+static struct diag quiet;
+#define QUIET(call) (diag_init(&quiet, NULL), (call) ? (const char *)quiet.last : (const char *)NULL)
+
 enum { EX_OK = 0, EX_USAGE = 64, EX_DATAERR = 65, EX_NOINPUT = 66, EX_IOERR = 74 };
 
 __attribute__((format(printf, 1, 2)))
@@ -78,7 +83,7 @@ static int assemble(char **parts, int n, struct framebuffer **out, struct out_ex
 	for (int i = 0; i < n && rc < 0; i++) {
 		struct framebuffer *p;
 		char why[256] = "";
-		const char *err = out_exr_read(parts[i], &p, i == 0 ? info : NULL);
+		const char *err = QUIET(out_exr_read(parts[i], &p, i == 0 ? info : NULL, &quiet));
 		if (err) {
 			fprintf(stderr, "arvo merge: error: %s\n", err);
 			rc = EX_NOINPUT;
@@ -143,7 +148,7 @@ int tool_merge(int argc, char **argv)
 		rc = assemble(parts, n, &fb, &info);
 	if (rc < 0) {
 		struct out_exr_opts eo = {info.half_but_z, info.compression, info.scene[0] ? info.scene : NULL, &info.meta};
-		const char *err = out_exr_write(fb, output, &eo);
+		const char *err = QUIET(out_exr_write(fb, output, &eo, &quiet));
 		if (err)
 			fprintf(stderr, "arvo merge: error: %s\n", err);
 		rc = err ? EX_IOERR : EX_OK;

@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "../common/arena.h"
-#include "output/exrout.h"
 #include "pattern.h"
 
 /* ==== the image cache ==================================================== */
@@ -21,49 +20,50 @@ static const struct img *cache_find(const struct mat_cache *c, const char *path)
 	return NULL;
 }
 
-/* Loads one image into the cache unless it is there already. */
-static const char *cache_add(struct mat_cache *c, const char *path, const char *ocio)
+/* Loads a pigment's image into the cache unless it is there already. */
+static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *ocio, struct diag *dg)
 {
+	const char *path = pg->image;
 	if (!path || cache_find(c, path))
-		return NULL;
+		return 0;
 	if (c->n == c->cap) {
 		c->cap = c->cap ? c->cap * 2 : 4;
 		c->paths = mem_realloc(c->paths, sizeof *c->paths * (size_t)c->cap);
 		c->imgs = mem_realloc(c->imgs, sizeof *c->imgs * (size_t)c->cap);
 	}
 	struct img_opts io = {ocio, NULL, 0};
-	const char *err = img_load(path, &io, &c->imgs[c->n]);
+	int err = img_load(path, &io, &c->imgs[c->n], dg, pg->image_loc, pg->image_name);
 	if (err)
 		return err;
 	c->paths[c->n++] = path;
-	return NULL;
+	return 0;
 }
 
 /* Walks an object tree, loading the image_map of every texture. */
-static const char *load_tree(struct mat_cache *c, const struct object *o, const char *ocio)
+static int load_tree(struct mat_cache *c, const struct object *o, const char *ocio, struct diag *dg)
 {
 	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
-		const char *err = cache_add(c, pig_pattern(&o->tex->pigment)->image, ocio);
+		int err = cache_add(c, pig_pattern(&o->tex->pigment), ocio, dg);
 		if (err)
 			return err;
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++) {
-			const char *err = load_tree(c, o->g.csg.kids[i], ocio);
+			int err = load_tree(c, o->g.csg.kids[i], ocio, dg);
 			if (err)
 				return err;
 		}
-	return NULL;
+	return 0;
 }
 
-const char *mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config)
+int mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config, struct diag *dg)
 {
 	for (int i = 0; i < s->nobjects; i++) {
-		const char *err = load_tree(c, s->objects[i], ocio_config);
+		int err = load_tree(c, s->objects[i], ocio_config, dg);
 		if (err)
 			return err;
 	}
-	return NULL;
+	return 0;
 }
 
 void mat_cache_free(struct mat_cache *c)

@@ -20,8 +20,9 @@ struct mat_cache {
 };
 
 /* Loads every image_map of the scene's objects into c (zeroed by the caller).
- * Returns NULL, or an error message (per-thread buffer, see exrout.h). */
-const char *mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config);
+ * Returns 0, or FAIL_INPUT after reporting, at the image_map, why a file
+ * cannot be read. */
+int mat_cache_load(struct mat_cache *c, const struct scene *s, const char *ocio_config, struct diag *dg);
 void mat_cache_free(struct mat_cache *c);
 
 /* The texture and interior an object shades with (scene defaults if unset). */

@@ -20,7 +20,6 @@
 #include "light/lightpass.h"
 #include "material.h"
 #include "sampler.h"
-#include "output/exrout.h"
 
 #define TILE 16 /* tile edge in pixels */
 #define NPLANES 27
@@ -84,8 +83,8 @@ static void do_tile(void *arg, long t, int worker)
 }
 
 /* Runs the eye pass on nthreads threads (the caller's thread included). */
-static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads,
-                            struct progress *show, long long *rays)
+static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int nthreads, struct progress *show,
+                     long long *rays)
 {
 	struct eye_job j;
 	memset(&j, 0, sizeof j);
@@ -106,7 +105,6 @@ static const char *eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, i
 	for (int i = 0; i < nthreads; i++)
 		*rays += j.rays[i];
 	free(j.rays);
-	return NULL;
 }
 
 /* The passes in force: --passes, else the scene's illumination { passes }. */
@@ -123,7 +121,7 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
  * progressive (lp_run). Returns the number of results. */
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct progress *prog, struct lp_result *out[3],
-                      struct render_stats *st)
+                      struct render_stats *st, struct diag *dg)
 {
 	if (s->nlights == 0 || o->rays < 0)
 		return 0;
@@ -156,8 +154,8 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 	if (lo.spectral && lo.shafts && !(o->method > 0 || s->gs.illum.method_set)) {
 		lo.shafts = false; /* the default method: points, silently */
 	} else if (lo.spectral && lo.shafts) {
-		fprintf(stderr, "arvo: warning: passes spectral: light rays of different wavelengths part "
-		        "ways, so the dispersive light pass deposits points, not shafts\n");
+		diag_warning(dg, srcloc_none(), "passes spectral: light rays of different wavelengths part "
+		             "ways, so the dispersive light pass deposits points, not shafts");
 		lo.shafts = false;
 	}
 	/* --tolerance, else the scene's unless --rays was given */
@@ -189,30 +187,27 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			st->e_held += ls.deposited[k];
 		}
 		if (ls.nomap && c == 0) {
-			struct diag dg;
-			diag_init(&dg, stderr);
-			diag_warning(&dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
+			diag_warning(dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
 			             "it gets no caustic (give illum_map a coarser cell or resolution)",
 			             scene_object_kind_name(ls.nomap->kind));
 		}
 		if (ls.clipped && c == 0) {
-			struct diag dg;
-			diag_init(&dg, stderr);
-			diag_warning(&dg, ls.clipped->loc,
+			diag_warning(dg, ls.clipped->loc,
 			             "under a parallel light this unbounded %s casts caustics only around the "
 			             "finite objects and the camera", scene_object_kind_name(ls.clipped->kind));
 		}
 	}
 	if (lo.tolerance > 0 && st->tol_estimate > lo.tolerance)
-		fprintf(stderr, "arvo: warning: tolerance %g not reached: the light pass's error estimate is %.3g after "
-		        "%ld rays per light\n", lo.tolerance, st->tol_estimate, st->tol_rays);
+		diag_warning(dg, srcloc_none(), "tolerance %g not reached: the light pass's error estimate is %.3g "
+		             "after %ld rays per light", lo.tolerance, st->tol_estimate, st->tol_rays);
 	return n;
 }
 
 struct dump_ctx {
 	const char *dir;  /* --dump-maps directory */
 	int pass;         /* which channel pass */
-	const char *err;  /* first error */
+	struct diag *dg;  /* where errors go */
+	int err;          /* first error's status */
 };
 
 static void dump_one(void *ctx, const struct object *o, int level, const struct illum_map *m)
@@ -223,17 +218,14 @@ static void dump_one(void *ctx, const struct object *o, int level, const struct 
 		snprintf(lv, sizeof lv, "-L%d", level);
 	snprintf(path, sizeof path, "%s/map-%s-%d-%d%s%s.exr", d->dir, scene_object_kind_name(o->kind),
 	         o->loc.line, o->loc.col, d->pass < 0 ? "" : d->pass == 0 ? "-R" : d->pass == 1 ? "-G" : "-B", lv);
-	const char *e = illum_write_exr(m, path);
-	if (e && strstr(e, "too large")) /* a few far-flung rays on an unbounded plane */
-		fprintf(stderr, "arvo: warning: %s; not dumped\n", e);
-	else if (e && !d->err)
-		d->err = e;
+	if (!d->err)
+		d->err = illum_write_exr(m, path, d->dg);
 }
 
 /* --dump-maps DIR: every map as an EXR named after its object and source line. */
-static const char *dump_maps(struct lp_result *const *maps, int n, const char *dir)
+static int dump_maps(struct lp_result *const *maps, int n, const char *dir, struct diag *dg)
 {
-	struct dump_ctx d = {dir, -1, NULL};
+	struct dump_ctx d = {dir, -1, dg, 0};
 	for (int i = 0; i < n && !d.err; i++) {
 		d.pass = n == 3 ? i : -1;
 		lp_each_map(maps[i], dump_one, &d);
@@ -259,8 +251,8 @@ static struct framebuffer *new_film(const struct render_opts *o)
 	return fb;
 }
 
-const char *render(const struct scene *s, const struct render_opts *o, struct framebuffer **out,
-                   struct render_stats *stats)
+int render(const struct scene *s, const struct render_opts *o, struct diag *dg, struct framebuffer **out,
+           struct render_stats *stats)
 {
 	struct render_stats st;
 	memset(&st, 0, sizeof st);
@@ -268,7 +260,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	double t0 = now();
 	struct mat_cache mats;
 	memset(&mats, 0, sizeof mats);
-	const char *err = mat_cache_load(&mats, s, o->ocio_config);
+	int err = mat_cache_load(&mats, s, o->ocio_config, dg);
 	if (err) {
 		mat_cache_free(&mats);
 		return err;
@@ -280,20 +272,20 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	st.t_setup = t1 - t0;
 
 	struct lp_result *maps[3] = {NULL, NULL, NULL};
-	int nmaps = 0, io;
+	int nmaps = 0;
 	struct progress prog; /* the light pass's and the eye pass's report */
 	progress_init(&prog, progress_mode_for(o->quiet), stderr);
 	if (o->load_maps) {
-		nmaps = lp_load(maps, s, o->load_maps, false, &err); /* isolated nodes were not saved */
+		nmaps = lp_load(maps, s, o->load_maps, false, dg); /* isolated nodes were not saved */
 		if (nmaps < 0)
-			nmaps = 0;
+			err = -nmaps, nmaps = 0;
 	} else {
-		nmaps = light_pass(s, b, &mats, o, st.threads, &prog, maps, &st);
+		nmaps = light_pass(s, b, &mats, o, st.threads, &prog, maps, &st, dg);
 	}
 	if (!err && o->save_maps)
-		err = lp_save(maps, nmaps, s, o->save_maps, &io);
+		err = lp_save(maps, nmaps, s, o->save_maps, dg);
 	if (!err && nmaps > 0 && o->dump_maps)
-		err = dump_maps(maps, nmaps, o->dump_maps);
+		err = dump_maps(maps, nmaps, o->dump_maps, dg);
 	double t2 = now();
 	st.t_light = t2 - t1;
 
@@ -304,7 +296,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;
 	ctx.seed_key = render_seed_key(o->seed);
 	if (!err)
-		err = eye_pass(&ctx, fb, st.threads, &prog, &st.rays);
+		eye_pass(&ctx, fb, st.threads, &prog, &st.rays);
 	st.t_eye = now() - t2;
 	for (int i = 0; i < nmaps; i++)
 		lp_free(maps[i]);
@@ -322,7 +314,7 @@ const char *render(const struct scene *s, const struct render_opts *o, struct fr
 		return err;
 	}
 	*out = fb;
-	return NULL;
+	return 0;
 }
 
 void render_print_stats(FILE *f, const struct render_stats *st)

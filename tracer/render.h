@@ -14,6 +14,7 @@
 
 #include <stdint.h>
 
+#include "../common/diag.h"
 #include "output/framebuffer.h"
 #include "scene.h"
 
@@ -63,10 +64,12 @@ struct render_stats {
 };
 
 /* Renders s into a new framebuffer (*out, free with fb_free). stats may be
- * NULL. Returns NULL, or an error message (per-thread buffer, exrout.h):
- * the only failure is an image_map file that cannot be read or decoded. */
-const char *render(const struct scene *s, const struct render_opts *o, struct framebuffer **out,
-                   struct render_stats *stats);
+ * NULL. Errors and warnings go to dg. Returns 0, or an enum fail status:
+ * FAIL_INPUT (an image_map or --load-maps file missing, broken or foreign;
+ * an OCIO config that cannot be loaded), FAIL_CREATE or FAIL_WRITE
+ * (--save-maps, --dump-maps). */
+int render(const struct scene *s, const struct render_opts *o, struct diag *dg, struct framebuffer **out,
+           struct render_stats *stats);
 /* Prints the stats as --stats shows them. */
 void render_print_stats(FILE *f, const struct render_stats *st);
 

@@ -53,6 +53,8 @@ struct pattern {
 	struct map_entry *map;    /* gradient colour_map (NULL: black→white) */
 	int nmap;                 /* entries in map */
 	const char *image;        /* image_map file, resolved path */
+	const char *image_name;   /* image_map file as the scene named it (for messages) */
+	struct srcloc image_loc;  /* where the scene named it */
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */

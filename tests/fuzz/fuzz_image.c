@@ -53,8 +53,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 			return 0;
 		const char *path = fuzz_file("fuzz.map", data, size);
 		struct lp_result *r[3] = {NULL, NULL, NULL};
-		const char *err;
-		int n = lp_load(r, sc, path, false, &err);
+		struct diag quiet; /* no stream: the message is only kept */
+		diag_init(&quiet, NULL);
+		int n = lp_load(r, sc, path, false, &quiet);
 		for (int i = 0; i < n; i++)
 			lp_free(r[i]);
 		return 0;
@@ -68,7 +69,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	const char *path = fuzz_file("fuzz.img", data, size);
 	struct img_opts opts = {NULL, NULL, 1}; /* raw: the readers, not OCIO */
 	struct img im;
-	if (!img_load(path, &opts, &im))
+	struct diag quiet;
+	diag_init(&quiet, NULL);
+	if (!img_load(path, &opts, &im, &quiet, srcloc_none(), NULL))
 		img_free(&im);
 	return 0;
 }

@@ -362,7 +362,7 @@ static void t_render_caustic_layer(void)
 	struct render_opts ro = {.width = 21, .height = 21, .spp = 1, .threads = 2, .quiet = 1, .rays = 2000000};
 	struct framebuffer *fb = NULL;
 	struct render_stats st;
-	CHECK(render(&s, &ro, &fb, &st) == NULL);
+	CHECK(MSG(render(&s, &ro, TDG, &fb, &st)) == NULL);
 	if (fb) {
 		float *c = fb_find(fb, "caustic.G"), *d = fb_find(fb, "direct.G"), *g = fb_find(fb, "G");
 		CHECK(c && d && g);
@@ -395,7 +395,7 @@ static double fringe(const char *define)
 		return worst;
 	struct render_opts ro = {.width = 48, .height = 36, .spp = 1, .threads = 2, .quiet = 1, .rays = -1};
 	struct framebuffer *fb = NULL;
-	if (render(&s, &ro, &fb, NULL) == NULL && fb) {
+	if (MSG(render(&s, &ro, TDG, &fb, NULL)) == NULL && fb) {
 		const float *r = fb_find(fb, "R"), *b = fb_find(fb, "B");
 		worst = 0;
 		for (int i = 0; i < 48 * 36; i++)

@@ -82,11 +82,11 @@ static void roundtrip(const struct out_exr_opts *o, const char *file)
 	struct framebuffer *fb = make_fb(), *rd = NULL;
 	struct out_exr_info info;
 	const char *path = in_dir(file);
-	const char *err = out_exr_write(fb, path, o);
+	const char *err = MSG(out_exr_write(fb, path, o, TDG));
 	CHECK(err == NULL);
 	if (err)
 		printf("# %s\n", err);
-	err = out_exr_read(path, &rd, &info);
+	err = MSG(out_exr_read(path, &rd, &info, TDG));
 	CHECK(err == NULL);
 	if (!rd) {
 		fb_free(fb);
@@ -156,8 +156,8 @@ static void t_half_rgb(void)
 		p[0][i] = 0.5f * (float)i, p[1][i] = 0.1f, p[2][i] = -1.0f / 3.0f;
 	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL, NULL};
 	struct out_exr_info info;
-	CHECK(out_exr_write(fb, in_dir("rgb_half.exr"), &o) == NULL);
-	CHECK(out_exr_read(in_dir("rgb_half.exr"), &rd, &info) == NULL);
+	CHECK(MSG(out_exr_write(fb, in_dir("rgb_half.exr"), &o, TDG)) == NULL);
+	CHECK(MSG(out_exr_read(in_dir("rgb_half.exr"), &rd, &info, TDG)) == NULL);
 	if (rd) {
 		CHECK(info.half == 1);
 		CHECK(fb_find(rd, "R")[14] == 7.0f);
@@ -188,8 +188,8 @@ static void t_small_sizes(void)
 						}
 						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL, NULL};
 						runs++;
-						if (out_exr_write(fb, in_dir("s.exr"), &o) ||
-						    out_exr_read(in_dir("s.exr"), &rd, NULL)) {
+						if (out_exr_write(fb, in_dir("s.exr"), &o, TDG) ||
+						    out_exr_read(in_dir("s.exr"), &rd, NULL, TDG)) {
 							bad++;
 						} else {
 							for (int k = 0; k < nch; k++)
@@ -261,7 +261,7 @@ static void t_failed_write_midway(void)
 	signal(SIGXFSZ, SIG_IGN);
 	setrlimit(RLIMIT_FSIZE, &lim);
 	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL, NULL};
-	const char *err = out_exr_write(fb, path, &o);
+	const char *err = MSG(out_exr_write(fb, path, &o, TDG));
 	setrlimit(RLIMIT_FSIZE, &old);
 	CHECK(err != NULL);
 	if (err) {
@@ -280,7 +280,7 @@ static void t_failed_write_dir(void)
 	fb_plane(fb, "R");
 	char path[256];
 	snprintf(path, sizeof path, "%s/no/such/dir/x.exr", dir);
-	const char *err = out_exr_write(fb, path, NULL);
+	const char *err = MSG(out_exr_write(fb, path, NULL, TDG));
 	CHECK(err != NULL && strstr(err, "no/such/dir/x.exr") != NULL);
 	if (geteuid() != 0) { /* root can write anywhere: skip the chmod case */
 		char sub[256];
@@ -289,14 +289,14 @@ static void t_failed_write_dir(void)
 		snprintf(path, sizeof path, "%s/ro/keep.exr", dir);
 		put_old(path);
 		chmod(sub, 0555);
-		CHECK(out_exr_write(fb, path, NULL) != NULL);
+		CHECK(MSG(out_exr_write(fb, path, NULL, TDG)) != NULL);
 		CHECK(is_old(path));
 		chmod(sub, 0755);
 		unlink(path);
 		rmdir(sub);
 	}
 	struct framebuffer *empty = fb_new(2, 2);
-	CHECK(out_exr_write(empty, in_dir("empty.exr"), NULL) != NULL);
+	CHECK(MSG(out_exr_write(empty, in_dir("empty.exr"), NULL, TDG)) != NULL);
 	CHECK(access(in_dir("empty.exr"), F_OK) != 0);
 	fb_free(empty);
 	fb_free(fb);
@@ -305,10 +305,10 @@ static void t_failed_write_dir(void)
 static void t_read_errors(void)
 {
 	struct framebuffer *rd = (struct framebuffer *)&rd;
-	const char *err = out_exr_read(in_dir("missing.exr"), &rd, NULL);
+	const char *err = MSG(out_exr_read(in_dir("missing.exr"), &rd, NULL, TDG));
 	CHECK(err != NULL && rd == NULL);
 	put_old(in_dir("junk.exr"));
-	err = out_exr_read(in_dir("junk.exr"), &rd, NULL);
+	err = MSG(out_exr_read(in_dir("junk.exr"), &rd, NULL, TDG));
 	CHECK(err != NULL && rd == NULL);
 	if (err)
 		printf("# expected error: %s\n", err);
@@ -332,8 +332,8 @@ static void t_region_and_meta(void)
 	struct out_exr_opts o = {0, OUT_EXR_ZIP, "s.scn", &m};
 	struct framebuffer *rd = NULL;
 	static struct out_exr_info info;
-	CHECK(out_exr_write(fb, in_dir("region.exr"), &o) == NULL);
-	CHECK(out_exr_read(in_dir("region.exr"), &rd, &info) == NULL);
+	CHECK(MSG(out_exr_write(fb, in_dir("region.exr"), &o, TDG)) == NULL);
+	CHECK(MSG(out_exr_read(in_dir("region.exr"), &rd, &info, TDG)) == NULL);
 	if (rd) {
 		CHECK(rd->w == 3 && rd->h == 2 && rd->x0 == 5 && rd->y0 == 7);
 		CHECK(rd->full_w == 20 && rd->full_h == 10);

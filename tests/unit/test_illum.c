@@ -514,9 +514,9 @@ static void t_exr(void)
 	int fd = mkstemps(path, 4);
 	CHECK(fd >= 0);
 	close(fd);
-	CHECK(illum_write_exr(m, path) == NULL);
+	CHECK(MSG(illum_write_exr(m, path, TDG)) == NULL);
 	struct framebuffer *fb = NULL;
-	CHECK(out_exr_read(path, &fb, NULL) == NULL);
+	CHECK(MSG(out_exr_read(path, &fb, NULL, TDG)) == NULL);
 	if (fb) {
 		CHECK(fb->w == ILLUM_TILE && fb->h == ILLUM_TILE); /* the one allocated tile */
 		float *g = fb_find(fb, "G");

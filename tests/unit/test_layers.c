@@ -40,7 +40,7 @@ static struct framebuffer *render_scene(const char *path, int w, int h, int spp,
 	if (region)
 		memcpy(ro.region, region, sizeof ro.region);
 	struct framebuffer *fb = NULL;
-	const char *err = render(&s, &ro, &fb, NULL);
+	const char *err = MSG(render(&s, &ro, TDG, &fb, NULL));
 	if (err)
 		printf("#   %s: %s\n", path, err);
 	if (keep)

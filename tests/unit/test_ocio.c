@@ -68,14 +68,14 @@ static void t_displays_views(void)
 	CHECK_STR(buf, "\"sRGB - Display\": \"Standard\", \"ACES 1.0 - SDR Video\", \"Raw\"\n");
 	CHECK(n == strlen(buf));
 	const char *d = NULL, *v = NULL;
-	CHECK(out_ocio_pick_view(cfg, NULL, NULL, &d, &v) == NULL);
+	CHECK(MSG(out_ocio_pick_view(cfg, NULL, NULL, &d, &v, TDG)) == NULL);
 	CHECK_STR(d, "sRGB - Display");
 	CHECK_STR(v, "ACES 1.0 - SDR Video");
-	const char *err = out_ocio_pick_view(cfg, NULL, "Filmic", &d, &v);
+	const char *err = MSG(out_ocio_pick_view(cfg, NULL, "Filmic", &d, &v, TDG));
 	CHECK(err && strstr(err, "'Filmic'") && strstr(err, "\"ACES 1.0 - SDR Video\""));
 	if (err)
 		printf("# expected error: %.*s\n", (int)strcspn(err, "\n"), err);
-	err = out_ocio_pick_view(cfg, "P3", NULL, &d, &v);
+	err = MSG(out_ocio_pick_view(cfg, "P3", NULL, &d, &v, TDG));
 	CHECK(err && strstr(err, "display 'P3'") && strstr(err, "\"Standard\""));
 }
 
@@ -169,7 +169,7 @@ static void t_config_resolution(void)
 	CHECK_STR(out_ocio_config_path(NULL), "/env/config.ocio");
 	CHECK_STR(out_ocio_config_path("/x/y.ocio"), "/x/y.ocio");
 	struct ocio_config *c = NULL;
-	const char *err = out_ocio_load(NULL, &c);
+	const char *err = MSG(out_ocio_load(NULL, &c, TDG));
 	CHECK(c == NULL && err && strstr(err, "/env/config.ocio"));
 	if (err)
 		printf("# expected error: %s\n", err);
@@ -178,7 +178,7 @@ static void t_config_resolution(void)
 	CHECK(ocio_config_load(NULL, e, sizeof e) == NULL && strstr(e, "$OCIO"));
 	CHECK(ocio_config_load("/nonexistent.ocio", e, sizeof e) == NULL && e[0]);
 	char list[256];
-	CHECK(out_ocio_list_views(NULL, list, sizeof list) == NULL);
+	CHECK(MSG(out_ocio_list_views(NULL, list, sizeof list, TDG)) == NULL);
 	CHECK(strstr(list, "\"Raw\"") != NULL);
 }
 

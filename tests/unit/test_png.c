@@ -83,13 +83,13 @@ static void check_png(const char *view, const int want[NPIX][3], int tol)
 	struct framebuffer *fb = make_fb();
 	struct out_png_opts o = {NULL, NULL, view, NULL, NULL, 8};
 	const char *path = in_dir("v.png");
-	const char *err = out_png_write(fb, path, &o);
+	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err == NULL);
 	if (err)
 		printf("# %s\n", err);
 	unsigned char got[NPIX * 3], enc[NPIX * 3];
 	CHECK(read_png8(path, got, NPIX, 1) == 0);
-	CHECK(out_png_encode(fb, &o, enc) == NULL);
+	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
 	CHECK(memcmp(got, enc, sizeof got) == 0);
 	for (int i = 0; i < NPIX; i++)
 		for (int c = 0; c < 3; c++)
@@ -116,11 +116,11 @@ static void t_odd_inputs(void)
 	r[0] = NAN, r[1] = 0.5f;
 	unsigned char enc[6];
 	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 8};
-	CHECK(out_png_encode(fb, &o, enc) == NULL);
+	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
 	CHECK(enc[0] == 0 && enc[3] == 128 && enc[4] == 0 && enc[5] == 0);
 	struct framebuffer *nob = fb_new(2, 1);
 	fb_plane(nob, "Z");
-	CHECK(out_png_encode(nob, &o, enc) != NULL);
+	CHECK(MSG(out_png_encode(nob, &o, enc, TDG)) != NULL);
 	fb_free(nob);
 	fb_free(fb);
 }
@@ -136,14 +136,14 @@ static void t_failures(void)
 		fclose(f);
 	}
 	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL, 8};
-	const char *err = out_png_write(fb, path, &o);
+	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err && strstr(err, "Filmic") && strstr(err, "\"Standard\""));
 	o.view = NULL;
 	o.display = "DCI-P3";
-	CHECK(out_png_write(fb, path, &o) != NULL);
+	CHECK(MSG(out_png_write(fb, path, &o, TDG)) != NULL);
 	o.display = NULL;
 	o.ocio_config = "/nonexistent/config.ocio";
-	err = out_png_write(fb, path, &o);
+	err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err && strstr(err, "/nonexistent/config.ocio"));
 	char buf[8] = "";
 	f = fopen(path, "rb");
@@ -152,7 +152,7 @@ static void t_failures(void)
 		fclose(f);
 	char bad[256];
 	snprintf(bad, sizeof bad, "%s/missing/dir.png", dir);
-	CHECK(out_png_write(fb, bad, NULL) != NULL);
+	CHECK(MSG(out_png_write(fb, bad, NULL, TDG)) != NULL);
 	char cmd[160];
 	snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp\\.'", dir);
 	CHECK(system(cmd) != 0);
@@ -176,7 +176,7 @@ static void t_load_png_rgb(void)
 	static const unsigned char px[] = {128, 255, 0, 64, 10, 200};
 	CHECK(write_png8(in_dir("tex.png"), px, 2, 1, PNG_FORMAT_RGB) == 0);
 	struct img im;
-	const char *err = img_load(in_dir("tex.png"), NULL, &im);
+	const char *err = MSG(img_load(in_dir("tex.png"), NULL, &im, TDG, srcloc_none(), NULL));
 	CHECK(err == NULL);
 	if (err)
 		printf("# %s\n", err);
@@ -191,7 +191,7 @@ static void t_load_png_rgb(void)
 	}
 	img_free(&im);
 	struct img_opts raw = {NULL, NULL, 1};
-	CHECK(img_load(in_dir("tex.png"), &raw, &im) == NULL);
+	CHECK(MSG(img_load(in_dir("tex.png"), &raw, &im, TDG, srcloc_none(), NULL)) == NULL);
 	if (im.px)
 		CHECK_NEAR(im.px[0], 128.0 / 255.0, 1e-6);
 	img_free(&im);
@@ -203,7 +203,7 @@ static void t_load_png_gray_alpha(void)
 	static const unsigned char px[] = {128, 128, 255, 0};
 	CHECK(write_png8(in_dir("ga.png"), px, 2, 1, PNG_FORMAT_GA) == 0);
 	struct img im;
-	CHECK(img_load(in_dir("ga.png"), NULL, &im) == NULL);
+	CHECK(MSG(img_load(in_dir("ga.png"), NULL, &im, TDG, srcloc_none(), NULL)) == NULL);
 	CHECK(im.nch == 4);
 	if (im.px && im.nch == 4) {
 		for (int c = 0; c < 3; c++)
@@ -235,7 +235,7 @@ static void t_load_png16(void)
 	png_destroy_write_struct(&png, &info);
 	fclose(f);
 	struct img im;
-	CHECK(img_load(in_dir("p16.png"), NULL, &im) == NULL);
+	CHECK(MSG(img_load(in_dir("p16.png"), NULL, &im, TDG, srcloc_none(), NULL)) == NULL);
 	if (im.px) {
 		CHECK_NEAR(im.px[0], 0.2140609, 1e-4); /* EOTF(32768/65535) */
 		CHECK_NEAR(im.px[1], 1.0, 1e-4);
@@ -251,9 +251,9 @@ static void t_load_exr(void)
 	for (int c = 0; c < 4; c++)
 		for (int i = 0; i < 6; i++)
 			fb_plane(fb, nm[c])[i] = (float)(c * 10 + i) * 0.25f - 1.0f;
-	CHECK(out_exr_write(fb, in_dir("m.exr"), NULL) == NULL);
+	CHECK(MSG(out_exr_write(fb, in_dir("m.exr"), NULL, TDG)) == NULL);
 	struct img im;
-	CHECK(img_load(in_dir("m.exr"), NULL, &im) == NULL);
+	CHECK(MSG(img_load(in_dir("m.exr"), NULL, &im, TDG, srcloc_none(), NULL)) == NULL);
 	CHECK(im.w == 3 && im.h == 2 && im.nch == 4);
 	for (int i = 0; im.px && i < 6; i++)
 		for (int c = 0; c < 4; c++)
@@ -262,8 +262,8 @@ static void t_load_exr(void)
 	fb_free(fb);
 	fb = fb_new(2, 2);
 	fb_plane(fb, "Y")[3] = 0.75f;
-	CHECK(out_exr_write(fb, in_dir("y.exr"), NULL) == NULL);
-	CHECK(img_load(in_dir("y.exr"), NULL, &im) == NULL);
+	CHECK(MSG(out_exr_write(fb, in_dir("y.exr"), NULL, TDG)) == NULL);
+	CHECK(MSG(img_load(in_dir("y.exr"), NULL, &im, TDG, srcloc_none(), NULL)) == NULL);
 	CHECK(im.nch == 3 && im.px && im.px[9] == 0.75f && im.px[11] == 0.75f && im.px[0] == 0);
 	img_free(&im);
 	fb_free(fb);
@@ -272,19 +272,19 @@ static void t_load_exr(void)
 static void t_load_errors(void)
 {
 	struct img im;
-	CHECK(img_load(in_dir("nope.png"), NULL, &im) != NULL && im.px == NULL);
+	CHECK(MSG(img_load(in_dir("nope.png"), NULL, &im, TDG, srcloc_none(), NULL)) != NULL && im.px == NULL);
 	FILE *f = fopen(in_dir("bad.png"), "wb");
 	if (f) {
 		fwrite("\x89PNG\r\n\x1a\n garbage", 1, 16, f);
 		fclose(f);
 	}
-	const char *err = img_load(in_dir("bad.png"), NULL, &im);
+	const char *err = MSG(img_load(in_dir("bad.png"), NULL, &im, TDG, srcloc_none(), NULL));
 	CHECK(err != NULL && im.px == NULL);
 	if (err)
 		printf("# expected error: %s\n", err);
 	struct img_opts o = {NULL, "No Such Space", 0};
-	CHECK(img_load(in_dir("tex.png"), &o, &im) != NULL && im.px == NULL);
-	CHECK(img_load(in_dir("old.png"), NULL, &im) != NULL);
+	CHECK(MSG(img_load(in_dir("tex.png"), &o, &im, TDG, srcloc_none(), NULL)) != NULL && im.px == NULL);
+	CHECK(MSG(img_load(in_dir("old.png"), NULL, &im, TDG, srcloc_none(), NULL)) != NULL);
 }
 
 /* What a PNG file says besides its pixels (libpng's low-level reader). */
@@ -346,7 +346,7 @@ static void t_png16(void)
 	p[0][0] = 0.5f, p[1][0] = 0.25f, p[2][0] = 2;
 	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 16};
 	struct png_facts f;
-	CHECK(out_png_write(fb, in_dir("d16.png"), &o) == NULL);
+	CHECK(MSG(out_png_write(fb, in_dir("d16.png"), &o, TDG)) == NULL);
 	CHECK(read_facts(in_dir("d16.png"), &f));
 	CHECK(f.depth == 16);
 	CHECK(f.px[0] == 32768 && f.px[1] == 16384 && f.px[2] == 65535);
@@ -354,7 +354,7 @@ static void t_png16(void)
 	CHECK_STR(f.display, "sRGB - Display");
 	CHECK_STR(f.view, "Raw");
 	o.depth = 8;
-	CHECK(out_png_write(fb, in_dir("d8.png"), &o) == NULL);
+	CHECK(MSG(out_png_write(fb, in_dir("d8.png"), &o, TDG)) == NULL);
 	CHECK(read_facts(in_dir("d8.png"), &f));
 	CHECK(f.depth == 8 && f.px[0] == 128 && f.px[1] == 64 && f.px[2] == 255);
 	fb_free(fb);
@@ -366,7 +366,7 @@ static void t_colour_chunks(void)
 	struct framebuffer *fb = make_fb();
 	struct out_png_opts o = {NULL, NULL, NULL, NULL, NULL, 8};
 	struct png_facts f;
-	CHECK(out_png_write(fb, in_dir("srgb.png"), &o) == NULL);
+	CHECK(MSG(out_png_write(fb, in_dir("srgb.png"), &o, TDG)) == NULL);
 	CHECK(read_facts(in_dir("srgb.png"), &f));
 	CHECK(f.srgb && !f.cicp);
 	CHECK_STR(f.display, "sRGB - Display");

@@ -37,11 +37,11 @@ static struct framebuffer *render_file(const char *name, int w, int h, int spp, 
 	}
 	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = nthreads, .quiet = 1};
 	struct framebuffer *fb = NULL, *back = NULL;
-	const char *err = render(&s, &ro, &fb, NULL);
+	const char *err = MSG(render(&s, &ro, TDG, &fb, NULL));
 	if (!err)
-		err = out_exr_write(fb, out, NULL);
+		err = MSG(out_exr_write(fb, out, NULL, TDG));
 	if (!err)
-		err = out_exr_read(out, &back, NULL);
+		err = MSG(out_exr_read(out, &back, NULL, TDG));
 	if (err)
 		printf("#   %s: %s\n", name, err);
 	remove(out);

@@ -498,7 +498,7 @@ static void t_threads(void)
 		CHECK(load(&s, "tests/accuracy/dispersion_view.scn", NULL));
 		s.gs.illum.passes = PASSES_SPECTRAL;
 		struct render_opts ro = {.width = 24, .height = 18, .spp = 2, .threads = t + 1, .quiet = 1, .rays = 20000};
-		CHECK(render(&s, &ro, &fb[t], NULL) == NULL);
+		CHECK(MSG(render(&s, &ro, TDG, &fb[t], NULL)) == NULL);
 		scene_free(&s);
 	}
 	const char *planes[] = {"R", "G", "B", "caustic.R", "caustic.B"};
@@ -524,7 +524,7 @@ static void t_white_through_glass(void)
 	s.gs.illum.passes = PASSES_SPECTRAL;
 	struct render_opts ro = {.width = 32, .height = 32, .spp = 4, .threads = 2, .quiet = 1, .rays = -1};
 	struct framebuffer *fb;
-	CHECK(render(&s, &ro, &fb, NULL) == NULL);
+	CHECK(MSG(render(&s, &ro, TDG, &fb, NULL)) == NULL);
 	double m[3] = {0, 0, 0};
 	int n = 0;
 	const float *pl[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};

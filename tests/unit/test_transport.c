@@ -289,7 +289,7 @@ static void t_furnace(void)
 			}
 			struct render_opts ro = {.width = 9, .height = 9, .spp = 4, .threads = 2, .quiet = 1, .rays = -1};
 			struct framebuffer *fb = NULL;
-			CHECK(render(&s, &ro, &fb, NULL) == NULL);
+			CHECK(MSG(render(&s, &ro, TDG, &fb, NULL)) == NULL);
 			double hi = 0, err = 0;
 			for (int c = 0; fb && c < 3; c++) {
 				const float *p = fb_find(fb, c == 0 ? "R" : c == 1 ? "G" : "B");

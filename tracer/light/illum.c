@@ -1347,10 +1347,11 @@ double illum_auto_cell(double rays, double area, double rays_per_node)
 	return sqrt(rays_per_node * area / rays);
 }
 
-const char *illum_write_exr(const struct illum_map *m, const char *path)
+int illum_write_exr(const struct illum_map *m, const char *path, struct diag *dg)
 {
 	if (!m->finished || !m->ntiles)
-		return out_errorf("cannot write '%s': the map is empty or not finished", path);
+		return diag_fail(dg, FAIL_INTERNAL, srcloc_none(), "cannot write '%s': the map is empty or not finished",
+		                 path);
 	long i0 = LONG_MAX, j0 = LONG_MAX, i1 = LONG_MIN, j1 = LONG_MIN; /* node extent, inclusive */
 	for (long k = 0; k < m->ntiles; k++) {
 		const struct tile *t = m->tiles[k];
@@ -1366,8 +1367,10 @@ const char *illum_write_exr(const struct illum_map *m, const char *path)
 			*hi = *hi > m->ax[a].n - 1 ? m->ax[a].n - 1 : *hi;
 		}
 	long w = i1 - i0 + 1, h = j1 - j0 + 1;
-	if (w * h > (1L << 28))
-		return out_errorf("cannot write '%s': map extent %ldx%ld too large", path, w, h);
+	if (w * h > (1L << 28)) { /* a few far-flung rays on an unbounded plane */
+		diag_warning(dg, srcloc_none(), "cannot write '%s': map extent %ldx%ld too large; not dumped", path, w, h);
+		return 0;
+	}
 	struct framebuffer *fb = fb_new((int)w, (int)h);
 	float *pl[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
 	for (long k = 0; k < m->ntiles; k++) {
@@ -1381,7 +1384,7 @@ const char *illum_write_exr(const struct illum_map *m, const char *path)
 				pl[c][(j1 - j) * w + (i - i0)] = (float)node_irr(m, t, q, c);
 		}
 	}
-	const char *err = out_exr_write(fb, path, NULL);
+	int err = out_exr_write(fb, path, NULL, dg);
 	fb_free(fb);
 	return err;
 }

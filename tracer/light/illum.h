@@ -49,6 +49,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../../common/diag.h"
 #include "../scene.h"
 
 #define ILLUM_TILE 2            /* nodes per tile side: small, since most tiles of a
@@ -202,7 +203,8 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 double illum_auto_cell(double rays, double area, double rays_per_node);
 
 /* Writes the irradiance of the allocated extent as R,G,B (one pixel per node,
- * top row = largest v) to an EXR at path; NULL on success, else a message. */
-const char *illum_write_exr(const struct illum_map *m, const char *path);
+ * top row = largest v) to an EXR at path. Returns 0 (also when the extent is
+ * too large to dump: a warning), or out_exr_write's status. */
+int illum_write_exr(const struct illum_map *m, const char *path, struct diag *dg);
 
 #endif

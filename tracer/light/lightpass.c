@@ -15,10 +15,12 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "../../common/pool.h"
 #include "../../common/progress.h"
 #include "../optics.h"
+#include "../output/tmpfile.h"
 #include "../sampler.h"
 #include "../shape.h"
 #include "../spectrum.h"
@@ -1666,18 +1668,20 @@ static void count_node(void *ctx, const struct illum_node *n)
 		(*(long long *)ctx)++;
 }
 
-const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, int *failed_io)
+int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, struct diag *dg)
 {
-	static _Thread_local char err[512];
 	struct prims P = scene_prims(s);
 	char tmp[4096];
-	snprintf(tmp, sizeof tmp, "%s.tmp", path);
-	FILE *f = fopen(tmp, "wb");
-	*failed_io = 1;
+	int fd = out_tmp_create(path, tmp, sizeof tmp);
+	FILE *f = fd < 0 ? NULL : fdopen(fd, "wb");
 	if (!f) {
+		int e = errno;
+		if (fd >= 0) {
+			close(fd);
+			out_tmp_finish(tmp, path, 0);
+		}
 		free(P.o);
-		snprintf(err, sizeof err, "cannot create '%s': %s", path, strerror(errno));
-		return err;
+		return diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(e));
 	}
 	char version[16] = {0};
 	strncpy(version, ARVO_VERSION, sizeof version - 1);
@@ -1711,13 +1715,16 @@ const char *lp_save(struct lp_result *const *r, int npasses, const struct scene 
 		}
 	}
 	free(P.o);
-	if (ferror(f) | (fclose(f) != 0) || rename(tmp, path) != 0) {
-		remove(tmp);
-		snprintf(err, sizeof err, "cannot write '%s': %s", path, strerror(errno));
-		return err;
-	}
-	*failed_io = 0;
-	return NULL;
+	int bad = fflush(f) != 0 || ferror(f);
+	int e = errno;
+	if (fclose(f) != 0 && !bad)
+		bad = 1, e = errno;
+	if (out_tmp_finish(tmp, path, !bad) != 0)
+		bad = 1, e = errno;
+	if (bad)
+		return diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path,
+		                 e ? strerror(e) : "write error");
+	return 0;
 }
 
 /* Reads and checks the header: NULL, or why the file is refused (in err). */
@@ -1748,6 +1755,24 @@ static const char *check_header(FILE *f, const struct scene *s, int nprims, cons
 	return err;
 }
 
+/* Is a node saved in a map file one the map can hold? Bounded axes have
+ * nodes 0..n-1; unbounded ones stay within the reach of int tile indices;
+ * energies are finite and not negative. */
+static bool node_ok(const struct illum_map *m, int64_t i, int64_t j, const double e[3])
+{
+	long nu, nv;
+	illum_grid(m, &nu, &nv, NULL, NULL);
+	const int64_t reach = (int64_t)1 << 30;
+	if (nu > 0 ? (i < 0 || i >= nu) : (i < -reach || i > reach))
+		return false;
+	if (nv > 0 ? (j < 0 || j >= nv) : (j < -reach || j > reach))
+		return false;
+	for (int c = 0; c < 3; c++)
+		if (!(e[c] >= 0 && e[c] <= 1e30))
+			return false;
+	return true;
+}
+
 /* Reads the nodes of map k of r (header fields already past); 0 when the
  * file is damaged. */
 static int load_map(FILE *f, struct lp_result *r, int k, const struct prims *P, bool discard_isolated)
@@ -1756,7 +1781,7 @@ static int load_map(FILE *f, struct lp_result *r, int k, const struct prims *P, 
 	double cell;
 	int64_t nodes;
 	if (!get_i32(f, &idx) || !get_i32(f, &res) || !get_f64(f, &cell) || !get_i64(f, &nodes) ||
-	    idx < 0 || idx >= P->n || nodes < 0)
+	    idx < 0 || idx >= P->n || nodes < 0 || !(cell >= 0 && cell < 1e30))
 		return 0;
 	r->n = k + 1;
 	r->objs[k] = P->o[idx];
@@ -1769,7 +1794,7 @@ static int load_map(FILE *f, struct lp_result *r, int k, const struct prims *P, 
 		int64_t i, j;
 		double e[3], u, v;
 		if (!get_i64(f, &i) || !get_i64(f, &j) || !get_f64(f, &e[0]) || !get_f64(f, &e[1]) ||
-		    !get_f64(f, &e[2]))
+		    !get_f64(f, &e[2]) || !node_ok(r->maps[k], i, j, e))
 			return 0;
 		illum_node_uv(r->maps[k], (long)i, (long)j, &u, &v);
 		illum_deposit(r->maps[k], u, v, e);
@@ -1779,19 +1804,17 @@ static int load_map(FILE *f, struct lp_result *r, int k, const struct prims *P, 
 }
 
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
-            const char **errmsg)
+            struct diag *dg)
 {
-	static _Thread_local char err[768];
+	char err[768];
 	struct prims P = scene_prims(s);
 	FILE *f = fopen(path, "rb");
 	int n = 0;
 	int32_t passes = 0;
-	*errmsg = NULL;
 	if (!f) {
-		snprintf(err, sizeof err, "cannot open '%s': %s", path, strerror(errno));
-		*errmsg = err;
+		int e = errno;
 		free(P.o);
-		return -1;
+		return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot open '%s': %s", path, strerror(e));
 	}
 	if (check_header(f, s, P.n, path, &passes, err, sizeof err))
 		goto refused;
@@ -1822,6 +1845,5 @@ refused:
 	free(P.o);
 	for (int i = 0; i < n; i++)
 		lp_free(out[i]);
-	*errmsg = err;
-	return -1;
+	return -diag_fail(dg, FAIL_INPUT, srcloc_none(), "%s", err);
 }

@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 
+#include "../../common/diag.h"
 #include "../bvh.h"
 #include "illum.h"
 #include "../material.h"
@@ -106,18 +107,17 @@ double lp_finest_cell(const struct lp_result *r);
 /* True when some interior has dispersion != 1 (three channel passes needed). */
 bool lp_dispersive(const struct scene *s);
 void lp_free(struct lp_result *r);
-/* --save-maps: writes the passes' maps to path (temp file + rename); NULL on
- * success, else a message (*failed_io set when the file could not be written). */
 /* The hash a map file stores of what the light pass depends on: the scene
  * as --dump-scene prints it without its name, camera and source positions. */
 uint64_t lp_scene_hash(const struct scene *s);
-const char *lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path,
-                    int *failed_io);
+/* --save-maps: writes the passes' maps to path (temp file + rename). Returns
+ * 0, FAIL_CREATE or FAIL_WRITE (reported to dg). */
+int lp_save(struct lp_result *const *r, int npasses, const struct scene *s, const char *path, struct diag *dg);
 /* --load-maps: reads maps saved for the same scene into out[0..2]; returns the
- * number of passes, or -1 with *err set: a missing file, not a map file, an
- * older format, another arvo version, another scene (lp_scene_hash), or a
- * damaged file. */
+ * number of passes, or -FAIL_INPUT after reporting why: a missing file, not a
+ * map file, an older format, another arvo version, another scene
+ * (lp_scene_hash), or a damaged file. */
 int lp_load(struct lp_result **out, const struct scene *s, const char *path, bool discard_isolated,
-            const char **err);
+            struct diag *dg);
 
 #endif

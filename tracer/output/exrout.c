@@ -1,6 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* exrout.c: scanline EXR writer and reader on OpenEXRCore (DEPS.md §1), and
- * the temp-file/rename and error helpers shared by tracer/output. */
+/* exrout.c: scanline EXR writer and reader on OpenEXRCore (docs/design.md §6). */
 #include "exrout.h"
 
 #include <errno.h>
@@ -16,61 +15,7 @@
 #include <openexr.h>
 
 #include "../../common/arena.h"
-
-/* ================= shared helpers ================= */
-
-static _Thread_local char err_buf[1024]; /* the last error of this thread */
-
-const char *out_errorf(const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(err_buf, sizeof err_buf, fmt, ap);
-	va_end(ap);
-	return err_buf;
-}
-
-/* The process umask, read once (umask can only be read by setting it). */
-static mode_t file_mode(void)
-{
-	static mode_t mode = 01000; /* sentinel: not read yet */
-	if (mode == 01000) {
-		mode_t m = umask(022);
-		umask(m);
-		mode = 0666 & ~m;
-	}
-	return mode;
-}
-
-/* mkstemp beside the target, then the mode a plain fopen would have given. */
-int out_tmp_create(const char *path, char *tmp, size_t tmplen)
-{
-	int n = snprintf(tmp, tmplen, "%s.tmp.XXXXXX", path);
-	if (n < 0 || (size_t)n >= tmplen) {
-		errno = ENAMETOOLONG;
-		return -1;
-	}
-	int fd = mkstemp(tmp);
-	if (fd >= 0 && fchmod(fd, file_mode()) != 0) {
-		int e = errno;
-		close(fd);
-		unlink(tmp);
-		errno = e;
-		return -1;
-	}
-	return fd;
-}
-
-/* Commit (rename) or abandon (unlink) a temp file; unlink also after a failed rename. */
-const char *out_tmp_finish(const char *tmp, const char *path, int ok)
-{
-	if (ok && rename(tmp, path) == 0)
-		return NULL;
-	const char *err = ok ? out_errorf("cannot write '%s': rename: %s", path, strerror(errno))
-	                     : NULL;
-	unlink(tmp);
-	return err;
-}
+#include "tmpfile.h"
 
 /* ================= OpenEXRCore plumbing ================= */
 
@@ -293,9 +238,9 @@ static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb
 	return rv;
 }
 
-/* Writes the whole file through io->fd; returns NULL or an error. */
-static const char *write_file(struct io *io, const char *path, const struct framebuffer *fb,
-                              const struct out_exr_opts *o)
+/* Writes the whole file through io->fd; returns 0 or FAIL_WRITE (reported). */
+static int write_file(struct io *io, const char *path, const struct framebuffer *fb,
+                      const struct out_exr_opts *o, struct diag *dg)
 {
 	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
 	exr_context_t ctx = NULL;
@@ -312,28 +257,33 @@ static const char *write_file(struct io *io, const char *path, const struct fram
 		if (rv == EXR_ERR_SUCCESS)
 			rv = rf;
 	}
-	return rv == EXR_ERR_SUCCESS ? NULL : out_errorf("cannot write '%s': %s", path, exr_msg(io, rv));
+	if (rv == EXR_ERR_SUCCESS)
+		return 0;
+	return diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path, exr_msg(io, rv));
 }
 
 /* Validates, writes to a temp file through our fd, then renames or removes it. */
-const char *out_exr_write(const struct framebuffer *fb, const char *path,
-                          const struct out_exr_opts *opts)
+int out_exr_write(const struct framebuffer *fb, const char *path, const struct out_exr_opts *opts,
+                  struct diag *dg)
 {
 	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL, NULL};
 	const struct out_exr_opts *o = opts ? opts : &defaults;
+	struct srcloc none = srcloc_none();
 	if (!fb || fb->count == 0)
-		return out_errorf("cannot write '%s': the image has no channels", path);
+		return diag_fail(dg, FAIL_INTERNAL, none, "cannot write '%s': the image has no channels", path);
 	if ((unsigned)o->compression > OUT_EXR_RLE)
-		return out_errorf("cannot write '%s': unknown compression %d", path, (int)o->compression);
+		return diag_fail(dg, FAIL_INTERNAL, none, "cannot write '%s': unknown compression %d", path,
+		                 (int)o->compression);
 	char tmp[4096];
 	struct io io = {.fd = out_tmp_create(path, tmp, sizeof tmp)};
 	if (io.fd < 0)
-		return out_errorf("cannot write '%s': %s", path, strerror(errno));
-	const char *err = write_file(&io, path, fb, o);
-	if (close(io.fd) != 0 && !err)
-		err = out_errorf("cannot write '%s': %s", path, strerror(errno));
-	const char *err2 = out_tmp_finish(tmp, path, err == NULL);
-	return err ? err : err2;
+		return diag_fail(dg, FAIL_CREATE, none, "cannot create '%s': %s", path, strerror(errno));
+	int rc = write_file(&io, path, fb, o, dg);
+	if (close(io.fd) != 0 && !rc)
+		rc = diag_fail(dg, FAIL_WRITE, none, "cannot write '%s': %s", path, strerror(errno));
+	if (out_tmp_finish(tmp, path, rc == 0) != 0)
+		rc = diag_fail(dg, FAIL_WRITE, none, "cannot write '%s': rename: %s", path, strerror(errno));
+	return rc;
 }
 
 /* ================= reader ================= */
@@ -463,34 +413,43 @@ static void uint_to_float(struct framebuffer *fb, const exr_attr_chlist_t *cl)
 	}
 }
 
-/* Checks part 0 is a readable scanline image; sets *w *h *ymin and *cl. */
-static const char *check_part(exr_const_context_t ctx, const char *path, int *w, int *h,
-                              int *ymin, const exr_attr_chlist_t **cl, exr_attr_box2i_t *disp,
-                              exr_attr_box2i_t *data)
+/* Checks part 0 is a readable scanline image; sets *w *h *ymin, *cl and the
+ * display and data windows. Returns 0 or FAIL_INPUT (reported). */
+static int check_part(exr_const_context_t ctx, const char *path, int *w, int *h, int *ymin,
+                      const exr_attr_chlist_t **cl, exr_attr_box2i_t *disp, exr_attr_box2i_t *data,
+                      struct diag *dg)
 {
+	struct srcloc none = srcloc_none();
 	exr_storage_t st;
 	exr_attr_box2i_t dw;
 	if (exr_get_storage(ctx, 0, &st) != EXR_ERR_SUCCESS || st != EXR_STORAGE_SCANLINE)
-		return out_errorf("cannot read '%s': only scanline EXR images are supported", path);
+		return diag_fail(dg, FAIL_INPUT, none, "cannot read '%s': only scanline EXR images are supported", path);
 	if (exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS ||
 	    exr_get_channels(ctx, 0, cl) != EXR_ERR_SUCCESS || !*cl || (*cl)->num_channels < 1)
-		return out_errorf("cannot read '%s': bad header", path);
+		return diag_fail(dg, FAIL_INPUT, none, "cannot read '%s': bad header", path);
 	int64_t ww = (int64_t)dw.max.x - dw.min.x + 1, hh = (int64_t)dw.max.y - dw.min.y + 1;
-	if (ww < 1 || hh < 1 || ww * hh > ((int64_t)1 << 28))
-		return out_errorf("cannot read '%s': unsupported size %lldx%lld", path, (long long)ww,
-		                  (long long)hh);
+	if (ww < 1 || hh < 1 || ww * hh * (*cl)->num_channels > ((int64_t)1 << 28)) /* 1 GiB of floats */
+		return diag_fail(dg, FAIL_INPUT, none, "cannot read '%s': unsupported size %lldx%lld", path,
+		                 (long long)ww, (long long)hh);
 	for (int i = 0; i < (*cl)->num_channels; i++)
 		if ((*cl)->entries[i].x_sampling != 1 || (*cl)->entries[i].y_sampling != 1)
-			return out_errorf("cannot read '%s': subsampled channel '%s' is not supported",
-			                  path, (*cl)->entries[i].name.str);
+			return diag_fail(dg, FAIL_INPUT, none, "cannot read '%s': subsampled channel '%s' is not supported",
+			                 path, (*cl)->entries[i].name.str);
 	*w = (int)ww, *h = (int)hh, *ymin = dw.min.y, *data = dw;
 	if (exr_get_display_window(ctx, 0, disp) != EXR_ERR_SUCCESS)
 		*disp = dw;
-	return NULL;
+	/* a display window too large or too far for int sizes and offsets (a
+	 * damaged or hostile header): take the data window as the frame */
+	const int64_t lim = (int64_t)1 << 24;
+	int64_t fw = (int64_t)disp->max.x - disp->min.x + 1, fh = (int64_t)disp->max.y - disp->min.y + 1;
+	int64_t ox = (int64_t)dw.min.x - disp->min.x, oy = (int64_t)dw.min.y - disp->min.y;
+	if (fw < 1 || fh < 1 || fw > lim || fh > lim || ox < -lim || ox > lim || oy < -lim || oy > lim)
+		*disp = dw;
+	return 0;
 }
 
 /* Opens, checks the header, decodes all channels; on error nothing leaks and *out stays NULL. */
-const char *out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info)
+int out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info, struct diag *dg)
 {
 	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
 	exr_context_t ctx = NULL;
@@ -500,7 +459,7 @@ const char *out_exr_read(const char *path, struct framebuffer **out, struct out_
 	init.error_handler_fn = on_error;
 	exr_result_t rv = exr_start_read(&ctx, path, &init);
 	if (rv != EXR_ERR_SUCCESS) {
-		const char *e = out_errorf("cannot read '%s': %s", path, exr_msg(&io, rv));
+		int e = diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot read '%s': %s", path, exr_msg(&io, rv));
 		if (ctx)
 			exr_finish(&ctx);
 		return e;
@@ -508,7 +467,7 @@ const char *out_exr_read(const char *path, struct framebuffer **out, struct out_
 	const exr_attr_chlist_t *cl = NULL;
 	int w = 0, h = 0, ymin = 0;
 	exr_attr_box2i_t disp = {0}, data = {0};
-	const char *err = check_part(ctx, path, &w, &h, &ymin, &cl, &disp, &data);
+	int err = check_part(ctx, path, &w, &h, &ymin, &cl, &disp, &data, dg);
 	struct framebuffer *fb = NULL;
 	if (!err) {
 		fb = fb_new(w, h);
@@ -517,7 +476,7 @@ const char *out_exr_read(const char *path, struct framebuffer **out, struct out_
 		for (int i = 0; i < cl->num_channels; i++)
 			fb_plane(fb, cl->entries[i].name.str);
 		if ((rv = read_pixels(ctx, fb, ymin)) != EXR_ERR_SUCCESS)
-			err = out_errorf("cannot read '%s': %s", path, exr_msg(&io, rv));
+			err = diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot read '%s': %s", path, exr_msg(&io, rv));
 	}
 	if (!err) {
 		uint_to_float(fb, cl);

@@ -1,17 +1,16 @@
 /* SPDX-License-Identifier: MIT */
-/* exrout.h: OpenEXR output and input through the OpenEXR C API (OpenEXRCore),
- * plus the temp-file-and-rename and error-message helpers every writer of
- * tracer/output shares.
+/* exrout.h: OpenEXR output and input through the OpenEXR C API (OpenEXRCore).
  *
- * Errors: functions returning `const char *` return NULL on success, or a
- * message ("cannot write 'a.exr': ...") in a per-thread buffer that stays
- * valid until the next failing out_/img_ call on the same thread. They never
- * exit. Names avoid the exr_ prefix, which OpenEXRCore owns. */
+ * Errors: functions returning int return 0 on success, else an enum fail
+ * status (diag.h) after reporting the reason ("cannot write 'a.exr': ...")
+ * to the diag they were given. They never exit. Names avoid the exr_
+ * prefix, which OpenEXRCore owns. */
 #ifndef ARVO_EXROUT_H
 #define ARVO_EXROUT_H
 
 #include <stddef.h>
 
+#include "../../common/diag.h"
 #include "framebuffer.h"
 
 #ifndef ARVO_VERSION
@@ -73,32 +72,19 @@ int out_exr_compression_parse(const char *name, enum out_exr_compression *out);
 /* Writes every plane of fb as one channel of a scanline EXR at path (with
  * Rec.709/D65 chromaticities and software "arvo <version>"). The data window
  * is fb's region of the frame (x0, y0, w, h), the display window the whole
- * frame (full_w × full_h). opts NULL means float + zip. Writes to "<path>.tmp.XXXXXX" and renames it into place only
- * on success; on failure the temp file is removed and path is untouched. */
-const char *out_exr_write(const struct framebuffer *fb, const char *path,
-                          const struct out_exr_opts *opts);
+ * frame (full_w × full_h). opts NULL means float + zip. Writes to
+ * "<path>.tmp.XXXXXX" and renames it into place only on success; on failure
+ * the temp file is removed and path is untouched. Returns 0, FAIL_CREATE (no
+ * temp file) or FAIL_WRITE. */
+int out_exr_write(const struct framebuffer *fb, const char *path, const struct out_exr_opts *opts,
+                  struct diag *dg);
 
 /* Reads a single-part scanline EXR: every channel becomes a float plane of a
  * new framebuffer (*out, free with fb_free) named as in the file. info may be
  * NULL. Pixel (0,0) is the data window's corner; fb->x0, y0 say where that
  * is in the display window (whose size is full_w × full_h; a display window
- * not at the origin moves x0, y0 by its corner). */
-const char *out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info);
-
-/* ---- helpers shared by the writers of tracer/output ---- */
-
-/* Formats an error message into the per-thread buffer and returns it. */
-const char *out_errorf(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-
-/* Creates "<path>.tmp.XXXXXX" (mode 0666 & ~umask) beside path; writes its
- * name into tmp (tmplen bytes) and returns an open fd, or -1 (errno set). */
-int out_tmp_create(const char *path, char *tmp, size_t tmplen);
-/* Finishes a temp file: on ok, renames tmp to path (returns NULL, or an
- * error after removing tmp); when !ok, just removes tmp and returns NULL. */
-const char *out_tmp_finish(const char *tmp, const char *path, int ok);
+ * not at the origin moves x0, y0 by its corner). Returns 0, or FAIL_INPUT
+ * (missing, truncated, foreign or unsupported). */
+int out_exr_read(const char *path, struct framebuffer **out, struct out_exr_info *info, struct diag *dg);
 
 #endif

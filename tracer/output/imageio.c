@@ -39,6 +39,14 @@ static void on_warning(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
+/* libpng read callback: says "truncated" where libpng's own says "Read Error". */
+static void read_data(png_structp png, png_bytep data, size_t len)
+{
+	FILE *fp = png_get_io_ptr(png);
+	if (fread(data, 1, len, fp) != len)
+		png_error(png, feof(fp) ? "the file ends early (truncated)" : "read error");
+}
+
 /* Sets up transforms so every PNG decodes to RGB or RGBA, 8 or 16 bits. */
 static void set_transforms(png_structp png, png_infop info)
 {
@@ -87,13 +95,15 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 	png_set_chunk_malloc_max(png, (png_alloc_size_t)16 << 20);
 	png_set_chunk_cache_max(png, 1000);
 	png_set_benign_errors(png, 0);
-	png_init_io(png, fp);
+	png_set_read_fn(png, fp, read_data);
 	png_read_info(png, info);
 	set_transforms(png, info);
 	int depth = png_get_bit_depth(png, info);
 	im->w = (int)png_get_image_width(png, info);
 	im->h = (int)png_get_image_height(png, info);
 	im->nch = png_get_channels(png, info);
+	if ((size_t)im->w * (size_t)im->h * (size_t)im->nch > ((size_t)1 << 28)) /* 1 GiB of floats, as EXR */
+		png_error(png, "image too large (more than 2^28 samples)");
 	size_t stride = png_get_rowbytes(png, info);
 	r->data = mem_alloc(stride * (size_t)im->h);
 	r->rows = mem_alloc((size_t)im->h * sizeof *r->rows);
@@ -106,18 +116,23 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 	return 0;
 }
 
-/* Loads a PNG file into im (encoded values; no colour conversion yet). */
-static const char *load_png(const char *path, struct img *im)
+/* Loads a PNG file into im (encoded values; no colour conversion yet).
+ * Returns 0, or -1 with the reason in why. */
+static int load_png(const char *path, struct img *im, char *why, size_t n)
 {
 	FILE *fp = fopen(path, "rb");
-	if (!fp)
-		return out_errorf("cannot read '%s': %s", path, strerror(errno));
+	if (!fp) {
+		snprintf(why, n, "%s", strerror(errno));
+		return -1;
+	}
 	struct png_rd r = {.msg = ""};
 	int rc = read_png(fp, &r, im);
 	fclose(fp);
 	free(r.rows);
 	free(r.data);
-	return rc ? out_errorf("cannot read '%s': %s", path, r.msg) : NULL;
+	if (rc)
+		snprintf(why, n, "%s", r.msg);
+	return rc;
 }
 
 /* ================= EXR ================= */
@@ -134,13 +149,22 @@ static void pick_planes(const struct framebuffer *fb, const float *pl[4], int *n
 	*nch = pl[3] ? 4 : 3;
 }
 
-/* Loads an EXR file into im (interleaving its planes; missing ones are 0). */
-static const char *load_exr(const char *path, struct img *im)
+/* Loads an EXR file into im (interleaving its planes; missing ones are 0).
+ * Returns 0, or -1 with the reader's message in why. */
+static int load_exr(const char *path, struct img *im, char *why, size_t whylen)
 {
 	struct framebuffer *fb;
-	const char *err = out_exr_read(path, &fb, NULL);
-	if (err)
-		return err;
+	struct diag quiet;
+	diag_init(&quiet, NULL);
+	if (out_exr_read(path, &fb, NULL, &quiet) != 0) {
+		/* the reader says "cannot read 'PATH': reason"; keep the reason */
+		const char *r = strstr(quiet.last, "': ");
+		r = r ? r + 3 : quiet.last;
+		size_t l = strlen(r) < whylen ? strlen(r) : whylen - 1;
+		memcpy(why, r, l);
+		why[l] = '\0';
+		return -1;
+	}
 	const float *pl[4];
 	pick_planes(fb, pl, &im->nch);
 	im->w = fb->w, im->h = fb->h;
@@ -150,17 +174,18 @@ static const char *load_exr(const char *path, struct img *im)
 		for (int c = 0; c < im->nch; c++)
 			im->px[i * (size_t)im->nch + (size_t)c] = pl[c] ? pl[c][i] : 0.0f;
 	fb_free(fb);
-	return NULL;
+	return 0;
 }
 
 /* ================= colour ================= */
 
-/* Converts the colour of im in place from space src to scene_linear. */
-static const char *to_linear(struct img *im, const char *config, const char *src)
+/* Converts the colour of im in place from space src to scene_linear.
+ * Returns 0 or an enum fail status (reported at at). */
+static int to_linear(struct img *im, const char *config, const char *src, struct diag *dg, struct srcloc at)
 {
 	struct ocio_config *cfg;
 	char msg[512];
-	const char *err = out_ocio_load(config, &cfg);
+	int err = out_ocio_load(config, &cfg, dg);
 	if (err)
 		return err;
 	struct ocio_proc *p = ocio_proc_convert(cfg, src, "scene_linear", msg, sizeof msg);
@@ -169,7 +194,7 @@ static const char *to_linear(struct img *im, const char *config, const char *src
 	for (size_t i = 0; p && i < n; i++)
 		memcpy(rgb + 3 * i, im->px + i * (size_t)im->nch, 3 * sizeof(float));
 	if (!p || ocio_proc_apply_rgb(p, rgb, (long)n, msg, sizeof msg) != 0)
-		err = out_errorf("cannot convert colours from '%s': %s", src, msg);
+		err = diag_fail(dg, FAIL_INPUT, at, "cannot convert colours from '%s': %s", src, msg);
 	for (size_t i = 0; !err && i < n; i++)
 		memcpy(im->px + i * (size_t)im->nch, rgb + 3 * i, 3 * sizeof(float));
 	free(rgb);
@@ -190,28 +215,31 @@ static size_t read_magic(const char *path, unsigned char *buf, size_t n)
 }
 
 /* Sniffs the format, decodes, then converts colour unless raw (alpha untouched). */
-const char *img_load(const char *path, const struct img_opts *opts, struct img *out)
+int img_load(const char *path, const struct img_opts *opts, struct img *out, struct diag *dg, struct srcloc at,
+             const char *name)
 {
 	static const struct img_opts defaults = {NULL, NULL, 0};
 	const struct img_opts *o = opts ? opts : &defaults;
 	unsigned char m[8];
+	char why[400] = "";
 	memset(out, 0, sizeof *out);
 	errno = 0;
 	size_t k = read_magic(path, m, sizeof m);
 	int is_png = k == 8 && png_sig_cmp(m, 0, 8) == 0;
 	int is_exr = k >= 4 && m[0] == 0x76 && m[1] == 0x2f && m[2] == 0x31 && m[3] == 0x01;
-	const char *err;
+	int err = 0;
 	if (is_png)
-		err = load_png(path, out);
+		err = load_png(path, out, why, sizeof why);
 	else if (is_exr)
-		err = load_exr(path, out);
+		err = load_exr(path, out, why, sizeof why);
 	else
-		err = k == 0 ? out_errorf("cannot read '%s': %s", path,
-		                          errno ? strerror(errno) : "empty file")
-		             : out_errorf("cannot read '%s': not a PNG or OpenEXR image", path);
+		err = -1, snprintf(why, sizeof why, "%s", k == 0 ? (errno ? strerror(errno) : "empty file")
+		                                                  : "not a PNG or OpenEXR image");
+	if (err)
+		err = diag_fail(dg, FAIL_INPUT, at, "cannot read image file '%s': %s", name ? name : path, why);
 	const char *src = o->colorspace ? o->colorspace : is_png ? IMG_TEXTURE_SPACE : NULL;
 	if (!err && !o->raw && src)
-		err = to_linear(out, o->ocio_config, src);
+		err = to_linear(out, o->ocio_config, src, dg, at);
 	if (err)
 		img_free(out);
 	return err;

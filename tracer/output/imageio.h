@@ -9,6 +9,8 @@
 #ifndef ARVO_IMAGEIO_H
 #define ARVO_IMAGEIO_H
 
+#include "../../common/diag.h"
+
 #define IMG_TEXTURE_SPACE "sRGB - Texture" /* what 8/16-bit PNGs are taken to be */
 
 struct img {
@@ -24,8 +26,12 @@ struct img_opts {
 };
 
 /* Loads path (format from its magic bytes) into *out; opts may be NULL.
- * On failure *out is zeroed. Free with img_free. */
-const char *img_load(const char *path, const struct img_opts *opts, struct img *out);
+ * Returns 0, or FAIL_INPUT (missing, empty, truncated, corrupt or foreign
+ * file; an OCIO config that cannot be loaded) after reporting at `at`,
+ * naming the file `name` (NULL: path). On failure *out is zeroed. Free
+ * with img_free. */
+int img_load(const char *path, const struct img_opts *opts, struct img *out, struct diag *dg, struct srcloc at,
+             const char *name);
 void img_free(struct img *im);
 
 #endif

@@ -17,6 +17,7 @@
 #include "../../common/arena.h"
 #include "exrout.h"
 #include "ocio_shim.h"
+#include "tmpfile.h"
 
 /* ================= config resolution ================= */
 
@@ -89,26 +90,29 @@ const char *out_ocio_config_path(const char *explicit_path)
 }
 
 /* Resolves the path and loads it, naming the path in any error. */
-const char *out_ocio_load(const char *explicit_path, struct ocio_config **cfg)
+int out_ocio_load(const char *explicit_path, struct ocio_config **cfg, struct diag *dg)
 {
 	char msg[512];
 	const char *path = out_ocio_config_path(explicit_path);
 	*cfg = NULL;
 	if (!path)
-		return out_errorf("no OCIO config: give --ocio-config, set $OCIO, or install "
-		                  "ocio/config.ocio (set $ARVO_DATA_DIR to its directory)");
+		return diag_fail(dg, FAIL_INPUT, srcloc_none(), "no OCIO config: give --ocio-config, set $OCIO, "
+		                 "or install ocio/config.ocio (set $ARVO_DATA_DIR to its directory)");
 	*cfg = ocio_config_load(path, msg, sizeof msg);
-	return *cfg ? NULL : out_errorf("cannot load OCIO config '%s': %s", path, msg);
+	if (*cfg)
+		return 0;
+	return diag_fail(dg, FAIL_INPUT, srcloc_none(), "cannot load OCIO config '%s': %s", path, msg);
 }
 
 /* ================= display and view ================= */
 
 /* An error naming the bad choice and listing every valid display/view. */
-static const char *bad_choice(const struct ocio_config *cfg, const char *what, const char *name)
+static int bad_choice(const struct ocio_config *cfg, const char *what, const char *name, struct diag *dg)
 {
-	char list[700];
+	char list[1400];
 	ocio_describe_views(cfg, list, sizeof list);
-	return out_errorf("unknown OCIO %s '%s'; valid displays and views:\n%s", what, name, list);
+	return diag_fail(dg, FAIL_USAGE, srcloc_none(), "unknown OCIO %s '%s'; valid displays and views:\n%s",
+	                 what, name, list);
 }
 
 /* True when view is one of display's views. */
@@ -121,34 +125,34 @@ static int has_view(const struct ocio_config *cfg, const char *display, const ch
 }
 
 /* Defaults fall back to the config's own defaults when our names are absent. */
-const char *out_ocio_pick_view(const struct ocio_config *cfg, const char *display,
-                               const char *view, const char **disp_out, const char **view_out)
+int out_ocio_pick_view(const struct ocio_config *cfg, const char *display, const char *view,
+                       const char **disp_out, const char **view_out, struct diag *dg)
 {
 	if (!display)
 		display = ocio_view_count(cfg, OUT_DEFAULT_DISPLAY) > 0 ? OUT_DEFAULT_DISPLAY
 		                                                        : ocio_default_display(cfg);
 	if (!display || ocio_view_count(cfg, display) == 0)
-		return bad_choice(cfg, "display", display ? display : "(none)");
+		return bad_choice(cfg, "display", display ? display : "(none)", dg);
 	if (!view)
 		view = has_view(cfg, display, OUT_DEFAULT_VIEW) ? OUT_DEFAULT_VIEW
 		                                                : ocio_default_view(cfg, display);
 	if (!view || !has_view(cfg, display, view))
-		return bad_choice(cfg, "view", view ? view : "(none)");
+		return bad_choice(cfg, "view", view ? view : "(none)", dg);
 	*disp_out = display;
 	*view_out = view;
-	return NULL;
+	return 0;
 }
 
 /* For --help: load, describe, free. */
-const char *out_ocio_list_views(const char *explicit_path, char *buf, size_t len)
+int out_ocio_list_views(const char *explicit_path, char *buf, size_t len, struct diag *dg)
 {
 	struct ocio_config *cfg;
-	const char *err = out_ocio_load(explicit_path, &cfg);
+	int err = out_ocio_load(explicit_path, &cfg, dg);
 	if (err)
 		return err;
 	ocio_describe_views(cfg, buf, len);
 	ocio_config_free(cfg);
-	return NULL;
+	return 0;
 }
 
 /* ================= pixels ================= */
@@ -177,19 +181,19 @@ static float *pack_rgb(const struct framebuffer *fb, size_t n)
 /* Builds the display processor for opts; *cfg must be freed by the caller.
  * The display and view used are stored in disp and view (the config's
  * strings, valid while *cfg lives). */
-static const char *make_proc(const struct out_png_opts *o, struct ocio_config **cfg,
-                             struct ocio_proc **proc, const char **disp, const char **view)
+static int make_proc(const struct out_png_opts *o, struct ocio_config **cfg, struct ocio_proc **proc,
+                     const char **disp, const char **view, struct diag *dg)
 {
 	char msg[512];
-	const char *err = out_ocio_load(o->ocio_config, cfg);
+	int err = out_ocio_load(o->ocio_config, cfg, dg);
 	if (!err)
-		err = out_ocio_pick_view(*cfg, o->display, o->view, disp, view);
+		err = out_ocio_pick_view(*cfg, o->display, o->view, disp, view, dg);
 	if (!err && !o->view && o->scene_view && has_view(*cfg, *disp, o->scene_view))
 		*view = o->scene_view;
 	if (err)
 		return err;
 	*proc = ocio_proc_display(*cfg, o->source, *disp, *view, msg, sizeof msg);
-	return *proc ? NULL : out_errorf("OCIO: %s", msg);
+	return *proc ? 0 : diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
 }
 
 /* What the PNG records of the display encoding (out_png_tags). */
@@ -198,22 +202,22 @@ struct png_tags {
 };
 
 /* pack → OCIO display/view; rgb gets w*h*3 display values (free it). */
-static const char *encode_float(const struct framebuffer *fb, const struct out_png_opts *o,
-                                float **rgb, struct png_tags *tags)
+static int encode_float(const struct framebuffer *fb, const struct out_png_opts *o, float **rgb,
+                        struct png_tags *tags, struct diag *dg)
 {
 	*rgb = NULL;
 	if (!fb_find(fb, "R"))
-		return out_errorf("the image has no beauty channels (R, G, B)");
+		return diag_fail(dg, FAIL_INTERNAL, srcloc_none(), "the image has no beauty channels (R, G, B)");
 	struct ocio_config *cfg = NULL;
 	struct ocio_proc *proc = NULL;
 	const char *disp = NULL, *view = NULL;
-	const char *err = make_proc(o, &cfg, &proc, &disp, &view);
+	int err = make_proc(o, &cfg, &proc, &disp, &view, dg);
 	if (!err) {
 		char msg[512];
 		size_t n = (size_t)fb->w * (size_t)fb->h;
 		*rgb = pack_rgb(fb, n);
 		if (ocio_proc_apply_rgb(proc, *rgb, (long)n, msg, sizeof msg) != 0) {
-			err = out_errorf("OCIO: %s", msg);
+			err = diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
 			free(*rgb);
 			*rgb = NULL;
 		}
@@ -228,12 +232,12 @@ static const char *encode_float(const struct framebuffer *fb, const struct out_p
 }
 
 /* pack → OCIO display/view → clamp → round to bytes (deterministic, no dither). */
-const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
-                           unsigned char *rgb8)
+int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
+                   struct diag *dg)
 {
 	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
 	float *rgb;
-	const char *err = encode_float(fb, opts ? opts : &defaults, &rgb, NULL);
+	int err = encode_float(fb, opts ? opts : &defaults, &rgb, NULL, dg);
 	for (size_t i = 0; !err && i < 3 * (size_t)fb->w * (size_t)fb->h; i++)
 		rgb8[i] = quantise(rgb[i]);
 	free(rgb);
@@ -351,14 +355,14 @@ static int write_rows(FILE *fp, const unsigned char *px, int w, int h, int depth
 }
 
 /* Writes the PNG into the already-open temp file fd (which it closes). */
-static const char *write_png_fd(int fd, const char *path, const unsigned char *px, int w, int h,
-                                int depth, const struct png_tags *tags)
+static int write_png_fd(int fd, const char *path, const unsigned char *px, int w, int h, int depth,
+                        const struct png_tags *tags, struct diag *dg)
 {
 	struct png_err e = {.msg = ""};
 	FILE *fp = fdopen(fd, "wb");
 	if (!fp) {
 		close(fd);
-		return out_errorf("cannot write '%s': %s", path, strerror(errno));
+		return diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path, strerror(errno));
 	}
 	int rc = write_rows(fp, px, w, h, depth, tags, &e);
 	if (fflush(fp) != 0 || ferror(fp)) {
@@ -370,12 +374,12 @@ static const char *write_png_fd(int fd, const char *path, const unsigned char *p
 		snprintf(e.msg, sizeof e.msg, "%s", strerror(errno));
 		rc = -1;
 	}
-	return rc ? out_errorf("cannot write '%s': %s", path, e.msg) : NULL;
+	return rc ? diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': %s", path, e.msg) : 0;
 }
 
 /* Encodes first (so OCIO errors never create a file), then temp file + rename. */
-const char *out_png_write(const struct framebuffer *fb, const char *path,
-                          const struct out_png_opts *opts)
+int out_png_write(const struct framebuffer *fb, const char *path, const struct out_png_opts *opts,
+                  struct diag *dg)
 {
 	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
 	const struct out_png_opts *o = opts ? opts : &defaults;
@@ -383,7 +387,7 @@ const char *out_png_write(const struct framebuffer *fb, const char *path,
 	size_t n = (size_t)fb->w * (size_t)fb->h * 3;
 	struct png_tags tags;
 	float *rgb;
-	const char *err = encode_float(fb, o, &rgb, &tags);
+	int err = encode_float(fb, o, &rgb, &tags, dg);
 	if (err)
 		return err;
 	unsigned char *px = mem_alloc(n * (size_t)(depth / 8));
@@ -397,11 +401,12 @@ const char *out_png_write(const struct framebuffer *fb, const char *path,
 	char tmp[4096];
 	int fd = out_tmp_create(path, tmp, sizeof tmp);
 	if (fd < 0) {
-		err = out_errorf("cannot write '%s': %s", path, strerror(errno));
+		err = diag_fail(dg, FAIL_CREATE, srcloc_none(), "cannot create '%s': %s", path, strerror(errno));
 	} else {
-		err = write_png_fd(fd, path, px, fb->w, fb->h, depth, &tags);
-		const char *err2 = out_tmp_finish(tmp, path, err == NULL);
-		err = err ? err : err2;
+		err = write_png_fd(fd, path, px, fb->w, fb->h, depth, &tags, dg);
+		if (out_tmp_finish(tmp, path, err == 0) != 0)
+			err = diag_fail(dg, FAIL_WRITE, srcloc_none(), "cannot write '%s': rename: %s", path,
+			                strerror(errno));
 	}
 	free(px);
 	return err;

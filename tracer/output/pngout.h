@@ -4,12 +4,13 @@
  *
  * Config resolution: an explicit path (the CLI's --ocio-config) > $OCIO >
  * the shipped config (out_default_ocio_config). Errors follow exrout.h:
- * NULL on success, else a per-thread message; nothing here exits. */
+ * 0 on success, else an enum fail status after a report to the diag. */
 #ifndef ARVO_PNGOUT_H
 #define ARVO_PNGOUT_H
 
 #include <stddef.h>
 
+#include "../../common/diag.h"
 #include "framebuffer.h"
 
 struct ocio_config;
@@ -48,31 +49,32 @@ const char *out_default_ocio_config(void);
  * non-empty, else out_default_ocio_config() (may be NULL). */
 const char *out_ocio_config_path(const char *explicit_path);
 
-/* Loads the resolved config into *cfg (free with ocio_config_free). */
-const char *out_ocio_load(const char *explicit_path, struct ocio_config **cfg);
+/* Loads the resolved config into *cfg (free with ocio_config_free); FAIL_INPUT
+ * when there is none or it cannot be loaded. */
+int out_ocio_load(const char *explicit_path, struct ocio_config **cfg, struct diag *dg);
 
 /* Resolves display and view against cfg (NULL means the defaults above) and
- * stores the names to use; an unknown name gives an error listing the valid
- * displays and views. */
-const char *out_ocio_pick_view(const struct ocio_config *cfg, const char *display,
-                               const char *view, const char **disp_out,
-                               const char **view_out);
+ * stores the names to use; an unknown name gives FAIL_USAGE and an error
+ * listing the valid displays and views. */
+int out_ocio_pick_view(const struct ocio_config *cfg, const char *display, const char *view,
+                       const char **disp_out, const char **view_out, struct diag *dg);
 
 /* Writes into buf (len bytes) the displays and views of the resolved config,
  * one display per line, for --help. */
-const char *out_ocio_list_views(const char *explicit_path, char *buf, size_t len);
+int out_ocio_list_views(const char *explicit_path, char *buf, size_t len, struct diag *dg);
 
 /* Converts R,G,B of fb through the display/view, clamps to [0,1], and
  * quantises with rounding into rgb8 (w*h*3 bytes, top row first). Missing
  * G/B planes are read as zero; a missing R plane is an error. */
-const char *out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts,
-                           unsigned char *rgb8);
+int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
+                   struct diag *dg);
 
 /* Encodes as out_png_encode (to opts->depth bits), then writes an RGB PNG
  * to "<path>.tmp.XXXXXX" and renames it to path only on success (path
  * untouched on failure). The PNG carries the colour chunk out_png_signal
- * picks and text chunks "Software", "OCIO display" and "OCIO view". */
-const char *out_png_write(const struct framebuffer *fb, const char *path,
-                          const struct out_png_opts *opts);
+ * picks and text chunks "Software", "OCIO display" and "OCIO view".
+ * Returns 0, or the encoder's status, FAIL_CREATE or FAIL_WRITE. */
+int out_png_write(const struct framebuffer *fb, const char *path, const struct out_png_opts *opts,
+                  struct diag *dg);
 
 #endif
