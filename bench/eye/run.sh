@@ -14,7 +14,7 @@
 # its 1M-sphere run parses for a long time, add it with POV_SIZES=...).
 # Every time is the median of $RUNS runs (default 3; eye-pass and trace
 # times are medians of their own), wall clock, start-up
-# included (POV-Ray's is ~0.73 s, see ../shared/POVRAY.md; povray_trace_s
+# included (POV-Ray's is ~0.73 s even for one sphere; povray_trace_s
 # is the "Trace Time" it prints, without start-up, parsing and bounding).
 #   ratio             povray_s / arvo_s (above 1: arvo is faster)
 #   trace_ratio       povray_trace_s / arvo_eye_s (tracing only)

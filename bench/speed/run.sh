@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: MIT
 # bench/speed/run.sh: issue 13's speed targets, arvo against POV-Ray 3.7 in
-# one script (../shared/POVRAY.md: same scenes, sizes, threads, -A).
+# one script (same scenes, sizes and threads, antialiasing off: -A).
 #
 #   ARVO=$PWD/arvo sh bench/speed/run.sh          (about 5 minutes idle)
 #

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* test_ocio.c: the OCIO shim and config resolution with the shipped config:
- * known linear values through each view give DEPS.md's numbers (1e-3). */
+ * known linear values through each view give the reference values of docs/design.md §6 (1e-3). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,7 +12,7 @@
 
 static struct ocio_config *cfg; /* the shipped config, loaded once */
 
-/* One row of DEPS.md's table: linear in, Standard out, ACES SDR out. */
+/* One row of docs/design.md §6's reference table: linear in, Standard out, ACES SDR out. */
 struct row {
 	float in[3], standard[3], aces[3];
 };

@@ -34,7 +34,7 @@ static const float pix[NPIX][3] = {
     {0.18f, 0.18f, 0.18f}, {1, 1, 1},    {0.5f, 0.2f, 0.1f}, {50, 5, 1},
     {10, 0.5f, 0.05f},     {0, 0, 0},    {-1, -1, -1},       {0.25f, 0.75f, 0},
 };
-/* Expected bytes: DEPS.md's table values * 255, rounded. */
+/* Expected bytes: docs/design.md §6's reference values * 255, rounded. */
 static const int want_standard[NPIX][3] = {
     {118, 118, 118}, {255, 255, 255}, {188, 124, 89}, {255, 255, 255},
     {255, 188, 63},  {0, 0, 0},       {0, 0, 0},      {137, 225, 0},

@@ -348,7 +348,7 @@ static void read_info(exr_const_context_t ctx, const exr_attr_chlist_t *cl,
 }
 
 /* Points every channel of the decoder at its plane (ALL channels: decoding a
- * subset crashes the core on 3-channel half files, DEPS.md §1 pitfall 2).
+ * subset crashes the core on 3-channel half files, docs/design.md §6, library facts).
  * UINT channels are decoded as uint32 into the float plane, converted later. */
 static exr_result_t bind_decode(exr_decode_pipeline_t *dec, struct framebuffer *fb, int row)
 {

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* ocio_shim.cpp: the extern "C" wrapper over OpenColorIO (DEPS.md §2).
+/* ocio_shim.cpp: the extern "C" wrapper over OpenColorIO (docs/design.md §6).
  * No exception crosses the C boundary: every entry point catches them all. */
 #include "ocio_shim.h"
 
