@@ -14,40 +14,7 @@ trap 'rm -rf "$tmp"' EXIT INT TERM
 
 n=0
 why=
-# run ARGS...: runs arvo; sets rc, leaves stdout in $tmp/out, stderr in $tmp/err.
-run() {
-	timeout "$TIMEOUT" "$ARVO" "$@" > "$tmp/out" 2> "$tmp/err" < /dev/null
-	rc=$?
-	[ "$rc" -lt 124 ] || why="${why:+$why; }crashed or timed out (exit status $rc)"
-}
-# want_rc CODE...: the exit status must be one of CODE.
-want_rc() {
-	for c; do [ "$rc" -eq "$c" ] && return; done
-	why="${why:+$why; }exit status $rc, expected $*"
-}
-# has FILE ERE: FILE must hold a line matching ERE (case-sensitive).
-has() { grep -Eq -- "$2" "$tmp/$1" || why="${why:+$why; }$1 lacks /$2/"; }
-# hasi FILE ERE: the same, ignoring case.
-hasi() { grep -Eqi -- "$2" "$tmp/$1" || why="${why:+$why; }$1 lacks /$2/i"; }
-# is FILE TEXT: FILE must be exactly TEXT plus a newline.
-is() { printf '%s\n' "$2" | cmp -s - "$tmp/$1" || why="${why:+$why; }$1 is not \"$2\""; }
-# empty FILE: FILE must be empty.
-empty() { [ ! -s "$tmp/$1" ] || why="${why:+$why; }$1 is not empty"; }
-# report NAME: prints the TAP line for the case just checked.
-report() {
-	n=$((n + 1))
-	if [ -z "$why" ]; then
-		echo "ok $n - $1"
-	else
-		echo "not ok $n - $1"
-		echo "#   $why"
-		for s in out err; do
-			[ -s "$tmp/$s" ] && { echo "#   std$s:"; head -8 "$tmp/$s" | sed 's/^/#     /'; }
-		done
-	fi
-	why=
-}
-skip() { n=$((n + 1)); echo "ok $n - $1 # SKIP $2"; }
+. tests/tap.sh
 
 # ---- information -----------------------------------------------------------
 run --help

@@ -18,27 +18,8 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-pipeline.XXXXXX") || exit 2
 trap 'rm -rf "$tmp"' EXIT INT TERM
 n=0 why=
 
-# run ARGS...: runs arvo; sets rc, leaves stdout in $tmp/out, stderr in $tmp/err.
-run() { "$ARVO" "$@" > "$tmp/out" 2> "$tmp/err" < /dev/null; rc=$?; }
-want_rc() { [ "$rc" -eq "$1" ] || why="${why:+$why; }exit status $rc, expected $1"; }
-# has FILE ERE / is FILE TEXT / absent FILE
-has() { grep -Eq -- "$2" "$tmp/$1" || why="${why:+$why; }$1 lacks /$2/"; }
-is() { printf '%s\n' "$2" | cmp -s - "$tmp/$1" || why="${why:+$why; }$1 is not \"$2\""; }
-absent() { [ ! -e "$tmp/$1" ] || why="${why:+$why; }$1 exists"; }
-same() { cmp -s "$tmp/$1" "$tmp/$2" || why="${why:+$why; }$1 and $2 differ"; }
-report() {
-	n=$((n + 1))
-	if [ -z "$why" ]; then
-		echo "ok $n - $1"
-	else
-		echo "not ok $n - $1"
-		echo "#   $why"
-		for s in out err; do
-			[ -s "$tmp/$s" ] && { echo "#   std$s:"; head -8 "$tmp/$s" | sed 's/^/#     /'; }
-		done
-	fi
-	why=
-}
+TIMEOUT=${TIMEOUT:-120}
+. tests/tap.sh
 G="--width 64 --height 48 --rays 20000"
 
 # ---- the EXR ---------------------------------------------------------------

@@ -58,3 +58,26 @@ done_case() {
 	fi
 	exit 0
 }
+
+# signal_case SIG CODE: sends SIG to a render once its threads run; it must
+# exit CODE, keep the earlier file of that name, and leave no temporary.
+signal_case() {
+	scene "$T/s.scn"
+	echo "earlier image" > "$T/out.exr"
+	"$ARVO" --quiet --threads 2 --spp 256 --width 500 --height 400 -o "$T/out.exr" "$T/s.scn" \
+		> /dev/null 2> "$T/.err" < /dev/null &
+	pid=$!
+	# wait until the render threads run (Linux: /proc/PID/task), at most 10 s
+	i=0
+	while [ "$i" -lt 200 ] && [ -d "/proc/$pid/task" ] && [ "$(ls "/proc/$pid/task" 2>/dev/null | wc -l)" -lt 2 ]; do
+		sleep 0.05
+		i=$((i + 1))
+	done
+	kill -"$1" "$pid"
+	wait "$pid"
+	rc=$?
+	want_rc "$2"
+	same "$T/out.exr" "earlier image"
+	no_temps "$T"
+	done_case "SIG$1 mid-render: exit $2, the earlier output kept, no temporary"
+}
