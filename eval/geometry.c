@@ -2,9 +2,11 @@
 /* geometry.c: objects. An object block collects its parameters and
  * modifiers; when it ends, the primitive's geom_ function (one per PRIM of
  * tracer/objects.def) checks the parameters and fixes the geometry. */
+#include <math.h>
 #include <string.h>
 
 #include "internal.h"
+#include "../tracer/polysolve.h"
 
 /* Applies X to an object, its texture and its children (POV-Ray moves the
  * texture with the object when the texture came first). */
@@ -39,6 +41,7 @@ static enum object_kind object_kind_of(enum tok kw)
 #define PRIM(n, w) case TK_##n: return OBJ_##n;
 #define CSG(n, w) case TK_##n: return OBJ_##n;
 #include "../tracer/objects.def"
+	case TK_QUARTIC: case TK_CUBIC: case TK_QUADRIC: return OBJ_POLY;
 	default: return OBJ_KIND_COUNT;
 	}
 }
@@ -139,7 +142,12 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL: case TK_NORMAL:
 		object_material_block(E, s, o, n);
 		return;
-	case TK_BOUNDED_BY: return; /* POV-Ray's bounding hint: arvo bounds every object itself */
+	case TK_BOUNDED_BY:
+		/* POV-Ray's bounding hint: arvo bounds every object itself, but an
+		 * unbounded polynomial surface is only seen inside its bound */
+		if (o->kind == OBJ_POLY)
+			clip(E, s, o, n);
+		return;
 	case TK_CLIPPED_BY: clip(E, s, o, n); return;
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;
 	case TK_NO_IMAGE: o->flags |= OF_NO_IMAGE; return;
@@ -158,7 +166,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		o->flags |= OF_OPEN;
 		return;
 	case TK_STURM:
-		if (o->kind != OBJ_TORUS)
+		if (o->kind != OBJ_TORUS && o->kind != OBJ_POLY)
 			misplaced(E, s, n);
 		arg_bool(E, n);
 		o->flags |= OF_STURM;
@@ -311,6 +319,71 @@ static void geom_triangle(struct eval *E, struct sink *s, struct object *o)
 		o->g.triangle.p[i] = PV(i);
 	if (v_len(v_cross(v_sub(PV(1), PV(0)), v_sub(PV(2), PV(0)))) == 0)
 		eval_fail(E, s->loc, "degenerate triangle (its corners are collinear)");
+}
+
+bool object_long_vector(struct eval *E, struct sink *s, const struct node *n)
+{
+	if (n->nkids <= 5 || (s->kw != TK_POLY && s->kw != TK_QUARTIC && s->kw != TK_CUBIC))
+		return false;
+	if (s->list)
+		eval_fail(E, n->loc, "%s takes one coefficient vector", tok_name(s->kw));
+	if (s->modified)
+		eval_fail(E, n->loc, "%s parameters must come before its modifiers", tok_name(s->kw));
+	s->list = ARENA_ARRAY(&E->arena, double, n->nkids);
+	for (int i = 0; i < n->nkids; i++)
+		s->list[i] = eval_float(E, n->kids[i]);
+	s->nlist = n->nkids;
+	s->list_loc = n->loc;
+	return true;
+}
+
+/* The polynomial of order n from POV-Ray's coefficient list: xⁿ first, the
+ * power of x falling slowest, then of y, then of z (a constant last). */
+static void poly_from_list(struct eval *E, struct object *o, int n, const double *c)
+{
+	struct polynomial *P = NEW(E, struct polynomial);
+	int count = (n + 1) * (n + 2) * (n + 3) / 6, k = 0;
+	P->order = n;
+	P->t = ARENA_ARRAY(&SC(E)->arena, struct poly_term, count);
+	for (int i = n; i >= 0; i--)
+		for (int j = n - i; j >= 0; j--)
+			for (int l = n - i - j; l >= 0; l--, k++)
+				if (c[k] != 0)
+					P->t[P->nterms++] = (struct poly_term){c[k], {i, j, l}};
+	o->g.poly.p = P;
+}
+
+/* poly { N, <…> }, quartic { <35> }, cubic { <20> }, quadric { <A,B,C>,
+ * <D,E,F>, <G,H,I>, J }: A x² + B y² + C z² + D xy + E xz + F yz + G x +
+ * H y + I z + J. */
+static void geom_poly(struct eval *E, struct sink *s, struct object *o)
+{
+	int n = s->kw == TK_QUARTIC ? 4 : s->kw == TK_CUBIC ? 3 : 2;
+	if (s->kw == TK_QUADRIC) {
+		want_params(E, s, "four values: quadric { <A,B,C>, <D,E,F>, <G,H,I>, J }", 4, 4);
+		struct vec3 a = PV(0), b = PV(1), c = PV(2);
+		/* the list order of poly 2: x² xy xz x y² yz y z² z 1 */
+		double l[10] = {a.x, b.x, b.y, c.x, a.y, b.z, c.y, a.z, c.z, PF(3)};
+		poly_from_list(E, o, 2, l);
+	} else {
+		if (s->kw == TK_POLY) {
+			want_params(E, s, "an order and its coefficients: poly { N, <a, b, …> }", 1, 1);
+			double f = PF(0);
+			if (!(f >= 2 && f <= POLY_MAX_DEGREE && f == floor(f)))
+				eval_fail(E, s->ploc[0], "poly order must be an integer from 2 to %d, found %g", POLY_MAX_DEGREE, f);
+			n = (int)f;
+		} else {
+			want_params(E, s, n == 4 ? "35 coefficients: quartic { <a, b, …> }" : "20 coefficients: cubic { <a, b, …> }", 0, 0);
+		}
+		int count = (n + 1) * (n + 2) * (n + 3) / 6;
+		if (!s->list)
+			eval_fail(E, s->loc, "%s expects a vector of %d coefficients", tok_name(s->kw), count);
+		if (s->nlist != count)
+			eval_fail(E, s->list_loc, "%s of order %d expects %d coefficients, found %d", tok_name(s->kw), n, count, s->nlist);
+		poly_from_list(E, o, n, s->list);
+	}
+	if (o->g.poly.p->nterms == 0)
+		eval_fail(E, s->loc, "%s has no non-zero coefficient", tok_name(s->kw));
 }
 
 /* The geometry builder of each primitive, indexed by enum object_kind. */

@@ -45,6 +45,9 @@ struct sink {
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
+	double *list;              /* SK_OBJECT: a long coefficient vector <a, b, …> (poly) */
+	int nlist;                 /* its length */
+	struct srcloc list_loc;    /* where it was written */
 };
 
 struct eval {
@@ -163,6 +166,9 @@ struct pattern *pat_w(struct eval *E, struct pigment *p);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* A vector of more than 5 components in an object that takes one (poly's
+ * coefficients): stored in the sink; false when n is not one. */
+bool object_long_vector(struct eval *E, struct sink *s, const struct node *n);
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */

@@ -152,6 +152,18 @@ struct photon_spec {
 	bool pass_through; /* pass_through */
 };
 
+/* A polynomial surface F(x,y,z) = Σ a·xⁱyʲzᵏ = 0 (poly, quartic, cubic,
+ * quadric), inside where F < 0; only its non-zero terms. */
+struct poly_term {
+	double a;      /* coefficient */
+	int e[3];      /* exponents of x, y, z */
+};
+struct polynomial {
+	int order;     /* total degree, 2..7 */
+	int nterms;
+	struct poly_term *t;
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -164,6 +176,7 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
+		struct { const struct polynomial *p; } poly;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */

@@ -61,6 +61,23 @@ double shape_integrate_area(const struct object *o, double u0, double u1, double
  * (or z when w is near x) made perpendicular to w. */
 void shape_basis(struct vec3 w, struct vec3 *e1, struct vec3 *e2);
 
+/* ---- the radial parametrisation of implicit surfaces (shape.c) ----------
+ * Surfaces with no natural (u,v) (poly, blob, superellipsoid) are indexed
+ * by the direction from a centre c, with the sphere's angles (φ = 2πu about
+ * y from +x towards −z, θ = πv from −y): T(u,v) is the FIRST surface point
+ * along the ray from c in that direction (docs/parametrisations.md,
+ * "Implicit surfaces"). */
+
+/* Fills lh->u, v, dpdu, dpdv for a hit at lh->p with normal lh->n. */
+void prim_radial_hit(struct vec3 c, struct local_hit *lh);
+/* T(u,v) and its partials, by intersecting the ray from c (through
+ * intersect, in the object frame); false when that ray meets nothing or
+ * grazes the surface. */
+bool prim_radial_point(const struct object *o, struct vec3 c,
+                       bool (*intersect)(const struct object *, const struct ray *, double,
+                                         double, struct local_hit *),
+                       double u, double v, struct vec3 *p, struct vec3 *dpdu, struct vec3 *dpdv);
+
 /* Real roots of a·t² + b·t + c = 0 (a ≠ 0), t0 ≤ t1, without cancellation.
  * disc is b² − 4ac, passed in so callers may compute it more accurately. */
 static inline bool prim_quadratic(double a, double b, double c, double disc, double *t0,
