@@ -145,10 +145,14 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_BOUNDED_BY:
 		/* POV-Ray's bounding hint: arvo bounds every object itself, but an
 		 * unbounded polynomial surface is only seen inside its bound */
-		if (o->kind == OBJ_POLY)
+		if (o->kind == OBJ_POLY && !(n->nkids == 1 && n->kids[0]->op == TK_CLIPPED_BY))
 			clip(E, s, o, n);
 		return;
-	case TK_CLIPPED_BY: clip(E, s, o, n); return;
+	case TK_CLIPPED_BY:
+		if (n->kind != N_BLOCK)
+			misplaced(E, s, n); /* the word form belongs in bounded_by */
+		clip(E, s, o, n);
+		return;
 	case TK_NO_SHADOW: o->flags |= OF_NO_SHADOW; return;
 	case TK_NO_IMAGE: o->flags |= OF_NO_IMAGE; return;
 	case TK_NO_REFLECTION: o->flags |= OF_NO_REFLECTION; return;

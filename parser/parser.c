@@ -209,7 +209,8 @@ static void parse_args(struct parser *p, struct node *call)
 	expect_close(p, TK_RPAREN, TK_LPAREN, open);
 }
 
-/* vector := '<' expr {',' expr} '>' */
+/* vector := '<' expr {[','] expr} '>'; POV-Ray lets a comma go missing
+ * before a number, a name or '(' (shapes.inc's quartics rely on it) */
 static struct node *parse_vector(struct parser *p)
 {
 	struct node *v = node(p, N_VEC, p->tok.loc);
@@ -218,7 +219,7 @@ static struct node *parse_vector(struct parser *p)
 	p->no_gt = 1;
 	do
 		ast_push(p->arena, v, parse_expr(p));
-	while (accept(p, TK_COMMA));
+	while (accept(p, TK_COMMA) || check(p, TK_NUMBER) || check(p, TK_IDENT) || check(p, TK_LPAREN));
 	p->no_gt = saved;
 	expect_close(p, TK_GT, TK_LT, v->loc);
 	return v;
@@ -500,6 +501,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	}
 	switch (sh) {
 	case SH_BLOCK:
+		if (t.kind == TK_CLIPPED_BY && !check(p, TK_LBRACE))
+			return n; /* bounded_by { clipped_by }: a word */
+		if (t.kind == TK_CYLINDER && !check(p, TK_LBRACE)) {
+			ast_push(p->arena, n, parse_expr(p)); /* the camera's cylinder N */
+			return n;
+		}
 		n->kind = N_BLOCK;
 		if (t.kind == TK_NORMAL) {
 			p->in_normal++;
