@@ -217,7 +217,11 @@ struct light {
 	bool photons_reflection;    /* photons { reflection on } (default on) */
 };
 
-enum camera_kind { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
+/* POV-Ray's camera types (tracer/camera.c has their projections). */
+enum camera_kind {
+	CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC, CAM_FISHEYE, CAM_ULTRA_WIDE, CAM_PANORAMIC,
+	CAM_CYL1, CAM_CYL2, CAM_CYL3, CAM_CYL4, CAM_SPHERICAL
+};
 
 /* The camera after POV-Ray's rules were applied: location, and the
  * direction/up/right frame that spans the image (right's length is the image
@@ -226,7 +230,9 @@ struct camera {
 	enum camera_kind kind;
 	struct srcloc loc;
 	struct vec3 location, direction, up, right, sky, look_at;
-	double angle;          /* horizontal field of view in degrees (0: from vectors) */
+	double angle;          /* horizontal field of view in degrees (0: from vectors;
+	                        * POV-Ray's 90 for fisheye, ultra_wide_angle, cylinder) */
+	double v_angle;        /* spherical: vertical field of view (0: half of angle) */
 	double aperture;       /* depth of field (0: pinhole) */
 	struct vec3 focal_point;
 	int blur_samples;
