@@ -390,6 +390,19 @@ static void geom_poly(struct eval *E, struct sink *s, struct object *o)
 		eval_fail(E, s->loc, "%s has no non-zero coefficient", tok_name(s->kw));
 }
 
+static void geom_superellipsoid(struct eval *E, struct sink *s, struct object *o)
+{
+	want_params(E, s, "two exponents: superellipsoid { <e, n> }", 1, 1);
+	struct value *v = &s->params[0];
+	if (v->kind != V_VECTOR || v->n != 2)
+		eval_fail(E, s->ploc[0], "superellipsoid expects a 2-component vector <e, n>");
+	for (int i = 0; i < 2; i++)
+		if (!(v->v[i] >= 1e-3 && v->v[i] <= 1e3))
+			eval_fail(E, s->ploc[0], "superellipsoid exponents must be from 0.001 to 1000, found %g", v->v[i]);
+	o->g.superellipsoid.e = v->v[0];
+	o->g.superellipsoid.n = v->v[1];
+}
+
 /* The geometry builder of each primitive, indexed by enum object_kind. */
 typedef void geom_fn(struct eval *E, struct sink *s, struct object *o);
 static geom_fn *const geom_of[OBJ_KIND_COUNT] = {

@@ -177,6 +177,7 @@ struct object {
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
 		struct { const struct polynomial *p; } poly;
+		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
