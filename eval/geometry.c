@@ -7,6 +7,7 @@
 
 #include "internal.h"
 #include "../tracer/polysolve.h"
+#include "../tracer/shape.h"
 
 /* Applies X to an object, its texture and its children (POV-Ray moves the
  * texture with the object when the texture came first). */
@@ -124,9 +125,62 @@ static void clip(struct eval *E, struct sink *s, struct object *o, const struct 
 	s->target = c;
 }
 
+#define SINK_BLOB_PART 1u /* sink.pending: a blob's sphere or cylinder */
+
+/* The blob o is building (made on first use). */
+static struct blob *blob_of(struct eval *E, struct object *o)
+{
+	if (!o->g.blob.b) {
+		struct blob *b = NEW(E, struct blob);
+		b->threshold = 1; /* POV-Ray's default */
+		o->g.blob.b = b;
+	}
+	return (struct blob *)o->g.blob.b;
+}
+
+/* A blob's sphere { c, r, [strength] s } or cylinder { a, b, r, [strength] s },
+ * with its own transforms (its texture is not used). */
+static void blob_component(struct eval *E, struct object *o, const struct node *n)
+{
+	struct object tmp = {.kind = n->op == TK_SPHERE ? OBJ_SPHERE : OBJ_CYLINDER, .loc = n->loc};
+	struct sink sub;
+	sink_init(&sub, SK_OBJECT, n->op, n->loc, &tmp);
+	sub.pending = SINK_BLOB_PART;
+	eval_items(E, n, &sub);
+	bool cyl = n->op == TK_CYLINDER;
+	int k = cyl ? 4 : 3;
+	if (sub.nparams != k)
+		eval_fail(E, n->loc, "%s", cyl ? "a blob cylinder expects two end points, a radius and a strength: cylinder { <a>, <b>, r, strength s }"
+		                                : "a blob sphere expects a centre, a radius and a strength: sphere { <c>, r, strength s }");
+	struct blob_comp c = {.cylinder = cyl, .xf = tmp.xf};
+	c.a = val_want_vec3(E, &sub.params[0], sub.ploc[0]);
+	if (cyl) {
+		c.b = val_want_vec3(E, &sub.params[1], sub.ploc[1]);
+		if (!(v_len(v_sub(c.b, c.a)) > 0))
+			eval_fail(E, sub.ploc[1], "blob cylinder end points coincide");
+	}
+	c.r = val_want_float(E, &sub.params[k - 2], sub.ploc[k - 2]);
+	c.s = val_want_float(E, &sub.params[k - 1], sub.ploc[k - 1]);
+	if (!(c.r > 0))
+		eval_fail(E, sub.ploc[k - 2], "blob component radius must be positive, found %g", c.r);
+	struct blob *b = blob_of(E, o);
+	if ((b->n & (b->n - 1)) == 0) {
+		struct blob_comp *more = ARENA_ARRAY(&SC(E)->arena, struct blob_comp, b->n ? 2 * b->n : 1);
+		if (b->n)
+			memcpy(more, b->c, sizeof *more * (size_t)b->n);
+		b->c = more;
+	}
+	b->c[b->n++] = c;
+}
+
 void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct xform X;
+	if (n->op == TK_STRENGTH && (s->pending & SINK_BLOB_PART)) {
+		struct value v = arg1(E, n);
+		object_value(E, s, &v, n->loc);
+		return;
+	}
 	if (s->kw == TK_OBJECT && !s->target && is_object_kw(n->op) && n->kind == N_BLOCK) {
 		s->target = eval_block(E, n).p.obj; /* object { Macro() } with a macro yielding an object */
 		return;
@@ -169,8 +223,20 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 			misplaced(E, s, n);
 		o->flags |= OF_OPEN;
 		return;
+	case TK_THRESHOLD:
+		if (o->kind != OBJ_BLOB)
+			misplaced(E, s, n);
+		blob_of(E, o)->threshold = arg_float(E, n);
+		if (!(blob_of(E, o)->threshold > 0))
+			eval_fail(E, n->kids[0]->loc, "blob threshold must be positive");
+		return;
+	case TK_HIERARCHY:
+		if (o->kind != OBJ_BLOB)
+			misplaced(E, s, n);
+		arg_bool(E, n); /* POV-Ray's bounding hint */
+		return;
 	case TK_STURM:
-		if (o->kind != OBJ_TORUS && o->kind != OBJ_POLY)
+		if (o->kind != OBJ_TORUS && o->kind != OBJ_POLY && o->kind != OBJ_BLOB)
 			misplaced(E, s, n);
 		arg_bool(E, n);
 		o->flags |= OF_STURM;
@@ -191,6 +257,10 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	default:
+		if (o->kind == OBJ_BLOB && (n->op == TK_SPHERE || n->op == TK_CYLINDER) && n->kind == N_BLOCK) {
+			blob_component(E, o, n);
+			return;
+		}
 		if (is_object_kw(n->op) && n->kind == N_BLOCK) {
 			if (o->kind < OBJ_FIRST_CSG)
 				eval_fail(E, n->loc, "%s cannot contain other objects; use union { } to group them", tok_name(s->kw));
@@ -401,6 +471,16 @@ static void geom_superellipsoid(struct eval *E, struct sink *s, struct object *o
 			eval_fail(E, s->ploc[0], "superellipsoid exponents must be from 0.001 to 1000, found %g", v->v[i]);
 	o->g.superellipsoid.e = v->v[0];
 	o->g.superellipsoid.n = v->v[1];
+}
+
+static void geom_blob(struct eval *E, struct sink *s, struct object *o)
+{
+	want_params(E, s, "components: blob { threshold T sphere { <c>, r, strength s } … }", 0, 0);
+	struct blob *b = blob_of(E, o);
+	if (b->n == 0)
+		eval_fail(E, s->loc, "blob needs at least one sphere or cylinder component");
+	struct bbox all = shape_bounds(&(struct object){.kind = OBJ_BLOB, .g.blob.b = b});
+	b->centre = v_scale(v_add(all.lo, all.hi), 0.5);
 }
 
 /* The geometry builder of each primitive, indexed by enum object_kind. */

@@ -164,6 +164,21 @@ struct polynomial {
 	struct poly_term *t;
 };
 
+/* A blob: components adding s·(1 − d²/r²)² within r of a centre (sphere) or
+ * a segment (cylinder), the surface where the sum is threshold. */
+struct blob_comp {
+	bool cylinder;            /* else a sphere */
+	struct vec3 a, b;         /* centre; or the segment's ends */
+	double r, s;              /* radius, strength (may be negative) */
+	const struct xform *xf;   /* component frame → blob frame; NULL: identity */
+};
+struct blob {
+	double threshold;
+	int n;
+	struct blob_comp *c;
+	struct vec3 centre;       /* of the components' bounds: the (u,v) centre */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -178,6 +193,7 @@ struct object {
 		struct { struct vec3 p[3]; } triangle;
 		struct { const struct polynomial *p; } poly;
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
+		struct { const struct blob *b; } blob;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
