@@ -179,6 +179,30 @@ struct blob {
 	struct vec3 centre;       /* of the components' bounds: the (u,v) centre */
 };
 
+/* A triangle mesh (mesh, mesh2, smooth_triangle): triangles index the
+ * vertex and normal arrays; a bounding volume hierarchy over them is built
+ * by mesh_finish (tracer/shape.h). */
+struct mesh_tri {
+	int v[3];                 /* vertex indices */
+	int n[3];                 /* normal indices, or -1 (flat) */
+};
+struct mesh_node {
+	struct bbox b;
+	int first, count;         /* leaf: triangles order[first … first+count−1]; count 0: inner,
+	                           * children at first and first+1 */
+};
+struct mesh {
+	int nv, nn, nt;
+	struct vec3 *vert, *norm;
+	struct mesh_tri *tri;
+	struct mesh_node *node;   /* node[0] is the root */
+	int nnode;
+	int *order;               /* triangle indices in leaf order */
+	int side;                 /* the (u,v) atlas is side × side cells */
+	bool has_inside;          /* inside_vector given: the mesh is a solid */
+	struct vec3 inside_dir;   /* inside_vector */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -194,6 +218,7 @@ struct object {
 		struct { const struct polynomial *p; } poly;
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { const struct blob *b; } blob;
+		struct { const struct mesh *m; } mesh;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */

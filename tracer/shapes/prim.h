@@ -92,6 +92,27 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
 	return true;
 }
 
+/* Area of {u0≤u≤u1, v0≤v≤v1, u+v≤1} for a rectangle already inside the
+ * positive quadrant: the rectangle minus the corner cut off by u + v = 1. */
+static inline double prim_tri_clipped_area(double u0, double u1, double v0, double v1)
+{
+	double full = (u1 - u0) * (v1 - v0);
+	double over = u1 + v1 - 1; /* how far the top-right corner is past the line */
+	if (over <= 0)
+		return full;
+	if (u0 + v0 >= 1)
+		return 0;
+	/* the cut corner is a right triangle of leg "over", minus what sticks
+	 * out past the rectangle's left and bottom edges */
+	double cut = 0.5 * over * over;
+	double lx = over - (u1 - u0), ly = over - (v1 - v0);
+	if (lx > 0)
+		cut -= 0.5 * lx * lx;
+	if (ly > 0)
+		cut -= 0.5 * ly * ly;
+	return full - cut;
+}
+
 /* Length of the overlap of [a0,a1] and [b0,b1] (0 when disjoint). */
 static inline double prim_overlap(double a0, double a1, double b0, double b1)
 {
