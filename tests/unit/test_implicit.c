@@ -3,7 +3,9 @@
  * a quartic torus against the torus primitive, quadric and superellipsoid
  * <1,1> against the sphere, a one-component blob against the sphere of
  * radius r·√(1 − √(T/s)), their (u,v) round trips and areas through the
- * radial parametrisation, and the camera types' central and edge rays. */
+ * radial parametrisation, a mesh cube against the box (hits, inside, atlas
+ * areas) and a large random mesh against brute force, and the camera
+ * types' central and edge rays. */
 #include <stdio.h>
 
 #include "../../tracer/camera.h"
@@ -174,6 +176,119 @@ static void t_radial_round_trip(void)
 	CHECK(n > 150);
 }
 
+/* The 12 triangles of the cube [−1,1]³, counter-clockwise from outside. */
+static struct mesh cube_mesh(struct arena *a)
+{
+	static struct vec3 P[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+	                           {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+	static struct mesh_tri T[12] = {
+		{{0, 2, 1}, {-1, -1, -1}}, {{0, 3, 2}, {-1, -1, -1}}, {{4, 5, 6}, {-1, -1, -1}},
+		{{4, 6, 7}, {-1, -1, -1}}, {{0, 1, 5}, {-1, -1, -1}}, {{0, 5, 4}, {-1, -1, -1}},
+		{{3, 6, 2}, {-1, -1, -1}}, {{3, 7, 6}, {-1, -1, -1}}, {{0, 7, 3}, {-1, -1, -1}},
+		{{0, 4, 7}, {-1, -1, -1}}, {{1, 2, 6}, {-1, -1, -1}}, {{1, 6, 5}, {-1, -1, -1}}};
+	struct mesh m = {.nv = 8, .nt = 12, .vert = P, .tri = T, .has_inside = true, .inside_dir = {0.3, 1, 0.1}};
+	int bad;
+	CHECK(mesh_finish(&m, a, &bad));
+	return m;
+}
+
+static void t_mesh_cube(void)
+{
+	struct arena a;
+	arena_init(&a);
+	struct mesh m = cube_mesh(&a);
+	struct object me = mk_obj(OBJ_MESH), bx = mk_obj(OBJ_BOX);
+	me.g.mesh.m = &m;
+	bx.g.box.lo = v3(-1, -1, -1);
+	bx.g.box.hi = v3(1, 1, 1);
+	rng_seed(9);
+	int n = 0;
+	for (int i = 0; i < 2000; i++) {
+		struct xform X = rnd_xform(false, true);
+		me.xf = bx.xf = xf_keep(X);
+		struct ray r = aimed_ray(1.5);
+		struct hit hm, hb;
+		bool b = shape_intersect(&bx, &r, 1e-9, INFINITY, &hb);
+		CHECK(shape_intersect(&me, &r, 1e-9, INFINITY, &hm) == b);
+		if (b) {
+			n++;
+			CHECK_NEAR(hm.t, hb.t, 1e-12 * hb.t);
+			CHECK(v_dot(hm.n, hb.n) > 1 - 1e-12);
+			CHECK(hm.entering == hb.entering);
+		}
+		struct vec3 p = xf_point(&X, rnd_vec(-1.3, 1.3));
+		CHECK(shape_inside(&me, p) == shape_inside(&bx, p));
+	}
+	CHECK(n > 500);
+	me.xf = NULL;
+	CHECK_NEAR(shape_area(&me), 24, 1e-12);
+	/* a 4×4 atlas: triangle 5 is cell (1,1); its half below the diagonal */
+	CHECK_NEAR(shape_cell_area(&me, 0.25, 0.5, 0.25, 0.5), 2, 1e-12);
+	CHECK_NEAR(shape_cell_area(&me, 0.25, 0.375, 0.25, 0.375), 1, 1e-12); /* a quarter of the cell, |e1×e2| = 4 */
+	CHECK_NEAR(shape_cell_area(&me, 0.5, 1, 0.75, 1), 0, 0); /* past the 12th triangle */
+	/* round trip through the atlas */
+	for (int i = 0; i < 200; i++) {
+		double u = rndr(0, 1), v = rndr(0, 0.75);
+		double ca = u * 4 - floor(u * 4), cb = v * 4 - floor(v * 4);
+		if (ca + cb > 0.98 || ca < 0.01 || cb < 0.01)
+			continue;
+		struct vec3 p, du, dv;
+		CHECK(shape_uv_point(&me, u, v, &p, &du, &dv));
+		struct vec3 nn = v_cross(du, dv);
+		struct ray r = {v_madd(p, nn, 0.5 / v_len(nn)), v_neg(nn)};
+		struct hit h;
+		CHECK(shape_intersect(&me, &r, 0, INFINITY, &h));
+		CHECK_NEAR(h.u, u, 1e-12);
+		CHECK_NEAR(h.v, v, 1e-12);
+		CHECK(h.entering);
+	}
+	arena_free(&a);
+}
+
+/* 3000 random triangles: the hierarchy finds what a loop over all finds. */
+static void t_mesh_brute(void)
+{
+	enum { NT = 3000 };
+	static struct vec3 V[3 * NT];
+	static struct mesh_tri T[NT];
+	rng_seed(21);
+	for (int i = 0; i < NT; i++) {
+		struct vec3 c = rnd_vec(-5, 5);
+		for (int k = 0; k < 3; k++) {
+			V[3 * i + k] = v_add(c, rnd_vec(-0.4, 0.4));
+			T[i].v[k] = 3 * i + k;
+			T[i].n[k] = -1;
+		}
+	}
+	struct arena a;
+	arena_init(&a);
+	struct mesh m = {.nv = 3 * NT, .nt = NT, .vert = V, .tri = T};
+	int bad;
+	CHECK(mesh_finish(&m, &a, &bad));
+	struct object me = mk_obj(OBJ_MESH);
+	me.g.mesh.m = &m;
+	int agree = 0, hits = 0;
+	for (int i = 0; i < 500; i++) {
+		struct ray r = aimed_ray(5);
+		double best = INFINITY;
+		for (int t = 0; t < NT; t++) {
+			struct object tr = mk_obj(OBJ_TRIANGLE);
+			for (int k = 0; k < 3; k++)
+				tr.g.triangle.p[k] = V[3 * t + k];
+			struct hit h;
+			if (shape_intersect(&tr, &r, 0, best, &h))
+				best = h.t;
+		}
+		struct hit h;
+		bool got = shape_intersect(&me, &r, 0, INFINITY, &h);
+		hits += got;
+		agree += got == (best < INFINITY) && (!got || h.t == best);
+	}
+	CHECK(hits > 200);
+	CHECK(agree == 500);
+	arena_free(&a);
+}
+
 static void t_cameras(void)
 {
 	struct camera sc = scene_default_camera();
@@ -216,6 +331,8 @@ int main(void)
 	RUN(t_sphere_likes);
 	RUN(t_blob_sphere);
 	RUN(t_radial_round_trip);
+	RUN(t_mesh_cube);
+	RUN(t_mesh_brute);
 	RUN(t_cameras);
 	return test_done();
 }
