@@ -139,6 +139,18 @@ static struct blob *blob_of(struct eval *E, struct object *o)
 	return (struct blob *)o->g.blob.b;
 }
 
+static void blob_add(struct eval *E, struct object *o, struct blob_comp c)
+{
+	struct blob *b = blob_of(E, o);
+	if ((b->n & (b->n - 1)) == 0) {
+		struct blob_comp *more = ARENA_ARRAY(&SC(E)->arena, struct blob_comp, b->n ? 2 * b->n : 1);
+		if (b->n)
+			memcpy(more, b->c, sizeof *more * (size_t)b->n);
+		b->c = more;
+	}
+	b->c[b->n++] = c;
+}
+
 /* A blob's sphere { c, r, [strength] s } or cylinder { a, b, r, [strength] s },
  * with its own transforms (its texture is not used). */
 static void blob_component(struct eval *E, struct object *o, const struct node *n)
@@ -164,15 +176,22 @@ static void blob_component(struct eval *E, struct object *o, const struct node *
 	c.s = val_want_float(E, &sub.params[k - 1], sub.ploc[k - 1]);
 	if (!(c.r > 0))
 		eval_fail(E, sub.ploc[k - 2], "blob component radius must be positive, found %g", c.r);
-	struct blob *b = blob_of(E, o);
-	if ((b->n & (b->n - 1)) == 0) {
-		struct blob_comp *more = ARENA_ARRAY(&SC(E)->arena, struct blob_comp, b->n ? 2 * b->n : 1);
-		if (b->n)
-			memcpy(more, b->c, sizeof *more * (size_t)b->n);
-		b->c = more;
-	}
-	b->c[b->n++] = c;
+	blob_add(E, o, c);
 }
+
+/* component s, r, <c>: POV-Ray's old spelling of a blob sphere. */
+static void blob_old_component(struct eval *E, struct object *o, const struct node *n)
+{
+	if (n->nkids != 3)
+		eval_fail(E, n->loc, "component expects a strength, a radius and a centre: component s, r, <c>");
+	struct blob_comp c = {.s = eval_float(E, n->kids[0]), .r = eval_float(E, n->kids[1])};
+	struct value v = eval_expr(E, n->kids[2]);
+	c.a = val_want_vec3(E, &v, n->kids[2]->loc);
+	if (!(c.r > 0))
+		eval_fail(E, n->kids[1]->loc, "blob component radius must be positive, found %g", c.r);
+	blob_add(E, o, c);
+}
+
 
 /* ---- meshes ---------------------------------------------------------------- */
 
@@ -445,6 +464,11 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (s->kw != TK_MESH2)
 			misplaced(E, s, n);
 		mesh2_block(E, o, n);
+		return;
+	case TK_COMPONENT:
+		if (o->kind != OBJ_BLOB)
+			misplaced(E, s, n);
+		blob_old_component(E, o, n);
 		return;
 	case TK_HIERARCHY:
 		if (o->kind != OBJ_BLOB && o->kind != OBJ_MESH)
