@@ -185,6 +185,7 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_FISHEYE: c->kind = CAM_FISHEYE; return;
 	case TK_ULTRA_WIDE_ANGLE: c->kind = CAM_ULTRA_WIDE; return;
 	case TK_PANORAMIC: c->kind = CAM_PANORAMIC; return;
+	case TK_OMNIMAX: c->kind = CAM_OMNIMAX; return;
 	case TK_SPHERICAL: c->kind = CAM_SPHERICAL; return;
 	case TK_CYLINDER: {
 		if (n->kind == N_BLOCK)

@@ -17,7 +17,11 @@
  *   cylinder 3        as 1 without the Û term, from location + y|U| Û
  *   cylinder 4        as 2 without the R̂ term, from location + x|R| R̂
  *   spherical         D turned by y·v_angle about R (upwards), then by
- *                     x·angle about U (to the right) */
+ *                     x·angle about U (to the right)
+ *   omnimax           (a, b) = (2x, 2y) fitted to the dome's 1.283458
+ *                     aspect; no ray past r = 1 or more than 45° below D;
+ *                     θ = 1.411269 r − 0.09439 r³ + 0.25674 r⁵, then as
+ *                     fisheye */
 #include "camera.h"
 
 #include <math.h>
@@ -42,7 +46,7 @@ void cam_setup(struct cam *c, const struct camera *sc)
 	double deg = sc->angle > 0 ? sc->angle : sc->kind == CAM_SPHERICAL ? 360 : 90;
 	c->angle = deg * M_PI / 180;
 	c->v_angle = (sc->v_angle > 0 ? sc->v_angle : deg / 2) * M_PI / 180;
-	if (sc->kind != CAM_PERSPECTIVE && sc->kind != CAM_ORTHOGRAPHIC && sc->kind != CAM_PANORAMIC &&
+	if (sc->kind != CAM_PERSPECTIVE && sc->kind != CAM_ORTHOGRAPHIC && sc->kind != CAM_PANORAMIC && /* the rest use unit vectors */
 	    sc->kind != CAM_SPHERICAL) {
 		c->right = c->lu;
 		c->up = c->lv;
@@ -102,6 +106,26 @@ static struct ray pinhole(const struct cam *c, double x, double y)
 			r.d = v_madd(r.d, R, x * c->len_right);
 		else
 			r.o = v_madd(c->loc, R, x * c->len_right);
+		break;
+	}
+	case CAM_OMNIMAX: {
+		double a = 2 * x, b = 2 * y, asp = c->len_right / c->len_up;
+		if (asp > 1.283458) {
+			a *= asp / 1.283458;
+			b = (b - 1) / 1.283458 + 1;
+		} else if (asp > 1) {
+			b = (b - 1) / asp + 1;
+		} else {
+			b /= asp;
+		}
+		double rad = sqrt(a * a + b * b);
+		if (rad > 1)
+			break;
+		double phi = rad > 0 ? atan2(b, a) : 0;
+		double th = rad * (1.411269 + rad * rad * (-0.09439 + rad * rad * 0.25674));
+		if (sin(phi) * sin(th) < -cos(th)) /* tan 135° = −1: below 45° under the axis */
+			break;
+		r.d = v_add(v_add(v_scale(R, cos(phi) * sin(th)), v_scale(U, sin(phi) * sin(th))), v_scale(D, cos(th)));
 		break;
 	}
 	case CAM_SPHERICAL:

@@ -262,7 +262,7 @@ struct light {
 /* POV-Ray's camera types (tracer/camera.c has their projections). */
 enum camera_kind {
 	CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC, CAM_FISHEYE, CAM_ULTRA_WIDE, CAM_PANORAMIC,
-	CAM_CYL1, CAM_CYL2, CAM_CYL3, CAM_CYL4, CAM_SPHERICAL
+	CAM_CYL1, CAM_CYL2, CAM_CYL3, CAM_CYL4, CAM_SPHERICAL, CAM_OMNIMAX
 };
 
 /* The camera after POV-Ray's rules were applied: location, and the

@@ -309,6 +309,13 @@ static void t_cameras(void)
 	CHECK_NEAR(v_norm(r.d).y, 1, 1e-12);
 	r = cam_ray(&c, 0.02, 0.02, 0, 0); /* a corner: outside the circle */
 	CHECK(v_dot(r.d, r.d) == 0);
+	sc.kind = CAM_OMNIMAX; /* 4:3 is wider than the dome: its axis is below the image centre */
+	sc.angle = 0;
+	cam_setup(&c, &sc);
+	r = cam_ray(&c, 0.5, 0.5 + 0.283458 / 2, 0, 0);
+	CHECK_NEAR(v_norm(r.d).z, 1, 1e-12);
+	r = cam_ray(&c, 0.01, 0.01, 0, 0);
+	CHECK(v_dot(r.d, r.d) == 0);
 	sc.kind = CAM_SPHERICAL;
 	sc.angle = 360;
 	sc.v_angle = 180;
