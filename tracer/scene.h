@@ -115,6 +115,11 @@ struct texture {
 
 /* ---- objects ------------------------------------------------------------ */
 
+struct extrusion;
+struct flat_outline;
+struct revolution;
+struct sor_shape;
+
 /* The kinds, from objects.def: every primitive, then every CSG kind. */
 enum object_kind {
 #define PRIM(n, w) OBJ_##n,
@@ -164,6 +169,10 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
+		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
+		struct { const struct flat_outline *f; } polygon;
+		struct { const struct revolution *r; } lathe;
+		struct { const struct sor_shape *s; } sor;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
