@@ -103,6 +103,8 @@ char *eval_strdup(struct eval *E, const char *s, int len);
 /* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
+/* The same, but NULL (and no error) when it is not found or not allowed. */
+char *eval_try_file(struct eval *E, const char *name, struct srcloc loc);
 
 /* Counts one object or light made at loc against --max-objects. */
 void eval_count_object(struct eval *E, struct srcloc loc);

@@ -65,14 +65,19 @@ bool outline_keyword(struct eval *E, struct sink *s, struct object *o, const str
 		b->conic = n->op == TK_CONIC_SWEEP;
 		return true;
 	case TK_TTF: {
-		if (o->kind != OBJ_TEXT || b->n)
+		/* ttf "file" "string" t, o — or, with commas, ttf "file", "string", t, o */
+		if (o->kind != OBJ_TEXT || b->n || n->nkids < 1)
 			return false;
-		struct value v = arg1(E, n);
+		struct value v = eval_expr(E, n->kids[0]);
 		if (v.kind != V_STRING)
 			eval_fail(E, n->kids[0]->loc, "expected a font file name string after 'ttf', found %s",
 			          val_type_name(&v));
 		b->font = v.p.s;
 		b->font_loc = n->kids[0]->loc;
+		for (int i = 1; i < n->nkids; i++) {
+			struct value w = eval_expr(E, n->kids[i]);
+			outline_value(E, s, o, &w, n->kids[i]->loc);
+		}
 		return true;
 	}
 	default:
@@ -422,7 +427,20 @@ void geom_text(struct eval *E, struct sink *s, struct object *o)
 	                                          : val_want_vec3(E, &b->v[2], b->loc[2]);
 	if (th == 0)
 		eval_fail(E, b->loc[1], "text thickness must not be 0");
-	char *path = eval_find_file(E, b->font, b->font_loc, "font file", NULL);
+	/* POV-Ray adds ".ttf" to a name it cannot find */
+	const char *name = b->font;
+	size_t nl = strlen(name);
+	if (nl < 4 || strcmp(name + nl - 4, ".ttf") != 0) {
+		char *withext = ARENA_ARRAY(&E->arena, char, nl + 5);
+		memcpy(withext, name, nl);
+		memcpy(withext + nl, ".ttf", 5);
+		char *plain = eval_try_file(E, name, b->font_loc), *with = plain ? NULL : eval_try_file(E, withext, b->font_loc);
+		if (with)
+			name = withext;
+		free(plain);
+		free(with);
+	}
+	char *path = eval_find_file(E, name, b->font_loc, "font file", NULL);
 	if (E->opt->on_file)
 		E->opt->on_file(path, E->opt->on_file_ctx);
 	struct extrusion *e = font_text(E, path, b->font, b->font_loc, b->v[0].p.s, b->v[0].n, b->loc[0], th, off);

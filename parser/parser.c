@@ -394,6 +394,8 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
 			break;
+		if (p->tok.kind == TK_LT && left->kind == N_VEC)
+			break; /* <a,b> <c,d>: POV-Ray's point lists omit commas; vectors never compare */
 		if (p->depth >= MAX_DEPTH) {
 			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
 			break;
