@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* font.c: the glyph outlines of text { ttf "font" "string" … } through
- * FreeType, placed as POV-Ray places them (docs/design.md, "Text").
+ * FreeType, placed as POV-Ray places them (docs/design.md §2, "Outline
+ * primitives").
  *
  * Glyphs are read unscaled and unhinted, so their quadratic (TrueType) or
  * cubic (CFF) pieces are the font's own, in font units; one unit of the
