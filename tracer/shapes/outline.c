@@ -114,13 +114,17 @@ struct curve2 curve2_make(const double cx[4], const double cy[4], const double p
 	return c;
 }
 
-/* Signed crossings of the ray from (x,y) towards +x with piece c. */
-static int crossings(const struct curve2 *c, double x, double y)
+/* The crossings of the line at height y with piece c, right of x: their
+ * x (INFINITY when the whole piece is right of xfar ≥ x, which needs no
+ * solving) and direction (+1 upwards) into xs, ds; returns how many. The
+ * half-open rule counts a part when one end is above y and the other is
+ * not. */
+static int crossings(const struct curve2 *c, double x, double xfar, double y, double *xs, int *ds)
 {
 	if (c->lo[1] > y || c->hi[1] < y || c->hi[0] <= x)
 		return 0;
 	double cut[4] = {0}, r[2];
-	int nc = 1;
+	int nc = 1, k = 0;
 	double d[3] = {c->y[1], 2 * c->y[2], 3 * c->y[3]};
 	int m = outline_roots(d, 2, 0, 1, r);
 	for (int i = 0; i < m; i++)
@@ -128,7 +132,6 @@ static int crossings(const struct curve2 *c, double x, double y)
 			cut[nc++] = r[i];
 	cut[nc++] = 1;
 	double q[4] = {c->y[0] - y, c->y[1], c->y[2], c->y[3]};
-	int w = 0;
 	for (int i = 0; i + 1 < nc; i++) {
 		double ya, yb;
 		curve2_eval(c, cut[i], NULL, &ya, NULL, NULL);
@@ -136,30 +139,35 @@ static int crossings(const struct curve2 *c, double x, double y)
 		bool a = ya > y, b = yb > y;
 		if (a == b)
 			continue;
-		double s;
-		if (c->y[2] == 0 && c->y[3] == 0)
-			s = (y - c->p0[1]) / (c->p1[1] - c->p0[1]);
-		else
-			s = refine(q, 3, cut[i], cut[i + 1], ya - y);
-		double px;
-		curve2_eval(c, s, &px, NULL, NULL, NULL);
-		if (px > x)
-			w += b ? 1 : -1;
+		double px = INFINITY;
+		if (!(c->lo[0] > xfar)) {
+			double s = c->y[2] == 0 && c->y[3] == 0 ? (y - c->p0[1]) / (c->p1[1] - c->p0[1])
+			                                         : refine(q, 3, cut[i], cut[i + 1], ya - y);
+			curve2_eval(c, s, &px, NULL, NULL, NULL);
+		}
+		if (px > x) {
+			xs[k] = px;
+			ds[k++] = b ? 1 : -1;
+		}
 	}
-	return w;
+	return k;
 }
+
+/* Is a point with winding w (and crossing parity odd) filled? */
+static bool filled(const struct outline *ol, int w, int odd) { return ol->nonzero ? w != 0 : odd; }
 
 bool outline_inside(const struct outline *ol, double x, double y)
 {
 	if (x < ol->lo[0] || x > ol->hi[0] || y < ol->lo[1] || y > ol->hi[1])
 		return false;
-	int w = 0, odd = 0;
+	int w = 0, odd = 0, ds[3];
+	double xs[3];
 	for (int i = 0; i < ol->n; i++) {
-		int k = crossings(&ol->seg[i], x, y);
-		w += k;
-		odd ^= k & 1;
+		int k = crossings(&ol->seg[i], x, x, y, xs, ds);
+		for (int j = 0; j < k; j++)
+			w += ds[j], odd ^= 1;
 	}
-	return ol->nonzero ? w != 0 : odd;
+	return filled(ol, w, odd);
 }
 
 void outline_finish(struct outline *ol)
@@ -204,9 +212,32 @@ double outline_rect_area(const struct outline *ol, double x0, double x1, double 
 	double full = (x1 - x0) * (y1 - y0);
 	if (!crossed)
 		return outline_inside(ol, 0.5 * (x0 + x1), 0.5 * (y0 + y1)) ? full : 0;
+	/* 16 rows of 16 points: each row's crossings once, then its points */
 	int in = 0;
-	for (int i = 0; i < 16; i++)
-		for (int j = 0; j < 16; j++)
-			in += outline_inside(ol, x0 + (i + 0.5) / 16 * (x1 - x0), y0 + (j + 0.5) / 16 * (y1 - y0));
+	for (int j = 0; j < 16; j++) {
+		double y = y0 + (j + 0.5) / 16 * (y1 - y0), xs[64];
+		int ds[64], nx = 0;
+		for (int i = 0; i < ol->n; i++) {
+			double cx[3];
+			int cd[3], k = crossings(&ol->seg[i], x0, x1, y, cx, cd);
+			for (int m = 0; m < k; m++) {
+				if (nx == 64) /* more than 64 crossings in one row: test each point */
+					goto slow;
+				xs[nx] = cx[m], ds[nx++] = cd[m];
+			}
+		}
+		for (int i = 0; i < 16; i++) {
+			double x = x0 + (i + 0.5) / 16 * (x1 - x0);
+			int w = 0, odd = 0;
+			for (int m = 0; m < nx; m++)
+				if (xs[m] > x)
+					w += ds[m], odd ^= 1;
+			in += filled(ol, w, odd);
+		}
+		continue;
+	slow:
+		for (int i = 0; i < 16; i++)
+			in += outline_inside(ol, x0 + (i + 0.5) / 16 * (x1 - x0), y);
+	}
 	return full * in / 256.0;
 }
