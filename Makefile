@@ -31,7 +31,7 @@ else ifdef SANITIZE
   LDSAN = -fsanitize=address,undefined,float-cast-overflow
 endif
 
-PKGS     = OpenEXR OpenColorIO libpng
+PKGS     = OpenEXR OpenColorIO libpng freetype2
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
@@ -132,7 +132,8 @@ fuzz: deps-fuzz all
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine libembree-dev parallel time
+           povray povray-includes povray-examples hyperfine libembree-dev parallel time \
+           libfreetype-dev
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \

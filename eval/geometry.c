@@ -414,6 +414,8 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	struct object *o = object_target(E, s, n->loc);
+	if (!s->modified && outline_keyword(E, s, o, n))
+		return;
 	s->modified = 1;
 	switch (n->op) {
 	case TK_TEXTURE: case TK_PIGMENT: case TK_FINISH: case TK_INTERIOR: case TK_MATERIAL: case TK_NORMAL:
@@ -442,7 +444,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 			o->flags &= ~(unsigned)OF_HOLLOW;
 		return;
 	case TK_OPEN:
-		if (o->kind != OBJ_CYLINDER && o->kind != OBJ_CONE)
+		if (o->kind != OBJ_CYLINDER && o->kind != OBJ_CONE && o->kind != OBJ_PRISM && o->kind != OBJ_SOR)
 			misplaced(E, s, n);
 		o->flags |= OF_OPEN;
 		return;
@@ -476,7 +478,8 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		arg_bool(E, n); /* POV-Ray's bounding hint */
 		return;
 	case TK_STURM:
-		if (o->kind != OBJ_TORUS && o->kind != OBJ_POLY && o->kind != OBJ_BLOB)
+		if (o->kind != OBJ_TORUS && o->kind != OBJ_POLY && o->kind != OBJ_BLOB && o->kind != OBJ_PRISM &&
+		    o->kind != OBJ_LATHE && o->kind != OBJ_SOR)
 			misplaced(E, s, n);
 		arg_bool(E, n);
 		o->flags |= OF_STURM;
@@ -531,6 +534,8 @@ void object_value(struct eval *E, struct sink *s, const struct value *v, struct 
 	}
 	if (s->modified)
 		eval_fail(E, loc, "%s parameters must come before its modifiers", tok_name(s->kw));
+	if (outline_value(E, s, o, v, loc))
+		return;
 	if (v->kind != V_FLOAT && v->kind != V_VECTOR)
 		eval_fail(E, loc, "expected a float or vector parameter in %s, found %s", tok_name(s->kw), val_type_name(v));
 	if (s->nparams >= SINK_MAX_PARAMS)

@@ -41,6 +41,7 @@ struct sink {
 	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
 	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
 	int nparams;
+	struct outline_build *ob;  /* SK_OBJECT: text/prism/polygon/lathe/sor's lists (outlines.c) */
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
@@ -107,6 +108,8 @@ char *eval_strdup(struct eval *E, const char *s, int len);
 /* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
+/* The same, but NULL (and no error) when it is not found or not allowed. */
+char *eval_try_file(struct eval *E, const char *name, struct srcloc loc);
 
 /* Counts one object or light made at loc against --max-objects. */
 void eval_count_object(struct eval *E, struct srcloc loc);
@@ -179,6 +182,22 @@ struct value object_block(struct eval *E, const struct node *blk);
  * parent's; the visibility flags pass down too. */
 void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
                const struct object *parent);
+
+/* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
+/* Takes a positional value or a leading keyword (linear_spline, conic_sweep,
+ * ttf …) of those primitives; false when o is not one of them or n is not
+ * such a keyword. */
+bool outline_value(struct eval *E, struct sink *s, struct object *o, const struct value *v, struct srcloc loc);
+bool outline_keyword(struct eval *E, struct sink *s, struct object *o, const struct node *n);
+void geom_text(struct eval *E, struct sink *s, struct object *o);
+void geom_prism(struct eval *E, struct sink *s, struct object *o);
+void geom_polygon(struct eval *E, struct sink *s, struct object *o);
+void geom_lathe(struct eval *E, struct sink *s, struct object *o);
+void geom_sor(struct eval *E, struct sink *s, struct object *o);
+/* The glyph outlines of text in the TrueType font at path (font.c). */
+struct extrusion *font_text(struct eval *E, const char *path, const char *name, struct srcloc floc,
+                            const char *text, int len, struct srcloc tloc, double thickness,
+                            struct vec3 offset);
 
 /* ---- textures.c: pigments, colour maps, finishes, interiors, textures ---- */
 struct colour_map *colour_map_block(struct eval *E, const struct node *blk);

@@ -115,6 +115,11 @@ struct texture {
 
 /* ---- objects ------------------------------------------------------------ */
 
+struct extrusion;
+struct flat_outline;
+struct revolution;
+struct sor_shape;
+
 /* The kinds, from objects.def: every primitive, then every CSG kind. */
 enum object_kind {
 #define PRIM(n, w) OBJ_##n,
@@ -219,6 +224,10 @@ struct object {
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { const struct blob *b; } blob;
 		struct { const struct mesh *m; } mesh;
+		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
+		struct { const struct flat_outline *f; } polygon;
+		struct { const struct revolution *r; } lathe;
+		struct { const struct sor_shape *s; } sor;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */

@@ -106,6 +106,20 @@ rm -f "$tmp/g.maps"
 [ $? -eq 73 ] && [ ! -e "$tmp/x.exr" ]
 check "--save-maps into a missing directory: exit 73" $?
 
+# ---- outline primitives: pixel coverage against exact areas ----
+# outlines.scn shows each shape self-lit from straight above in a 4×4
+# orthographic view; at 160×160 the mean of R is its area / 16, to within
+# the pixels its curved edges cut (at most 1/2 of a pixel's 1/25600 each).
+for c in "1 0.1875 0 prism-ring" "2 0.19634954 0.0005 lathe-disc" "3 0.1875 0 polygon-ring" \
+	"4 0.19634954 0.0005 sor-disc" "5 0.25 0 conic-prism-top"; do
+	set -- $c
+	"$ARVO" -q --width 160 --height 160 -D Shape=$1 -o "$tmp/cov.exr" "$T/outlines.scn" > "$tmp/log" 2>&1
+	got=$(avg "$tmp/cov.exr")
+	echo "mean $got, expected $2" >> "$tmp/log"
+	awk -v a="$got" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= t + 1e-6) }'
+	check "coverage of a $4 (shape $1) is its exact area: $2 of the view" $?
+done
+
 # ---- the OCIO path ----
 cfg=stdlib-scenes/ocio/config.ocio
 oiiotool --pattern constant:color=0.18,0.18,0.18 4x4 3 -d float -o "$tmp/in.exr" > /dev/null 2>&1
