@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE, SK_WARP
 };
 
 #define SINK_MAX_PARAMS 8
@@ -76,6 +76,8 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
+	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
@@ -186,6 +188,16 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
 struct tnormal *normal_block(struct eval *E, const struct node *blk);
 void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+
+/* ---- patterns.c: noise patterns, turbulence, warps, pigment maps ---- */
+/* A pattern keyword of pigment s->target (bozo, turbulence, warp,
+ * pigment_map …); false when n is not one. */
+bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n);
+void warp_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* A pigment given in place of a colour of checker, hexagon or brick. */
+void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *sub, struct srcloc loc);
+/* Patterns without their own noise_generator take global_settings'. */
+void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */

@@ -376,6 +376,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_SKY: sky_keyword(E, s, n); return;
 	case SK_NORMAL: normal_keyword(E, s, n); return;
 	case SK_FOG: fog_keyword(E, s, n); return;
+	case SK_WARP: warp_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
@@ -474,4 +475,5 @@ void objects_finish(struct eval *E)
 	struct scene *sc = SC(E);
 	if (!sc->has_camera)
 		sc->camera = scene_default_camera();
+	patterns_finish(E);
 }

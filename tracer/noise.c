@@ -65,6 +65,7 @@ static struct {
 	int perm[2 * (GRAD_N + 1)];   /* Perlin's permutation, doubled */
 	struct vec3 grad[2 * (GRAD_N + 1)]; /* Perlin's gradients, doubled */
 	double rnd[NRAND];            /* MT19937 numbers in [0,1) */
+	double sintab[1000];          /* sin(2πi/1000) */
 	struct vec3 wave_src[NWAVES]; /* ripples and waves: sources */
 	double wave_freq[NWAVES];     /* and their frequencies */
 } T;
@@ -166,6 +167,8 @@ static void init(void)
 		T.rt[2 * i] = rnums[i];
 		T.rt[2 * i + 1] = rnums[i] * 0.5;
 	}
+	for (int i = 0; i < 1000; i++)
+		T.sintab[i] = sin((double)i / 1000 * 2 * M_PI);
 	init_hash();
 	init_perlin();
 	init_rand();
@@ -361,4 +364,18 @@ double noise_wave_freq(int n)
 {
 	ready();
 	return T.wave_freq[n % NWAVES];
+}
+
+double noise_cycloidal(double v)
+{
+	ready();
+	int i = v >= 0 ? (int)((v - floor(v)) * 1000) : (int)(-(v + floor(-v)) * 1000);
+	i = i < 0 ? 0 : i > 999 ? 999 : i; /* guards against rounding, and NaN's cast */
+	return v >= 0 ? T.sintab[i] : -T.sintab[i];
+}
+
+double noise_triangle(double v)
+{
+	double t = v >= 0 ? v - floor(v) : v - (-1 - floor(fabs(v)));
+	return t >= 0.5 ? 2 * (1 - t) : 2 * t;
 }

@@ -30,6 +30,10 @@ struct vec3 noise_dturb(struct vec3 p, const struct turb_params *t);
 /* The k-th of POV-Ray's 32768 pattern random numbers in [0,1) (crackle's
  * cell points, cells): Mersenne Twister MT19937, default seed. */
 double noise_rand(unsigned long k);
+/* POV-Ray's sine of a full turn, sin(2πv), from its 1000-entry table. */
+double noise_cycloidal(double v);
+/* POV-Ray's triangle wave: 0 at whole v, 1 at halves. */
+double noise_triangle(double v);
 /* POV-Ray's hash of an integer lattice point into 0..4095. */
 int noise_hash3(int x, int y, int z);
 /* The n-th wave source (unit vector) and frequency of ripples and waves. */

@@ -17,6 +17,7 @@ void scene_init(struct scene *s)
 	s->gs.max_trace_level = 5;
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
+	s->gs.noise_generator = 2;
 	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }
@@ -29,6 +30,7 @@ static const struct finish default_finish = {
 
 static const struct pattern default_pattern = {
 	.axis = {0, 1, 0}, .frequency = 1, .exponent = 1, .brick_size = {8, 3, 4.5}, .mortar = 0.5,
+	.agate_turb = 1, .metric = 2, .form = {-1, 1, 0}, .control0 = 1, .control1 = 1,
 };
 
 const struct pattern *pig_pattern(const struct pigment *p)
@@ -154,7 +156,9 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
 	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
-	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard",
+		"bozo", "spotted", "bumps", "dents", "granite", "marble", "wood", "agate", "wrinkles", "ripples", "waves",
+		"crackle", "quilted", "spiral1", "spiral2", "pigment_pattern", "average"};
 	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
