@@ -318,11 +318,10 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	const struct scene *s = pa->ctx->scene;
 	struct surf sf = {h, mat_texture(h->obj), {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
-	bool back = v_dot(sf.nf, sf.v) < 0; /* decided by the true normal */
-	if (sf.tex->normal)
-		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
-	if (back)
+	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
+	if (sf.tex->normal) /* as POV-Ray: the normal facing the eye is perturbed */
+		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
 		sf.opacity = fmin(1, fmax(0, sf.opacity));
