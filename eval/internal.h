@@ -196,6 +196,12 @@ bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n);
 void warp_keyword(struct eval *E, struct sink *s, const struct node *n);
 /* A pigment given in place of a colour of checker, hexagon or brick. */
 void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *sub, struct srcloc loc);
+/* texture_map { } of texture t (its pigment holds the pattern), and
+ * normal_map { } of normal t. */
+void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
+void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
+bool is_pattern_kw(enum tok k);
 /* Patterns without their own noise_generator take global_settings'. */
 void patterns_finish(struct eval *E);
 

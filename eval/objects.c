@@ -154,6 +154,15 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->map) { /* a texture_map's textures move with it */
+		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap);
+		for (int i = 0; i < t->nmap; i++) {
+			struct texture *c = texture_copy(E, t->map[i].tex);
+			texture_transform(E, c, X);
+			m[i] = (struct tex_entry){t->map[i].pos, c};
+		}
+		t->map = m;
+	}
 	if (t->normal) {
 		struct tnormal *nr = NEW(E, struct tnormal);
 		*nr = *t->normal;

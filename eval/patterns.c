@@ -326,3 +326,73 @@ void patterns_finish(struct eval *E)
 		if (E->pats[i]->noise_gen == 0)
 			E->pats[i]->noise_gen = g;
 }
+
+/* ==== texture_map and normal_map ========================================= */
+
+/* [position texture-body] of a texture_map: a declared texture or pigment,
+ * finish and normal blocks. */
+static void tex_entry_cb(struct eval *E, void *out, const struct node *n)
+{
+	struct tex_entry *e = out;
+	if (n->nkids < 1)
+		eval_fail(E, n->loc, "a texture_map entry is [position texture]");
+	e->pos = eval_float(E, n->kids[0]);
+	struct texture *t = texture_copy(E, NULL);
+	t->loc = n->loc;
+	struct sink s;
+	sink_init(&s, SK_TEXTURE, TK_TEXTURE_MAP, n->loc, t);
+	for (int i = 1; i < n->nkids; i++)
+		eval_item(E, n->kids[i], &s);
+	e->tex = t;
+}
+
+/* [position normal-body] of a normal_map. */
+static void nrm_entry_cb(struct eval *E, void *out, const struct node *n)
+{
+	struct nrm_entry *e = out;
+	if (n->nkids < 1)
+		eval_fail(E, n->loc, "a normal_map entry is [position normal]");
+	e->pos = eval_float(E, n->kids[0]);
+	struct tnormal *t = NEW(E, struct tnormal);
+	t->pat = scene_default_texture().pigment;
+	t->pat.kind = PIG_SOLID;
+	t->amount = 0.5;
+	struct sink s;
+	sink_init(&s, SK_NORMAL, TK_NORMAL_MAP, n->loc, t);
+	for (int i = 1; i < n->nkids; i++)
+		eval_item(E, n->kids[i], &s);
+	e->n = s.pending || t->pat.kind == PIG_SOLID || t->pat.kind == PIG_IMAGE ? NULL : t;
+}
+
+void texture_map_block(struct eval *E, struct texture *t, const struct node *n)
+{
+	void *arr;
+	int k = map_entries(E, n, sizeof(struct tex_entry), &arr, tex_entry_cb, "texture_map");
+	check_order(E, n, &((struct tex_entry *)arr)->pos, sizeof(struct tex_entry), k, "texture_map");
+	t->map = arr;
+	t->nmap = k;
+}
+
+void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n)
+{
+	void *arr;
+	int k = map_entries(E, n, sizeof(struct nrm_entry), &arr, nrm_entry_cb, "normal_map");
+	check_order(E, n, &((struct nrm_entry *)arr)->pos, sizeof(struct nrm_entry), k, "normal_map");
+	t->map = arr;
+	t->nmap = k;
+}
+
+bool is_pattern_kw(enum tok k)
+{
+	switch (k) {
+	case TK_CHECKER: case TK_HEXAGON: case TK_BRICK: case TK_GRADIENT: case TK_RADIAL: case TK_ONION:
+	case TK_SPHERICAL: case TK_CYLINDRICAL: case TK_BOXED: case TK_PLANAR: case TK_LEOPARD:
+	case TK_BRICK_SIZE: case TK_MORTAR: case TK_FREQUENCY: case TK_PHASE: case TK_RAMP_WAVE:
+	case TK_TRIANGLE_WAVE: case TK_SINE_WAVE: case TK_SCALLOP_WAVE: case TK_CUBIC_WAVE: case TK_POLY_WAVE:
+	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA: case TK_WARP: case TK_AGATE_TURB:
+	case TK_METRIC: case TK_FORM: case TK_OFFSET: case TK_SOLID: case TK_CONTROL0: case TK_CONTROL1:
+	case TK_NOISE_GENERATOR: case TK_PIGMENT_PATTERN:
+		return true;
+	default: return noise_kind(k) != PAT_KIND_COUNT;
+	}
+}

@@ -296,6 +296,15 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		texture_transform(E, t, &X);
 		return;
 	}
+	if (n->op == TK_TEXTURE_MAP) {
+		texture_map_block(E, t, n);
+		return;
+	}
+	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */
+		sink_init(&sub, SK_PIGMENT, TK_TEXTURE, s->loc, &t->pigment);
+		pigment_keyword(E, &sub, n);
+		return;
+	}
 	if (n->op == TK_NORMAL)
 		t->normal = normal_block(E, n);
 	else if (n->op == TK_PIGMENT)
@@ -343,6 +352,7 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 	switch (n->op) {
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: case TK_PIGMENT_MAP: misplaced(E, s, n);
 	case TK_BUMP_SIZE: t->amount = arg_float(E, n); return;
+	case TK_NORMAL_MAP: normal_map_block(E, t, n); return;
 	case TK_SPIRAL1: case TK_SPIRAL2:
 		if (n->nkids == 2) { /* spiral1 arms, bump size */
 			struct node one = *n;

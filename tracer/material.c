@@ -195,6 +195,16 @@ static struct colour image_map(const struct mat_cache *c, const struct pigment *
 
 static struct colour pigment_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 p, int depth);
 
+/* The pattern's value at pattern-space point q (pigment_pattern: the grey
+ * of its pigment there). */
+static double value_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 q, int depth)
+{
+	const struct pattern *pt = pig_pattern(pg);
+	if (pg->kind == PIG_PATTERN && pt->pattern == PAT_PIGMENT)
+		return pattern_wave(pg, pt->sub ? pattern_grey(pigment_at(c, pt->sub, q, depth + 1)) : 0);
+	return pattern_value(pg, q);
+}
+
 /* The pigment_map at v: the two entries around v evaluated at the
  * pattern-space point q and blended (POV-Ray's blend map search). */
 static struct colour pigment_map(const struct mat_cache *c, const struct pattern *pt, double v, struct vec3 q,
@@ -246,9 +256,7 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 	case PIG_GRADIENT: case PIG_PATTERN: {
 		if (pt->pattern == PAT_AVERAGE && pg->kind == PIG_PATTERN)
 			return pt->pmap ? average(c, pt, q, depth + 1) : c_rgb(0, 0, 0);
-		double v = pg->kind == PIG_PATTERN && pt->pattern == PAT_PIGMENT
-		               ? pattern_wave(pg, pt->sub ? pattern_grey(pigment_at(c, pt->sub, q, depth + 1)) : 0)
-		               : pattern_value(pg, q);
+		double v = value_at(c, pg, q, depth);
 		if (pt->pmap && pt->npmap > 0)
 			return pigment_map(c, pt, v, q, depth + 1);
 		return colour_map(pg, v);
@@ -261,4 +269,39 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, struct vec3 p)
 {
 	return pigment_at(c, pg, p, 0);
+}
+
+/* ==== texture maps ======================================================== */
+
+int mat_texture_pick(const struct mat_cache *c, const struct texture *t, struct vec3 p,
+                     const struct texture *out[2], double w[2])
+{
+	const struct tex_entry *m = t->map;
+	int n = t->nmap, i = 0;
+	double v = value_at(c, &t->pigment, pattern_point(&t->pigment, p), 0);
+	w[0] = 1, w[1] = 0;
+	if (v >= m[n - 1].pos) {
+		out[0] = m[n - 1].tex;
+		return 1;
+	}
+	while (v > m[i].pos)
+		i++;
+	out[0] = m[i].tex;
+	if (i == 0 || v == m[i].pos)
+		return 1;
+	out[1] = m[i - 1].tex;
+	w[1] = (m[i].pos - v) / (m[i].pos - m[i - 1].pos);
+	w[0] = 1 - w[1];
+	return 2;
+}
+
+const struct texture *mat_texture_leaf(const struct mat_cache *c, const struct texture *t, struct vec3 p)
+{
+	for (int depth = 0; t->map && depth < 16; depth++) {
+		const struct texture *k[2];
+		double w[2];
+		int n = mat_texture_pick(c, t, p, k, w);
+		t = n == 2 && w[1] > w[0] ? k[1] : k[0];
+	}
+	return t;
 }

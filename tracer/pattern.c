@@ -178,6 +178,28 @@ static struct vec3 normal_out(const struct pigment *pg, struct vec3 n)
 	return v_norm(xf_normal(pg->xf ? pg->xf : &xf_ident, n));
 }
 
+/* An entry of a normal_map at pattern-space point q (none: n unchanged). */
+static struct vec3 entry_normal(const struct tnormal *e, struct vec3 q, struct vec3 n)
+{
+	return e ? pattern_perturb(e, q, n) : n;
+}
+
+/* normal_map at value v: the entries around v perturb the pattern-space
+ * normal n at q (their own transforms relative to the map's), blended. */
+static struct vec3 normal_map(const struct tnormal *t, double v, struct vec3 q, struct vec3 n)
+{
+	const struct nrm_entry *m = t->map;
+	int k = t->nmap, i = 0;
+	if (v >= m[k - 1].pos)
+		return entry_normal(m[k - 1].n, q, n);
+	while (v > m[i].pos)
+		i++;
+	if (i == 0 || v == m[i].pos)
+		return entry_normal(m[i].n, q, n);
+	double w = (v - m[i - 1].pos) / (m[i].pos - m[i - 1].pos);
+	return v_add(v_scale(entry_normal(m[i - 1].n, q, n), 1 - w), v_scale(entry_normal(m[i].n, q, n), w));
+}
+
 struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 n)
 {
 	/* POV-Ray's tetrahedron, its spacing 0.02 and its gain −5 per unit of
@@ -188,6 +210,8 @@ struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 
 		{-0.471404521, -0.333333333, -0.816496581}, {0, 1, 0}};
 	const double delta = 0.02;
 	struct vec3 np = normal_in(&t->pat, n), q = pattern_point(&t->pat, p);
+	if (t->map && t->nmap > 0) /* normal_map: the two entries' normals blended */
+		return normal_out(&t->pat, normal_map(t, pattern_value(&t->pat, q), q, np));
 	if (!pattern_normal_direct(t, q, &np)) {
 		double gain = -5 * t->amount;
 		for (int i = 0; i < 4; i++)

@@ -146,16 +146,36 @@ struct interior {
 
 /* normal { pattern [amount] … }: POV-Ray's perturbation of the shading
  * normal by the slope of a pattern (tracer/pattern.h). */
+struct tnormal;
+
+/* One entry of a normal_map: the normal at position pos. */
+struct nrm_entry {
+	double pos;               /* position in the pattern, ascending */
+	const struct tnormal *n;  /* the normal there */
+};
+
 struct tnormal {
 	struct pigment pat; /* the pattern, its wave and its transform */
 	double amount;      /* bump size (POV default 0.5) */
+	const struct nrm_entry *map; /* normal_map (NULL: none) */
+	int nmap;
+};
+
+struct texture;
+
+/* One entry of a texture_map: the texture at position pos. */
+struct tex_entry {
+	double pos;                 /* position in the pattern, ascending */
+	const struct texture *tex;  /* the texture there */
 };
 
 struct texture {
-	struct pigment pigment;
+	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
 	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
+	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
+	int nmap;
 };
 
 /* ---- objects ------------------------------------------------------------ */
