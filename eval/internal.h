@@ -162,6 +162,8 @@ struct pattern *pat_w(struct eval *E, struct pigment *p);
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
 
 /* ---- geometry.c: objects ---- */
+/* Moves object o (its texture and children too) by X. */
+void object_transform(struct eval *E, struct object *o, const struct xform *X);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

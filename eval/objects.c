@@ -296,7 +296,23 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_LIGHT_SOURCE: scene_add_light(sc, eval_block(E, n).p.light); return;
+	case TK_LIGHT_SOURCE: {
+		struct light *l = eval_block(E, n).p.light;
+		scene_add_light(sc, l);
+		if (l->looks_like) { /* the object, moved to the light, casts no shadow */
+			struct object *o = NEW(E, struct object);
+			*o = *l->looks_like;
+			struct xform X = xf_translate(l->pos);
+			object_transform(E, o, &X);
+			o->flags |= OF_NO_SHADOW;
+			if (!E->default_shared)
+				E->default_shared = texture_copy(E, &E->default_tex);
+			propagate(o, E->default_shared, NULL, 0, NULL);
+			scene_add_object(sc, o);
+			eval_count_object(E, n->loc);
+		}
+		return;
+	}
 	case TK_CAMERA:
 		sc->camera = *eval_block(E, n).p.cam;
 		sc->has_camera = true;

@@ -73,6 +73,12 @@ void light_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_LOOKS_LIKE: { /* looks_like { object }: an object { } of its items */
+		struct node on = *n;
+		on.op = TK_OBJECT;
+		l->looks_like = object_block(E, &on).p.obj;
+		return;
+	}
 	case TK_SPOTLIGHT: l->kind = LIGHT_SPOT; return;
 	case TK_PARALLEL: l->kind = LIGHT_PARALLEL; l->point_at = v3(0, 0, 0); return;
 	case TK_RADIUS: l->radius = arg_float(E, n); return;

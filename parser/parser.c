@@ -209,16 +209,16 @@ static void parse_args(struct parser *p, struct node *call)
 	expect_close(p, TK_RPAREN, TK_LPAREN, open);
 }
 
-/* vector := '<' expr {',' expr} '>' */
+/* vector := '<' expr {[','] expr} '>' */
 static struct node *parse_vector(struct parser *p)
 {
 	struct node *v = node(p, N_VEC, p->tok.loc);
 	advance(p);
 	int saved = p->no_gt;
 	p->no_gt = 1;
-	do
+	do /* POV-Ray's commas are optional: <4 0 0> (but <1 -2> is <-1>) */
 		ast_push(p->arena, v, parse_expr(p));
-	while (accept(p, TK_COMMA));
+	while ((accept(p, TK_COMMA) || (starts_expr(p) && !check(p, TK_GT))) && !p->panic && v->nkids < 64);
 	p->no_gt = saved;
 	expect_close(p, TK_GT, TK_LT, v->loc);
 	return v;

@@ -267,6 +267,7 @@ struct light {
 	bool shadowless;            /* casts no shadows, lights everything */
 	bool photons_refraction;    /* photons { refraction on } (default on) */
 	bool photons_reflection;    /* photons { reflection on } (default on) */
+	struct object *looks_like;  /* looks_like: drawn at the light, casting no shadow (NULL: none) */
 };
 
 enum camera_kind { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
