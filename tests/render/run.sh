@@ -172,4 +172,15 @@ fi
 	awk '/Stats Min:/ { lo = $3 } /Stats Max:/ { hi = $3 } /Stats Avg:/ { m = $3 }
 	     END { printf "caustic min %s max %s mean %s\n", lo, hi, m; exit !(m > 3 && lo > 0.8 * m && hi < 1.25 * m) }' "$tmp/st" >> "$tmp/log"
 check "the caustic disc of one of two lenses is even: no seam between the light pass's aims" $?
+# ---- POV-Ray's lights (no fall-off) and the light pass ----
+# Light through a pane (centre 9.45 below the light) lands on the floor 10
+# below it: under POV-Ray's lights the light pass gives its target I·d²,
+# so the floor under the pane gets (9.45/10)² = 0.893 of the direct light
+# the bare floor gets (without the gain: 0.009).
+"$ARVO" -q --width 20 --height 20 -o "$tmp/lc1.exr" "$T/legacy_caustic.scn" > "$tmp/log" 2>&1 &&
+	"$ARVO" -q --width 20 --height 20 -D Pane=0 -o "$tmp/lc0.exr" "$T/legacy_caustic.scn" >> "$tmp/log" 2>&1 &&
+	a=$(avg "$tmp/lc1.exr") && b=$(avg "$tmp/lc0.exr") &&
+	echo "under the pane $a, bare floor $b" >> "$tmp/log" &&
+	awk -v a="$a" -v b="$b" 'BEGIN { r = a / b; want = (9.45 / 10) ^ 2; exit !(r > 0.97 * want && r < 1.03 * want) }'
+check "legacy lights: the caustic under a pane matches the direct light, scaled by (d_pane/d_floor)^2 within 3 %" $?
 echo "1..$n"
