@@ -28,7 +28,9 @@ enum pigment_kind {
 /* POV-Ray's continuous patterns (tracer/pattern.c). */
 enum pattern_kind {
 	PAT_RADIAL, PAT_ONION, PAT_SPHERICAL, PAT_CYLINDRICAL, PAT_BOXED, PAT_PLANAR,
-	PAT_LEOPARD, PAT_KIND_COUNT
+	PAT_LEOPARD,
+	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
+	PAT_KIND_COUNT
 };
 
 /* The wave a pattern's value goes through before the colour_map. */
@@ -58,6 +60,7 @@ struct pattern {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
+	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 };
 
 struct pigment {
