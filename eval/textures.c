@@ -16,25 +16,39 @@ struct colour_map *colour_map_block(struct eval *E, const struct node *blk)
 	return m;
 }
 
+static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic);
+
 /* [position colour] of a colour_map. */
 void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n)
 {
 	struct sink s;
 	sink_init(&s, SK_ENTRY, TK_COLOR_MAP, n->loc, NULL);
 	eval_items(E, n, &s);
+	if (s.nparams == 4) { /* POV-Ray's old [from, to colour_from colour_to] */
+		colour_map_push(E, m, n, &s, 0, 2);
+		colour_map_push(E, m, n, &s, 1, 3);
+		return;
+	}
 	if (s.nparams != 2)
-		eval_fail(E, n->loc, "a colour_map entry is [position colour], found %d value%s", s.nparams, s.nparams == 1 ? "" : "s");
-	double pos = val_want_float(E, &s.params[0], s.ploc[0]);
+		eval_fail(E, n->loc, "a colour_map entry is [position colour] or [from, to colour colour], found %d value%s",
+		          s.nparams, s.nparams == 1 ? "" : "s");
+	colour_map_push(E, m, n, &s, 0, 1);
+}
+
+/* Appends the entry (params[ip], params[ic]) of the sink to the map. */
+static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic)
+{
+	double pos = val_want_float(E, &sk->params[ip], sk->ploc[ip]);
 	if (pos < 0 || pos > 1)
-		eval_fail(E, s.ploc[0], "colour_map position must be 0 to 1, found %g", pos);
+		eval_fail(E, sk->ploc[ip], "colour_map position must be 0 to 1, found %g", pos);
 	if (m->n > 0 && pos < m->e[m->n - 1].pos)
-		eval_fail(E, s.ploc[0], "colour_map positions must not decrease (%g after %g)", pos, m->e[m->n - 1].pos);
+		eval_fail(E, sk->ploc[ip], "colour_map positions must not decrease (%g after %g)", pos, m->e[m->n - 1].pos);
 	if (m->n >= 256)
 		eval_fail(E, n->loc, "colour_map has more than 256 entries");
 	struct map_entry *e = ARENA_ARRAY(&SC(E)->arena, struct map_entry, m->n + 1);
 	if (m->n)
 		memcpy(e, m->e, sizeof *e * (size_t)m->n);
-	e[m->n++] = (struct map_entry){pos, val_want_colour(E, &s.params[1], s.ploc[1])};
+	e[m->n++] = (struct map_entry){pos, val_want_colour(E, &sk->params[ic], sk->ploc[ic])};
 	m->e = e;
 }
 
