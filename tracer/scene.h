@@ -155,6 +155,19 @@ struct photon_spec {
 	bool pass_through; /* pass_through */
 };
 
+/* isosurface { function { … } contained_by { box | sphere } … }: the
+ * surface f = threshold inside the container; inside is f < threshold
+ * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
+struct isosurface {
+	const struct fn *fn;       /* f(x, y, z) in the object frame */
+	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
+	struct vec3 lo, hi, c;
+	double r;
+	double threshold;          /* default 0 */
+	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
+	double accuracy;           /* root tolerance, object units (default 0.001) */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -167,6 +180,7 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
+		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
