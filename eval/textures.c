@@ -192,6 +192,15 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 }
 
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc)
+{
+	const struct fn *f = function_usable(E, v, loc);
+	p->kind = PIG_PATTERN;
+	struct pattern *pt = pat_w(E, p);
+	pt->pattern = PAT_FUNCTION;
+	pt->fn = f;
+}
+
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct pigment *p = s->target;
@@ -202,6 +211,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 	}
 	if (v->kind == V_PIGMENT && s->nparams == 0 && !s->modified) {
 		*p = *v->p.pig;
+		s->modified = 1;
+		return;
+	}
+	if (v->kind == V_FUNCTION) { /* pigment { function { … } colour_map { … } } */
+		function_pattern(E, p, v, loc);
 		s->modified = 1;
 		return;
 	}
@@ -384,6 +398,10 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct tnormal *t = s->target;
+	if (v->kind == V_FUNCTION) { /* normal { function { … } [amount] } */
+		function_pattern(E, &t->pat, v, loc);
+		return;
+	}
 	if (v->kind == V_SKIPPED) { /* a declared normal first */
 		if (v->p.nrm)
 			*t = *v->p.nrm;
