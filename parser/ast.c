@@ -95,7 +95,7 @@ static void dump(FILE *out, const struct node *n, int depth, const char *label)
 	if (n->b && n->kind != N_DECLARE)
 		dump(out, n->b, depth + 1, n->kind == N_IF || n->kind == N_IFDEF ? "then" : NULL);
 	if (n->c)
-		dump(out, n->c, depth + 1, "else");
+		dump(out, n->c, depth + 1, n->kind == N_BLOCK ? "layer" : "else");
 	for (int i = 0; !kids_first && i < n->nkids; i++)
 		dump(out, n->kids[i], depth + 1, NULL);
 }

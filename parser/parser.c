@@ -604,7 +604,14 @@ static struct node *parse_keyword_item(struct parser *p)
 			p->in_normal--;
 			return n;
 		}
-		return parse_block_body(p, n);
+		parse_block_body(p, n);
+		/* POV-Ray's layered texture: `texture { A } texture { B }` in a row
+		 * is one texture, B over A; c links the next layer up */
+		if (t.kind == TK_TEXTURE && check(p, TK_TEXTURE) && !p->panic && enter(p)) {
+			n->c = parse_keyword_item(p);
+			leave(p);
+		}
+		return n;
 	case SH_BLOCK_OR_EXPR:
 		if (check(p, TK_LBRACE)) {
 			n->kind = N_BLOCK;

@@ -61,7 +61,7 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
 	case PAT_PLANAR: return clip_density(fabs(q.y));
 	case PAT_LEOPARD: return leopard_raw(q);
-	case PAT_PIGMENT: case PAT_AVERAGE: return 0; /* material.c computes these */
+	case PAT_PIGMENT: case PAT_AVERAGE: case PAT_LAYERED: return 0; /* material.c computes these */
 	case PAT_FUNCTION: return function_raw(pig_pattern(pg)->fn, q);
 	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}

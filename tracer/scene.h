@@ -36,6 +36,7 @@ enum pattern_kind {
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
 	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
+	PAT_LAYERED,  /* a layered texture's pigments, pmap bottom first */
 	PAT_KIND_COUNT
 };
 
