@@ -525,6 +525,14 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
 	case N_FUNC: return function_value(E, n);
+	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
+		struct sink s;
+		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+		eval_item(E, n->a, &s);
+		if (s.nresults == 0)
+			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+		return s.result;
+	}
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)

@@ -6,7 +6,7 @@
 
 static const char *const kind_names[] = {
 	"num", "str", "ident", "vector", "unary", "binary", "cond", "call", "member",
-	"index", "colour", "array", "init", "function", "block", "mod", "word", "entry",
+	"index", "colour", "array", "init", "function", "dirvalue", "block", "mod", "word", "entry",
 	"skipped", "declare", "undef", "include", "if", "ifdef", "while", "for",
 	"switch", "case", "break", "macro", "version", "message", "default", "list",
 };

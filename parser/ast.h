@@ -32,6 +32,8 @@ enum node_kind {
 	N_INIT,    /* { kids } array initialiser */
 	N_FUNC,    /* function: kids: parameters (N_IDENT; none: x y z), a: body (an expression,
 	            * N_BLOCK pigment, or N_BLOCK pigment with str "pattern") */
+	N_DIRVALUE, /* a: #if/#ifdef/#ifndef/#switch inside an expression, whose chosen
+	            * branch yields the value: (#if (A) 1 #else 2 #end) */
 	/* block items */
 	N_BLOCK,   /* op: keyword, kids: items inside { } */
 	N_MOD,     /* op: keyword, kids: its arguments (0, 1 or more) */

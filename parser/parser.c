@@ -163,6 +163,7 @@ static int starts_expr(const struct parser *p)
 /* ==== expressions ========================================================= */
 
 static struct node *parse_keyword_item(struct parser *p);
+static struct node *parse_directive(struct parser *p);
 
 /* A value where a block may stand too: array initialisers, macro arguments,
  * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
@@ -432,6 +433,12 @@ static struct node *parse_primary(struct parser *p)
 			c->a = parse_expr(p);
 			ast_push(p->arena, n, c);
 		}
+		return n;
+	} else if (t.kind == TK_DIR_IF || t.kind == TK_DIR_IFDEF || t.kind == TK_DIR_IFNDEF || t.kind == TK_DIR_SWITCH) {
+		/* POV-Ray's directives work between any tokens; arvo takes a
+		 * conditional where a value stands: its branch yields the value */
+		n = node(p, N_DIRVALUE, t.loc);
+		n->a = parse_directive(p);
 		return n;
 	} else if (t.kind == TK_ARRAY) {
 		return parse_array(p);
