@@ -347,7 +347,7 @@ static struct node *parse_function(struct parser *p)
 	int saved = p->no_gt;
 	p->no_gt = 0;
 	p->in_func++;
-	if (check(p, TK_PIGMENT)) {
+	if (check(p, TK_PIGMENT) || check(p, TK_TRANSFORM)) {
 		n->a = parse_keyword_item(p);
 	} else if (check(p, TK_IDENT) && p->tok.len == 7 && memcmp(p->tok.text, "pattern", 7) == 0) {
 		struct node *b = node(p, N_BLOCK, p->tok.loc);

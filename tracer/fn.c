@@ -2,6 +2,7 @@
 /* fn.c: the stack machine that runs compiled functions, and POV-Ray's
  * internal(N) functions (docs/design.md §2, "Functions"). */
 #include "fn.h"
+#include "noise.h"
 
 #include <math.h>
 
@@ -76,6 +77,15 @@ static double i_spikes_2d(const double *a)
 	return -(P(0) * cos(P(1) * X) * cos(P(2) * Z) * exp(-P(3) * (X * X + Z * Z)) - Y);
 }
 
+/* f_noise3d(x, y, z): POV-Ray's solid noise in [0, 1] (its default
+ * generator, 2); f_noise_generator(x, y, z, gen) with generator gen. */
+static double i_noise3d(const double *a) { return noise_at(v3(X, Y, Z), 2); }
+static double i_noise_generator(const double *a)
+{
+	int g = (int)P(0);
+	return noise_at(v3(X, Y, Z), g >= 1 && g <= 3 ? g : 2);
+}
+
 static const struct {
 	const char *name;
 	int extra;       /* parameters after x, y, z */
@@ -91,6 +101,8 @@ static const struct {
 	[69] = {"f_th", 0, i_th},
 	[70] = {"f_torus", 2, i_torus},
 	[71] = {"f_torus2", 3, i_torus2},
+	[76] = {"f_noise3d", 0, i_noise3d},
+	[78] = {"f_noise_generator", 1, i_noise_generator},
 };
 
 #undef X
