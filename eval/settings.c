@@ -329,6 +329,24 @@ void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
 	sc->sky = p;
 }
 
+/* sky_sphere { S … }: a declared sky_sphere's pigments and transform, then
+ * what follows. */
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct scene *sc = s->target;
+	if (v->kind != V_SKY)
+		eval_fail(E, loc, "expected a sky_sphere or a pigment { } in sky_sphere, found %s", val_type_name(v));
+	const struct sky_value *sv = v->p.sky;
+	struct pigment *p = ARENA_ARRAY(&sc->arena, struct pigment, sc->nsky + sv->n);
+	if (sc->nsky)
+		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
+	memcpy(p + sc->nsky, sv->pig, sizeof *p * (size_t)sv->n);
+	sc->sky = p;
+	sc->nsky += sv->n;
+	if (sv->xf)
+		sc->sky_xf = xform_then(E, sc->sky_xf, sv->xf);
+}
+
 /* fog { [fog_type 1|2] distance d colour c [fog_offset h fog_alt a up v] } */
 void fog_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
