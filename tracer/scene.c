@@ -154,7 +154,8 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
 	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
-	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard",
+	                                   "function"};
 	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
