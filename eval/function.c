@@ -361,6 +361,8 @@ struct value function_value(struct eval *E, const struct node *n)
 		struct fn_internal_info ii = fn_internal(k >= 0 && k < FN_INTERNAL_COUNT ? (int)k : -1);
 		fi->fn.kind = FN_INTERNAL;
 		fi->fn.internal = (int)k;
+		fi->fn.pig = scene_default_texture().pigment;
+		pat_w(E, &fi->fn.pig); /* its noise_gen becomes the scene's when the scene ends */
 		fi->fn.nparams = ii.nparams;
 		fi->fn.depth = 1;
 		fi->fn.cost = 50;
