@@ -21,6 +21,8 @@
 struct fn_info {
 	struct fn fn;
 	const char *unsupported; /* NULL: usable; else why not, and where */
+	const struct xform *xf;  /* function { transform { … } }: a vector
+	                          * function of x, y, z, callable from the scene */
 };
 
 /* Records why the function cannot be used: "'warp' is not supported
@@ -348,6 +350,19 @@ struct value function_value(struct eval *E, const struct node *n)
 	const struct node *body = n->a;
 	if (!body)
 		eval_fail(E, n->loc, "function { } needs a body");
+	if (body->kind == N_BLOCK && body->op == TK_TRANSFORM) {
+		/* POV-Ray's transform function (transforms.inc's vtransform):
+		 * F(x, y, z) is the transformed point, a vector; the function
+		 * machine computes floats, so it cannot be called inside
+		 * another function */
+		if (n->nkids)
+			eval_fail(E, n->loc, "a transform function takes x, y, z: it has no parameter list");
+		struct value t = eval_block(E, body);
+		fi->xf = t.p.xf;
+		fi->fn.nparams = 3;
+		unsupported(E, fi, body->loc, "a transform inside a function", NULL);
+		return r;
+	}
 	if (body->kind == N_BLOCK) {
 		if (n->nkids)
 			eval_fail(E, n->loc, "a %s function takes x, y, z: it has no parameter list", body->str ? "pattern" : "pigment");
@@ -404,6 +419,11 @@ struct value function_value(struct eval *E, const struct node *n)
 struct value function_call(struct eval *E, const struct node *call, const struct fn *f)
 {
 	const struct fn_info *fi = info(f);
+	if (fi->xf) {
+		check_arity(E, call, "a transform function", 3);
+		struct vec3 p = v3(eval_float(E, call->kids[0]), eval_float(E, call->kids[1]), eval_float(E, call->kids[2]));
+		return val_vec3(xf_point(fi->xf, p));
+	}
 	if (fi->unsupported)
 		eval_fail(E, call->loc, "'%s' cannot be used: %s", call->str, fi->unsupported);
 	char what[96];

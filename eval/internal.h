@@ -55,6 +55,7 @@ struct sink {
 struct eval {
 	struct diag *diag;
 	const struct eval_options *opt;
+	bool warned_crand;         /* finish { crand } warned about once */
 	struct arena arena;        /* ASTs, strings, arrays: lives until eval ends */
 	struct scene *scene;       /* what is being built (its arena holds the model) */
 	struct scope *scopes[MAX_SCOPES]; /* dynamic scope stack; [0] is global */
@@ -173,6 +174,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
+struct texture *texture_layer(struct eval *E, const struct texture *bottom, const struct texture *top,
+                              struct srcloc loc);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)

@@ -6,7 +6,7 @@
 
 static const char *const kind_names[] = {
 	"num", "str", "ident", "vector", "unary", "binary", "cond", "call", "member",
-	"index", "colour", "array", "init", "function", "block", "mod", "word", "entry",
+	"index", "colour", "array", "init", "function", "dirvalue", "block", "mod", "word", "entry",
 	"skipped", "declare", "undef", "include", "if", "ifdef", "while", "for",
 	"switch", "case", "break", "macro", "version", "message", "default", "list",
 };
@@ -95,7 +95,7 @@ static void dump(FILE *out, const struct node *n, int depth, const char *label)
 	if (n->b && n->kind != N_DECLARE)
 		dump(out, n->b, depth + 1, n->kind == N_IF || n->kind == N_IFDEF ? "then" : NULL);
 	if (n->c)
-		dump(out, n->c, depth + 1, "else");
+		dump(out, n->c, depth + 1, n->kind == N_BLOCK ? "layer" : "else");
 	for (int i = 0; !kids_first && i < n->nkids; i++)
 		dump(out, n->kids[i], depth + 1, NULL);
 }

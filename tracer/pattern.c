@@ -7,8 +7,8 @@
 
 #include <math.h>
 
-#include "fn.h"
 #include "noise.h"
+#include "fn.h"
 
 /* 1 − v for v in [0,1], 0 beyond, 1 below 0 (POV-Ray's CLIP_DENSITY). */
 static double clip_density(double v) { return v < 0 ? 1 : v > 1 ? 0 : 1 - v; }
@@ -61,8 +61,8 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
 	case PAT_PLANAR: return clip_density(fabs(q.y));
 	case PAT_LEOPARD: return leopard_raw(q);
+	case PAT_PIGMENT: case PAT_AVERAGE: case PAT_LAYERED: return 0; /* material.c computes these */
 	case PAT_FUNCTION: return function_raw(pig_pattern(pg)->fn, q);
-	case PAT_PIGMENT: case PAT_AVERAGE: return 0; /* material.c computes these */
 	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}
 }

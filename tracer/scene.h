@@ -36,6 +36,7 @@ enum pattern_kind {
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
 	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
+	PAT_LAYERED,  /* a layered texture's pigments, pmap bottom first */
 	PAT_KIND_COUNT
 };
 
@@ -92,7 +93,6 @@ struct pattern {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
-	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 	int noise_gen;            /* noise_generator 1-3 (0: global_settings') */
 	const struct warp *warps; /* turbulence and warp { }, in the order they act */
 	int nwarps;
@@ -105,6 +105,7 @@ struct pattern {
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
 	int npmap;
+	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 };
 
 struct pigment {
@@ -224,19 +225,6 @@ struct photon_spec {
 	bool pass_through; /* pass_through */
 };
 
-/* isosurface { function { … } contained_by { box | sphere } … }: the
- * surface f = threshold inside the container; inside is f < threshold
- * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
-struct isosurface {
-	const struct fn *fn;       /* f(x, y, z) in the object frame */
-	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
-	struct vec3 lo, hi, c;
-	double r;
-	double threshold;          /* default 0 */
-	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
-	double accuracy;           /* root tolerance, object units (default 0.001) */
-};
-
 /* A polynomial surface F(x,y,z) = Σ a·xⁱyʲzᵏ = 0 (poly, quartic, cubic,
  * quadric), inside where F < 0; only its non-zero terms. */
 struct poly_term {
@@ -288,6 +276,19 @@ struct mesh {
 	struct vec3 inside_dir;   /* inside_vector */
 };
 
+/* isosurface { function { … } contained_by { box | sphere } … }: the
+ * surface f = threshold inside the container; inside is f < threshold
+ * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
+struct isosurface {
+	const struct fn *fn;       /* f(x, y, z) in the object frame */
+	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
+	struct vec3 lo, hi, c;
+	double r;
+	double threshold;          /* default 0 */
+	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
+	double accuracy;           /* root tolerance, object units (default 0.001) */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -300,7 +301,6 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
-		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { const struct polynomial *p; } poly;
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { const struct blob *b; } blob;
@@ -309,6 +309,7 @@ struct object {
 		struct { const struct flat_outline *f; } polygon;
 		struct { const struct revolution *r; } lathe;
 		struct { const struct sor_shape *s; } sor;
+		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
