@@ -155,12 +155,14 @@ static void pigment_entry(struct eval *E, struct pig_entry *e, const struct node
 {
 	if (n->kind != N_ENTRY || n->nkids < 1)
 		eval_fail(E, n->loc, "a pigment_map entry is [position pigment]");
-	e->pos = eval_float(E, n->kids[0]);
+	/* [function { … } …]: POV-Ray's average takes entries without a weight (1) */
+	int first = n->kids[0] && n->kids[0]->kind == N_FUNC ? 0 : 1;
+	e->pos = first ? eval_float(E, n->kids[0]) : 1;
 	struct pigment *pg = NEW(E, struct pigment);
 	*pg = scene_default_texture().pigment;
 	struct sink s;
 	sink_init(&s, SK_PIGMENT, TK_PIGMENT_MAP, n->loc, pg);
-	for (int i = 1; i < n->nkids; i++)
+	for (int i = first; i < n->nkids; i++)
 		eval_item(E, n->kids[i], &s);
 	e->pig = pg;
 }
