@@ -57,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus gallery
+.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus povray-photons gallery
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -184,6 +184,8 @@ povray-compat: all
 	sh tests/povray-compat/compat.sh
 povray-corpus: all
 	TIMEOUT=40 sh tests/povray-compat/compat.sh --corpus
+povray-photons: all
+	sh tests/povray-compat/photons.sh
 
 lint:
 	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5

@@ -27,7 +27,8 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE,
+	SK_LIST      /* a mesh2 list: vertex_vectors { n, <…>, … } and the like */
 };
 
 #define SINK_MAX_PARAMS 8
@@ -46,6 +47,9 @@ struct sink {
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
+	double *list;              /* SK_OBJECT: a long coefficient vector <a, b, …> (poly) */
+	int nlist;                 /* its length */
+	struct srcloc list_loc;    /* where it was written */
 };
 
 struct eval {
@@ -78,6 +82,7 @@ struct eval {
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
+	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
@@ -166,6 +171,12 @@ struct pattern *pat_w(struct eval *E, struct pigment *p);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* A vector of more than 5 components in an object that takes one (poly's
+ * coefficients): stored in the sink; false when n is not one. */
+bool object_long_vector(struct eval *E, struct sink *s, const struct node *n);
+/* The items of a mesh2 list (SK_LIST). */
+void list_keyword(struct eval *E, struct sink *s, const struct node *n);
+void list_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */
