@@ -220,14 +220,14 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
-		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
-		struct { const struct flat_outline *f; } polygon;
-		struct { const struct revolution *r; } lathe;
-		struct { const struct sor_shape *s; } sor;
 		struct { const struct polynomial *p; } poly;
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { const struct blob *b; } blob;
 		struct { const struct mesh *m; } mesh;
+		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
+		struct { const struct flat_outline *f; } polygon;
+		struct { const struct revolution *r; } lathe;
+		struct { const struct sor_shape *s; } sor;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
