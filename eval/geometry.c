@@ -11,7 +11,7 @@
 
 /* Applies X to an object, its texture and its children (POV-Ray moves the
  * texture with the object when the texture came first). */
-static void object_transform(struct eval *E, struct object *o, const struct xform *X)
+void object_transform(struct eval *E, struct object *o, const struct xform *X)
 {
 	o->xf = xform_then(E, o->xf, X);
 	if (o->tex) {

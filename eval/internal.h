@@ -27,7 +27,7 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE,
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE, SK_WARP,
 	SK_LIST      /* a mesh2 list: vertex_vectors { n, <…>, … } and the like */
 };
 
@@ -81,6 +81,8 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
+	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
@@ -168,6 +170,8 @@ struct pattern *pat_w(struct eval *E, struct pigment *p);
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
 
 /* ---- geometry.c: objects ---- */
+/* Moves object o (its texture and children too) by X. */
+void object_transform(struct eval *E, struct object *o, const struct xform *X);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
@@ -216,6 +220,22 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
 struct tnormal *normal_block(struct eval *E, const struct node *blk);
 void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+
+/* ---- patterns.c: noise patterns, turbulence, warps, pigment maps ---- */
+/* A pattern keyword of pigment s->target (bozo, turbulence, warp,
+ * pigment_map …); false when n is not one. */
+bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n);
+void warp_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* A pigment given in place of a colour of checker, hexagon or brick. */
+void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *sub, struct srcloc loc);
+/* texture_map { } of texture t (its pigment holds the pattern), and
+ * normal_map { } of normal t. */
+void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
+void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
+bool is_pattern_kw(enum tok k);
+/* Patterns without their own noise_generator take global_settings'. */
+void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */

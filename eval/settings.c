@@ -73,6 +73,12 @@ void light_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_LOOKS_LIKE: { /* looks_like { object }: an object { } of its items */
+		struct node on = *n;
+		on.op = TK_OBJECT;
+		l->looks_like = object_block(E, &on).p.obj;
+		return;
+	}
 	case TK_SPOTLIGHT: l->kind = LIGHT_SPOT; return;
 	case TK_PARALLEL: l->kind = LIGHT_PARALLEL; l->point_at = v3(0, 0, 0); return;
 	case TK_RADIUS: l->radius = arg_float(E, n); return;
@@ -239,6 +245,7 @@ void global_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_MAX_TRACE_LEVEL: g->max_trace_level = arg_int(E, n, 1, 256); return;
 	case TK_ADC_BAILOUT: g->adc_bailout = arg_float(E, n); return;
 	case TK_AMBIENT_LIGHT: g->ambient_light = arg_colour(E, n); return;
+	case TK_NOISE_GENERATOR: g->noise_generator = arg_int(E, n, 1, 3); return;
 	case TK_PHOTONS:
 		g->illum.given = true;
 		sink_init(&sub, SK_PHOTONS, TK_GLOBAL_SETTINGS, n->loc, &g->illum);

@@ -28,7 +28,40 @@ enum pigment_kind {
 /* POV-Ray's continuous patterns (tracer/pattern.c). */
 enum pattern_kind {
 	PAT_RADIAL, PAT_ONION, PAT_SPHERICAL, PAT_CYLINDRICAL, PAT_BOXED, PAT_PLANAR,
-	PAT_LEOPARD, PAT_KIND_COUNT
+	PAT_LEOPARD,
+	/* the noise patterns (tracer/noise.h) and their kin */
+	PAT_BOZO, PAT_SPOTTED, PAT_BUMPS, PAT_DENTS, PAT_GRANITE, PAT_MARBLE, PAT_WOOD,
+	PAT_AGATE, PAT_WRINKLES, PAT_RIPPLES, PAT_WAVES, PAT_CRACKLE, PAT_QUILTED,
+	PAT_SPIRAL1, PAT_SPIRAL2,
+	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
+	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
+	PAT_KIND_COUNT
+};
+
+/* A warp { } or a pattern's own turbulence, in the order they act. */
+enum warp_kind { WARP_TURB, WARP_REPEAT, WARP_BLACK_HOLE, WARP_XF };
+
+struct warp {
+	enum warp_kind kind;
+	bool classic;             /* WARP_TURB: the pattern's own turbulence keyword */
+	struct vec3 turb;         /* WARP_TURB: displacement per axis */
+	int octaves;              /* WARP_TURB: default 6 */
+	double omega, lambda;     /* WARP_TURB: defaults 0.5, 2 */
+	int axis;                 /* WARP_REPEAT: 0 x, 1 y, 2 z */
+	double width;             /* WARP_REPEAT: the repeat distance */
+	struct vec3 offset, flip; /* WARP_REPEAT: per repeat; flip factors (1 or -1) */
+	struct vec3 center;       /* WARP_BLACK_HOLE */
+	double radius, strength, falloff; /* WARP_BLACK_HOLE: falloff default 2 */
+	bool inverse;             /* WARP_BLACK_HOLE: pushes instead of pulling */
+	const struct xform *xf;   /* WARP_XF: a transform written before later warps */
+};
+
+struct pigment;
+
+/* One entry of a pigment_map (or average): the pigment at position pos. */
+struct pig_entry {
+	double pos;                  /* position in the pattern (weight for average) */
+	const struct pigment *pig;   /* the pigment there */
 };
 
 /* The wave a pattern's value goes through before the colour_map. */
@@ -58,6 +91,18 @@ struct pattern {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
+	int noise_gen;            /* noise_generator 1-3 (0: global_settings') */
+	const struct warp *warps; /* turbulence and warp { }, in the order they act */
+	int nwarps;
+	double agate_turb;        /* agate: default 1 */
+	double metric, offset;    /* crackle: defaults 2, 0 */
+	struct vec3 form;         /* crackle: default <-1, 1, 0> */
+	bool solid;               /* crackle solid */
+	double control0, control1; /* quilted: defaults 1, 1 */
+	int arms;                 /* spiral1, spiral2: number of arms */
+	const struct pigment *sub; /* pigment_pattern's pigment */
+	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
+	int npmap;
 };
 
 struct pigment {
@@ -101,16 +146,36 @@ struct interior {
 
 /* normal { pattern [amount] … }: POV-Ray's perturbation of the shading
  * normal by the slope of a pattern (tracer/pattern.h). */
+struct tnormal;
+
+/* One entry of a normal_map: the normal at position pos. */
+struct nrm_entry {
+	double pos;               /* position in the pattern, ascending */
+	const struct tnormal *n;  /* the normal there */
+};
+
 struct tnormal {
 	struct pigment pat; /* the pattern, its wave and its transform */
 	double amount;      /* bump size (POV default 0.5) */
+	const struct nrm_entry *map; /* normal_map (NULL: none) */
+	int nmap;
+};
+
+struct texture;
+
+/* One entry of a texture_map: the texture at position pos. */
+struct tex_entry {
+	double pos;                 /* position in the pattern, ascending */
+	const struct texture *tex;  /* the texture there */
 };
 
 struct texture {
-	struct pigment pigment;
+	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
 	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
+	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
+	int nmap;
 };
 
 /* ---- objects ------------------------------------------------------------ */
@@ -266,6 +331,7 @@ struct light {
 	bool shadowless;            /* casts no shadows, lights everything */
 	bool photons_refraction;    /* photons { refraction on } (default on) */
 	bool photons_reflection;    /* photons { reflection on } (default on) */
+	struct object *looks_like;  /* looks_like: drawn at the light, casting no shadow (NULL: none) */
 };
 
 /* POV-Ray's camera types (tracer/camera.c has their projections). */
@@ -312,6 +378,7 @@ struct global_settings {
 	int max_trace_level;       /* default 5 */
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
+	int noise_generator;       /* default 2 (POV-Ray's range-corrected noise) */
 	struct illum_settings illum;
 };
 
