@@ -39,10 +39,10 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic)
 {
 	double pos = val_want_float(E, &sk->params[ip], sk->ploc[ip]);
-	if (pos < 0 || pos > 1)
-		eval_fail(E, sk->ploc[ip], "colour_map position must be 0 to 1, found %g", pos);
-	if (m->n > 0 && pos < m->e[m->n - 1].pos)
-		eval_fail(E, sk->ploc[ip], "colour_map positions must not decrease (%g after %g)", pos, m->e[m->n - 1].pos);
+	/* POV-Ray takes positions outside [0, 1] (stones1.inc has 1.001): the
+	 * pattern's values stay in [0, 1] and interpolate towards them */
+	if (m->n > 0 && pos < m->e[m->n - 1].pos) /* POV-Ray's search never reaches it: it acts at the last position */
+		pos = m->e[m->n - 1].pos;
 	if (m->n >= 256)
 		eval_fail(E, n->loc, "colour_map has more than 256 entries");
 	struct map_entry *e = ARENA_ARRAY(&SC(E)->arena, struct map_entry, m->n + 1);
@@ -192,6 +192,15 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 }
 
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc)
+{
+	const struct fn *f = function_usable(E, v, loc);
+	p->kind = PIG_PATTERN;
+	struct pattern *pt = pat_w(E, p);
+	pt->pattern = PAT_FUNCTION;
+	pt->fn = f;
+}
+
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct pigment *p = s->target;
@@ -202,6 +211,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 	}
 	if (v->kind == V_PIGMENT && s->nparams == 0 && !s->modified) {
 		*p = *v->p.pig;
+		s->modified = 1;
+		return;
+	}
+	if (v->kind == V_FUNCTION) { /* pigment { function { … } colour_map { … } } */
+		function_pattern(E, p, v, loc);
 		s->modified = 1;
 		return;
 	}
@@ -262,6 +276,12 @@ void finish_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_ROUGHNESS: f->roughness = arg_positive(E, n); return;
 	case TK_PHONG: f->phong = arg_float(E, n); return;
 	case TK_PHONG_SIZE: f->phong_size = arg_float(E, n); return;
+	case TK_CRAND: /* POV-Ray's grain: noise arvo does not add */
+		arg_float(E, n);
+		if (!E->warned_crand)
+			diag_warning(E->diag, n->loc, "'crand' is not supported; ignored (here and in every finish)");
+		E->warned_crand = true;
+		return;
 	case TK_METALLIC: arg_bool(E, n); return;
 	case TK_CONSERVE_ENERGY: f->conserve_energy = arg_bool(E, n); return;
 	case TK_EMISSION: f->emission = arg_colour(E, n); return;
@@ -384,6 +404,10 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct tnormal *t = s->target;
+	if (v->kind == V_FUNCTION) { /* normal { function { … } [amount] } */
+		function_pattern(E, &t->pat, v, loc);
+		return;
+	}
 	if (v->kind == V_SKIPPED) { /* a declared normal first */
 		if (v->p.nrm)
 			*t = *v->p.nrm;

@@ -238,6 +238,24 @@ static struct colour average(const struct mat_cache *c, const struct pattern *pt
 
 /* A pigment at world point p; depth bounds nested maps (a pigment_map's
  * entry may itself be one). */
+/* A layered texture's pigments, each over the ones below (pmap[0] is the
+ * bottom): a layer shows its own colour by 1 - filter - transmit, and lets
+ * the layers below through by filter (tinted by its colour) plus transmit;
+ * what the whole lets through is the product of the layers' shares. */
+static struct colour layered(const struct mat_cache *c, const struct pattern *pt, struct vec3 q, int depth)
+{
+	struct colour out = pigment_at(c, pt->pmap[0].pig, q, depth);
+	for (int i = 1; i < pt->npmap; i++) {
+		struct colour k = pigment_at(c, pt->pmap[i].pig, q, depth);
+		double own = fmax(0, 1 - k.f - k.t), pass = k.f + k.t;
+		out.r = own * k.r + (k.f * k.r + k.t) * out.r;
+		out.g = own * k.g + (k.f * k.g + k.t) * out.g;
+		out.b = own * k.b + (k.f * k.b + k.t) * out.b;
+		out.f *= pass, out.t *= pass;
+	}
+	return out;
+}
+
 static struct colour pigment_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 p, int depth)
 {
 	if (pg->kind == PIG_SOLID)
@@ -256,6 +274,8 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 	case PIG_GRADIENT: case PIG_PATTERN: {
 		if (pt->pattern == PAT_AVERAGE && pg->kind == PIG_PATTERN)
 			return pt->pmap ? average(c, pt, q, depth + 1) : c_rgb(0, 0, 0);
+		if (pt->pattern == PAT_LAYERED && pg->kind == PIG_PATTERN)
+			return layered(c, pt, q, depth + 1);
 		double v = value_at(c, pg, q, depth);
 		if (pt->pmap && pt->npmap > 0)
 			return pigment_map(c, pt, v, q, depth + 1);
