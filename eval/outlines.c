@@ -64,24 +64,16 @@ bool outline_keyword(struct eval *E, struct sink *s, struct object *o, const str
 			return false;
 		b->conic = n->op == TK_CONIC_SWEEP;
 		return true;
-	case TK_TTF: case TK_INTERNAL: {
-		/* ttf "file" "string" t, o — or, with commas, ttf "file", "string", t, o;
-		 * internal N: POV-Ray's built-in fonts, the files povray-includes
-		 * ships (0 povlogo, 1 timrom, 2 cyrvetic, 3 crystal) */
+	case TK_TTF: {
+		/* ttf "file" "string" t, o — or, with commas, ttf "file", "string", t, o */
 		if (o->kind != OBJ_TEXT || b->n || n->nkids < 1)
 			return false;
+		struct value v = eval_expr(E, n->kids[0]);
+		if (v.kind != V_STRING)
+			eval_fail(E, n->kids[0]->loc, "expected a font file name string after 'ttf', found %s",
+			          val_type_name(&v));
+		b->font = v.p.s;
 		b->font_loc = n->kids[0]->loc;
-		if (n->op == TK_INTERNAL) {
-			static const char *const builtin[] = {"povlogo.ttf", "timrom.ttf", "cyrvetic.ttf", "crystal.ttf"};
-			double id = eval_float(E, n->kids[0]);
-			b->font = builtin[id >= 1 && id <= 3 ? (int)id : 0];
-		} else {
-			struct value v = eval_expr(E, n->kids[0]);
-			if (v.kind != V_STRING)
-				eval_fail(E, n->kids[0]->loc, "expected a font file name string after 'ttf', found %s",
-				          val_type_name(&v));
-			b->font = v.p.s;
-		}
 		for (int i = 1; i < n->nkids; i++) {
 			struct value w = eval_expr(E, n->kids[i]);
 			outline_value(E, s, o, &w, n->kids[i]->loc);
