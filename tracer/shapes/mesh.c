@@ -22,6 +22,10 @@
  * that vector crosses the mesh an odd number of times (POV-Ray's rule);
  * without, nothing is inside.
  *
+ * A height_field is such a mesh too (eval/geometry.c makes its grid of
+ * triangles, inside_vector up); its water_level hides the surface below
+ * that height (clip_y).
+ *
  * Parametrisation: an atlas. With k = ⌈√nt⌉, triangle i has the cell
  * column i mod k, row ⌊i/k⌋ of a k × k grid over [0,1]², and inside the
  * cell its own barycentric (a, b) as triangle.c's (u,v):
@@ -249,6 +253,8 @@ static void walk(struct walk *W)
 			double tt, a, b;
 			if (!tri_hit(m, t, W->r, &tt, &a, &b) || !(tt > W->lo))
 				continue;
+			if (m->clip_y > -INFINITY && !W->count_all && W->r->o.y + tt * W->r->d.y < m->clip_y)
+				continue; /* under a height field's water level */
 			if (W->count_all) {
 				W->crossings++;
 				continue;
