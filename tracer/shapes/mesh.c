@@ -381,6 +381,10 @@ static void me_dump(const struct object *o, FILE *out)
 	fprintf(out, "triangles %d vertices %d normals %d", m->nt, m->nv, m->nn);
 	if (m->has_inside)
 		fputs(" inside_vector ", out), prim_dump_vec(out, m->inside_dir);
+	if (m->hf_w)
+		fprintf(out, " height_field %dx%d", m->hf_w, m->hf_h);
+	if (m->clip_y > -INFINITY)
+		fprintf(out, " water_level %.6g", m->clip_y);
 }
 
 const struct prim_ops shape_mesh_ops = {
