@@ -211,11 +211,8 @@ static void *grow(struct eval *E, void *arr, int n, size_t size)
 /* The mesh o is building (made on first use). */
 static struct mesh *mesh_of(struct eval *E, struct object *o)
 {
-	if (!o->g.mesh.m) {
-		struct mesh *m = NEW(E, struct mesh);
-		m->clip_y = -INFINITY;
-		o->g.mesh.m = m;
-	}
+	if (!o->g.mesh.m)
+		o->g.mesh.m = NEW(E, struct mesh);
 	return (struct mesh *)o->g.mesh.m;
 }
 
@@ -546,6 +543,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		if (s->kw != TK_HEIGHT_FIELD)
 			misplaced(E, s, n);
 		mesh_of(E, o)->clip_y = arg_float(E, n); /* a fraction of the full height */
+		mesh_of(E, o)->clipped = true;
 		return;
 	case TK_SMOOTH:
 		if (s->kw != TK_HEIGHT_FIELD)

@@ -282,7 +282,7 @@ static void t_load_errors(void)
 	CHECK(err != NULL && im.px == NULL);
 	if (err)
 		printf("# expected error: %s\n", err);
-	struct img_opts o = {NULL, "No Such Space", 0};
+	struct img_opts o = {NULL, "No Such Space", 0, 0};
 	CHECK(MSG(img_load(in_dir("tex.png"), &o, &im, TDG, srcloc_none(), NULL)) != NULL && im.px == NULL);
 	CHECK(MSG(img_load(in_dir("old.png"), NULL, &im, TDG, srcloc_none(), NULL)) != NULL);
 }

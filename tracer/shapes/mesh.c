@@ -253,7 +253,7 @@ static void walk(struct walk *W)
 			double tt, a, b;
 			if (!tri_hit(m, t, W->r, &tt, &a, &b) || !(tt > W->lo))
 				continue;
-			if (m->clip_y > -INFINITY && !W->count_all && W->r->o.y + tt * W->r->d.y < m->clip_y)
+			if (m->clipped && !W->count_all && W->r->o.y + tt * W->r->d.y < m->clip_y)
 				continue; /* under a height field's water level */
 			if (W->count_all) {
 				W->crossings++;
@@ -383,7 +383,7 @@ static void me_dump(const struct object *o, FILE *out)
 		fputs(" inside_vector ", out), prim_dump_vec(out, m->inside_dir);
 	if (m->hf_w)
 		fprintf(out, " height_field %dx%d", m->hf_w, m->hf_h);
-	if (m->clip_y > -INFINITY)
+	if (m->clipped)
 		fprintf(out, " water_level %.6g", m->clip_y);
 }
 
