@@ -185,6 +185,8 @@ void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* Puts texture top (and the layers under it) on top of t, as a layer. */
+void texture_layer(struct eval *E, struct texture *t, const struct texture *top);
 /* normal { }: a fresh perturbation, or NULL when it uses what arvo lacks
  * (warned once: the scene renders with the plain normal). */
 struct tnormal *normal_block(struct eval *E, const struct node *blk);

@@ -154,6 +154,11 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->below) { /* and the layers under it */
+		struct texture *b = texture_copy(E, t->below);
+		texture_transform(E, b, X);
+		t->below = b;
+	}
 	if (t->map) { /* a texture_map's textures move with it */
 		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap);
 		for (int i = 0; i < t->nmap; i++) {

@@ -192,25 +192,11 @@ static int map_entries(struct eval *E, const struct node *blk, size_t size, void
 
 static void pig_entry_cb(struct eval *E, void *e, const struct node *n) { pigment_entry(E, e, n); }
 
-/* Checks that positions do not decrease (average takes weights instead). */
-static void check_order(struct eval *E, const struct node *blk, const double *pos, size_t stride, int n,
-                        const char *what)
-{
-	for (int i = 1; i < n; i++) {
-		double a = *(const double *)((const char *)pos + stride * (size_t)(i - 1));
-		double b = *(const double *)((const char *)pos + stride * (size_t)i);
-		if (b < a)
-			eval_fail(E, blk->kids[i]->loc, "%s positions must not decrease (%g after %g)", what, b, a);
-	}
-}
-
 static void pigment_map_block(struct eval *E, struct pigment *p, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct pig_entry), &arr, pig_entry_cb, "pigment_map");
 	struct pattern *pt = pat_w(E, p);
-	if (!(p->kind == PIG_PATTERN && pt->pattern == PAT_AVERAGE))
-		check_order(E, n, &((struct pig_entry *)arr)->pos, sizeof(struct pig_entry), k, "pigment_map");
 	pt->pmap = arr;
 	pt->npmap = k;
 }
@@ -368,7 +354,6 @@ void texture_map_block(struct eval *E, struct texture *t, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct tex_entry), &arr, tex_entry_cb, "texture_map");
-	check_order(E, n, &((struct tex_entry *)arr)->pos, sizeof(struct tex_entry), k, "texture_map");
 	t->map = arr;
 	t->nmap = k;
 }
@@ -377,7 +362,6 @@ void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct nrm_entry), &arr, nrm_entry_cb, "normal_map");
-	check_order(E, n, &((struct nrm_entry *)arr)->pos, sizeof(struct nrm_entry), k, "normal_map");
 	t->map = arr;
 	t->nmap = k;
 }

@@ -633,6 +633,10 @@ static struct node *parse_declare(struct parser *p, struct token d)
 	if (!expect(p, TK_EQ))
 		return n;
 	n->a = parse_value(p);
+	/* POV-Ray's layered texture, #declare T = texture { … } texture { … }:
+	 * each further texture becomes an item of the first, a layer on top */
+	while (n->a && n->a->kind == N_BLOCK && n->a->op == TK_TEXTURE && check(p, TK_TEXTURE) && !p->panic)
+		ast_push(p->arena, n->a, parse_keyword_item(p));
 	accept(p, TK_SEMI);
 	return n;
 }

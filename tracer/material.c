@@ -153,7 +153,7 @@ static struct colour colour_map(const struct pigment *pg, double v)
 	for (int i = 1; i < n; i++)
 		if (v <= m[i].pos) {
 			double span = m[i].pos - m[i - 1].pos;
-			return span > 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
+			return span != 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
 		}
 	return m[n - 1].c;
 }

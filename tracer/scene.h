@@ -176,6 +176,7 @@ struct texture {
 	struct srcloc loc; /* where the texture was written */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
 	int nmap;
+	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
 };
 
 /* ---- objects ------------------------------------------------------------ */
