@@ -338,8 +338,22 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		texture_map_block(E, t, n);
 		return;
 	}
-	if (n->op == TK_TEXTURE) { /* a layer on top of what t is so far */
-		texture_layer(E, t, eval_block(E, n).p.tex);
+	if (n->op == TK_TEXTURE) {
+		const struct texture *k = eval_block(E, n).p.tex;
+		enum pigment_kind pk = t->pigment.kind;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) { /* checker texture { } texture { } */
+			int most = pk == PIG_HEXAGON ? 3 : 2;
+			if (t->nmap >= most)
+				eval_fail(E, n->loc, "%s takes %d textures, found more", pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
+			struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
+			if (t->nmap)
+				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+			m[t->nmap] = (struct tex_entry){t->nmap, k};
+			t->map = m;
+			t->nmap++;
+			return;
+		}
+		texture_layer(E, t, k); /* a layer on top of what t is so far */
 		return;
 	}
 	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */

@@ -174,7 +174,7 @@ static struct colour texel(const struct img *im, long x, long y)
  * bottom-left at the origin, repeating unless `once`. */
 static struct colour image_map(const struct mat_cache *c, const struct pigment *pg, struct vec3 q)
 {
-	const struct img *im = cache_find(c, pig_pattern(pg)->image ? pig_pattern(pg)->image : "");
+	const struct img *im = c ? cache_find(c, pig_pattern(pg)->image ? pig_pattern(pg)->image : "") : NULL;
 	if (!im || im->w <= 0)
 		return c_rgb(1, 0, 1);
 	if (pig_pattern(pg)->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
@@ -200,6 +200,8 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 static double value_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 q, int depth)
 {
 	const struct pattern *pt = pig_pattern(pg);
+	if (pg->kind == PIG_CHECKER || pg->kind == PIG_HEXAGON || pg->kind == PIG_BRICK)
+		return pattern_block(pg, q); /* a map's entry by number */
 	if (pg->kind == PIG_PATTERN && pt->pattern == PAT_PIGMENT)
 		return pattern_wave(pg, pt->sub ? pattern_grey(pigment_at(c, pt->sub, q, depth + 1)) : 0);
 	return pattern_value(pg, q);

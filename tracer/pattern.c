@@ -7,6 +7,7 @@
 
 #include <math.h>
 
+#include "material.h"
 #include "noise.h"
 
 /* 1 − v for v in [0,1], 0 beyond, 1 below 0 (POV-Ray's CLIP_DENSITY). */
@@ -48,7 +49,9 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
 	case PAT_PLANAR: return clip_density(fabs(q.y));
 	case PAT_LEOPARD: return leopard_raw(q);
-	case PAT_PIGMENT: case PAT_AVERAGE: return 0; /* material.c computes these */
+	case PAT_PIGMENT: /* in a normal: the grey of the pigment (without image maps) */
+		return pig_pattern(pg)->sub ? pattern_grey(mat_pigment(NULL, pig_pattern(pg)->sub, q)) : 0;
+	case PAT_AVERAGE: return 0;
 	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}
 }
