@@ -809,6 +809,8 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 			diag_warning(E->diag, n->loc, "'%s' is not supported in 'normal' yet; the normal is ignored", n->str);
 		return;
 	}
+	if (s->kind == SK_OBJECT && n->kind == N_VEC && object_long_vector(E, s, n))
+		return;
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
 }

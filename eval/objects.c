@@ -408,6 +408,7 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_FOG: fog_keyword(E, s, n); return;
 	case SK_WARP: warp_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
+	case SK_LIST: list_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
 			*(struct xform *)s->target = xf_inverse(*(struct xform *)s->target);
@@ -459,6 +460,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_NORMAL: normal_value(E, s, v, loc); return;
 	case SK_FOG: fog_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
+	case SK_LIST: list_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:
 		if (s->nparams >= SINK_MAX_PARAMS)
 			eval_fail(E, loc, "too many values here");

@@ -518,6 +518,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	}
 	switch (sh) {
 	case SH_BLOCK:
+		if (t.kind == TK_CLIPPED_BY && !check(p, TK_LBRACE))
+			return n; /* bounded_by { clipped_by }: a word */
+		if (t.kind == TK_CYLINDER && !check(p, TK_LBRACE)) {
+			ast_push(p->arena, n, parse_expr(p)); /* the camera's cylinder N */
+			return n;
+		}
 		n->kind = N_BLOCK;
 		if (t.kind == TK_NORMAL) {
 			p->in_normal++;

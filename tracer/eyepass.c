@@ -551,7 +551,8 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
 		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 		struct aov aov = {.z = INFINITY};
-		sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
+		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
+			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
 		E = v_add(E, aov.direct);
 		C = v_add(C, aov.caustic);
 		S = v_add(S, aov_specular(&aov));

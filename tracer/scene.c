@@ -394,7 +394,10 @@ void scene_dump(FILE *o, const struct scene *s)
 		fputc(' ', o);
 		pc(o, f->c);
 	}
-	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
+	static const char *const kinds[] = {"perspective", "orthographic", "fisheye", "ultra_wide_angle", "panoramic",
+	                                    "cylinder 1", "cylinder 2", "cylinder 3", "cylinder 4", "spherical",
+	                                    "omnimax"};
+	fprintf(o, "\ncamera %s @%d:%d\n  location ", kinds[c->kind],
 	        c->loc.line, c->loc.col);
 	pv(o, c->location);
 	fputs(" direction ", o);

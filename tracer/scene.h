@@ -181,6 +181,11 @@ struct texture {
 
 /* ---- objects ------------------------------------------------------------ */
 
+struct extrusion;
+struct flat_outline;
+struct revolution;
+struct sor_shape;
+
 /* The kinds, from objects.def: every primitive, then every CSG kind. */
 enum object_kind {
 #define PRIM(n, w) OBJ_##n,
@@ -218,6 +223,57 @@ struct photon_spec {
 	bool pass_through; /* pass_through */
 };
 
+/* A polynomial surface F(x,y,z) = Σ a·xⁱyʲzᵏ = 0 (poly, quartic, cubic,
+ * quadric), inside where F < 0; only its non-zero terms. */
+struct poly_term {
+	double a;      /* coefficient */
+	int e[3];      /* exponents of x, y, z */
+};
+struct polynomial {
+	int order;     /* total degree, 2..7 */
+	int nterms;
+	struct poly_term *t;
+};
+
+/* A blob: components adding s·(1 − d²/r²)² within r of a centre (sphere) or
+ * a segment (cylinder), the surface where the sum is threshold. */
+struct blob_comp {
+	bool cylinder;            /* else a sphere */
+	struct vec3 a, b;         /* centre; or the segment's ends */
+	double r, s;              /* radius, strength (may be negative) */
+	const struct xform *xf;   /* component frame → blob frame; NULL: identity */
+};
+struct blob {
+	double threshold;
+	int n;
+	struct blob_comp *c;
+	struct vec3 centre;       /* of the components' bounds: the (u,v) centre */
+};
+
+/* A triangle mesh (mesh, mesh2, smooth_triangle): triangles index the
+ * vertex and normal arrays; a bounding volume hierarchy over them is built
+ * by mesh_finish (tracer/shape.h). */
+struct mesh_tri {
+	int v[3];                 /* vertex indices */
+	int n[3];                 /* normal indices, or -1 (flat) */
+};
+struct mesh_node {
+	struct bbox b;
+	int first, count;         /* leaf: triangles order[first … first+count−1]; count 0: inner,
+	                           * children at first and first+1 */
+};
+struct mesh {
+	int nv, nn, nt;
+	struct vec3 *vert, *norm;
+	struct mesh_tri *tri;
+	struct mesh_node *node;   /* node[0] is the root */
+	int nnode;
+	int *order;               /* triangle indices in leaf order */
+	int side;                 /* the (u,v) atlas is side × side cells */
+	bool has_inside;          /* inside_vector given: the mesh is a solid */
+	struct vec3 inside_dir;   /* inside_vector */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -230,6 +286,14 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
+		struct { const struct polynomial *p; } poly;
+		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
+		struct { const struct blob *b; } blob;
+		struct { const struct mesh *m; } mesh;
+		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
+		struct { const struct flat_outline *f; } polygon;
+		struct { const struct revolution *r; } lathe;
+		struct { const struct sor_shape *s; } sor;
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
@@ -271,7 +335,11 @@ struct light {
 	struct object *looks_like;  /* looks_like: drawn at the light, casting no shadow (NULL: none) */
 };
 
-enum camera_kind { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
+/* POV-Ray's camera types (tracer/camera.c has their projections). */
+enum camera_kind {
+	CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC, CAM_FISHEYE, CAM_ULTRA_WIDE, CAM_PANORAMIC,
+	CAM_CYL1, CAM_CYL2, CAM_CYL3, CAM_CYL4, CAM_SPHERICAL, CAM_OMNIMAX
+};
 
 /* The camera after POV-Ray's rules were applied: location, and the
  * direction/up/right frame that spans the image (right's length is the image
@@ -280,7 +348,9 @@ struct camera {
 	enum camera_kind kind;
 	struct srcloc loc;
 	struct vec3 location, direction, up, right, sky, look_at;
-	double angle;          /* horizontal field of view in degrees (0: from vectors) */
+	double angle;          /* horizontal field of view in degrees (0: from vectors;
+	                        * POV-Ray's 90 for fisheye, ultra_wide_angle, cylinder) */
+	double v_angle;        /* spherical: vertical field of view (0: half of angle) */
 	double aperture;       /* depth of field (0: pinhole) */
 	struct vec3 focal_point;
 	int blur_samples;
