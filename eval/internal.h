@@ -236,7 +236,8 @@ void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
 void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
 /* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
 bool is_pattern_kw(enum tok k);
-/* Patterns without their own noise_generator take global_settings'. */
+/* Patterns without their own noise_generator take global_settings', and
+ * every pattern its number_of_waves. */
 void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */

@@ -308,9 +308,11 @@ void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *s
 void patterns_finish(struct eval *E)
 {
 	int g = SC(E)->gs.noise_generator;
-	for (int i = 0; i < E->npats; i++)
+	for (int i = 0; i < E->npats; i++) {
 		if (E->pats[i]->noise_gen == 0)
 			E->pats[i]->noise_gen = g;
+		E->pats[i]->nwaves = SC(E)->gs.number_of_waves;
+	}
 }
 
 /* ==== texture_map and normal_map ========================================= */

@@ -57,7 +57,7 @@ static const double rnums[267] = {
 
 #define GRAD_N 2048    /* Perlin gradients (a power of two) */
 #define NRAND 32768    /* pattern random numbers */
-#define NWAVES 10      /* POV-Ray's number_of_waves */
+#define NWAVES 256     /* wave sources made: number_of_waves at most */
 
 static struct {
 	double rt[2 * 267];           /* each number, then its half */

@@ -36,7 +36,8 @@ double noise_cycloidal(double v);
 double noise_triangle(double v);
 /* POV-Ray's hash of an integer lattice point into 0..4095. */
 int noise_hash3(int x, int y, int z);
-/* The n-th wave source (unit vector) and frequency of ripples and waves. */
+/* The n-th wave source (unit vector) and frequency of ripples and waves
+ * (n < 256, POV-Ray's sequence; it uses the first number_of_waves). */
 struct vec3 noise_wave_source(int n);
 double noise_wave_freq(int n);
 

@@ -183,12 +183,16 @@ static double spiral(const struct pattern *pt, struct vec3 q, bool two)
 	return two ? noise_triangle(rad) + noise_triangle(v) : v;
 }
 
-/* ripples and waves: ten point sources of circular waves; waves gives each
- * its own frequency and amplitude. */
+/* ripples and waves: point sources of circular waves (ten unless
+ * number_of_waves says); waves gives each its own frequency and amplitude. */
+/* The number of wave sources (global_settings' number_of_waves). */
+static int nwaves(const struct pattern *pt) { return pt->nwaves > 0 ? pt->nwaves : 10; }
+
 static double ripples(const struct pattern *pt, struct vec3 q, bool waves)
 {
 	double sum = 0;
-	for (int i = 0; i < 10; i++) {
+	int n = nwaves(pt);
+	for (int i = 0; i < n; i++) {
 		double len = v_len(v_sub(q, noise_wave_source(i)));
 		if (len == 0)
 			len = 1;
@@ -199,7 +203,7 @@ static double ripples(const struct pattern *pt, struct vec3 q, bool waves)
 			sum += noise_cycloidal(len * pt->frequency + pt->phase);
 		}
 	}
-	return waves ? 0.2 * (2.5 + sum / 10) : 0.5 * (1 + sum / 10);
+	return waves ? 0.2 * (2.5 + sum / n) : 0.5 * (1 + sum / n);
 }
 
 /* quilted's cubic of the distance from the cell centre. */
@@ -313,13 +317,13 @@ bool pattern_normal_direct(const struct tnormal *t, struct vec3 q, struct vec3 *
 		return true;
 	}
 	case PAT_RIPPLES: case PAT_WAVES:
-		for (int i = 0; i < 10; i++) {
+		for (int i = 0, k = nwaves(pt); i < k; i++) {
 			struct vec3 d = v_sub(q, noise_wave_source(i));
 			double len = v_len(d), f = pt->pattern == PAT_WAVES ? noise_wave_freq(i) : 1;
 			if (len == 0)
 				len = 1;
 			double s = noise_cycloidal(len * pt->frequency * f + pt->phase) * a / f;
-			*n = v_madd(*n, d, s / (len * 10));
+			*n = v_madd(*n, d, s / (len * nwaves(pt)));
 		}
 		return true;
 	case PAT_WRINKLES: {

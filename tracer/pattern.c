@@ -213,6 +213,15 @@ struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 
 		{-0.471404521, -0.333333333, -0.816496581}, {0, 1, 0}};
 	const double delta = 0.02;
 	struct vec3 np = normal_in(&t->pat, n), q = pattern_point(&t->pat, p);
+	if (t->map && t->nmap > 0 && t->pat.kind == PIG_PATTERN && pig_pattern(&t->pat)->pattern == PAT_AVERAGE) {
+		struct vec3 sum = v3(0, 0, 0); /* average: the entries' normals by weight */
+		double total = 0;
+		for (int i = 0; i < t->nmap; i++) {
+			sum = v_madd(sum, entry_normal(t->map[i].n, q, np), t->map[i].pos);
+			total += t->map[i].pos;
+		}
+		return normal_out(&t->pat, total != 0 ? v_scale(sum, 1 / total) : np);
+	}
 	if (t->map && t->nmap > 0) /* normal_map: the two entries' normals blended */
 		return normal_out(&t->pat, normal_map(t, pattern_value(&t->pat, q), q, np));
 	if (!pattern_normal_direct(t, q, &np)) {

@@ -18,6 +18,7 @@ void scene_init(struct scene *s)
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
 	s->gs.noise_generator = 2;
+	s->gs.number_of_waves = 10;
 	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }

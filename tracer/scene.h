@@ -100,6 +100,7 @@ struct pattern {
 	bool solid;               /* crackle solid */
 	double control0, control1; /* quilted: defaults 1, 1 */
 	int arms;                 /* spiral1, spiral2: number of arms */
+	int nwaves;               /* ripples, waves: global_settings' number_of_waves (0: 10) */
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
 	int npmap;
@@ -380,6 +381,7 @@ struct global_settings {
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
 	int noise_generator;       /* default 2 (POV-Ray's range-corrected noise) */
+	int number_of_waves;       /* ripples and waves: sources (default 10) */
 	struct illum_settings illum;
 };
 
