@@ -221,6 +221,8 @@ static enum pattern_kind noise_kind(enum tok t)
 	case TK_QUILTED: return PAT_QUILTED;
 	case TK_SPIRAL1: return PAT_SPIRAL1;
 	case TK_SPIRAL2: return PAT_SPIRAL2;
+	case TK_CELLS: return PAT_CELLS;
+	case TK_MANDEL: return PAT_MANDEL;
 	case TK_AVERAGE: return PAT_AVERAGE;
 	default: return PAT_KIND_COUNT;
 	}
@@ -245,6 +247,10 @@ static void noise_pattern(struct eval *E, struct pigment *p, const struct node *
 	}
 	if (n->op == TK_AGATE)
 		own_turb(E, p);
+	if (n->op == TK_MANDEL) {
+		pt->arms = arg_int(E, n, 1, 1000000); /* the iterations */
+		pt->exponent_i = 2;
+	}
 }
 
 bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -261,6 +267,7 @@ bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 	switch (n->op) {
 	case TK_AGATE_TURB: pat_w(E, p)->agate_turb = arg_float(E, n); return true;
+	case TK_EXPONENT: pat_w(E, p)->exponent_i = arg_int(E, n, 2, 4); return true;
 	case TK_METRIC: pat_w(E, p)->metric = arg_positive(E, n); return true;
 	case TK_FORM: pat_w(E, p)->form = arg_vec3(E, n); return true;
 	case TK_OFFSET: pat_w(E, p)->offset = arg_float(E, n); return true;
@@ -377,7 +384,7 @@ bool is_pattern_kw(enum tok k)
 	case TK_TRIANGLE_WAVE: case TK_SINE_WAVE: case TK_SCALLOP_WAVE: case TK_CUBIC_WAVE: case TK_POLY_WAVE:
 	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA: case TK_WARP: case TK_AGATE_TURB:
 	case TK_METRIC: case TK_FORM: case TK_OFFSET: case TK_SOLID: case TK_CONTROL0: case TK_CONTROL1:
-	case TK_NOISE_GENERATOR: case TK_PIGMENT_PATTERN:
+	case TK_NOISE_GENERATOR: case TK_PIGMENT_PATTERN: case TK_EXPONENT:
 		return true;
 	default: return noise_kind(k) != PAT_KIND_COUNT;
 	}

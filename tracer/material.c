@@ -117,6 +117,8 @@ static const struct map_entry map_marble[] = {E(0, 0.9, 0.8, 0.8), E(0.9, 0.9, 0
 static const struct map_entry map_wood[] = {E(0.6, 0.666, 0.312, 0.2), E(0.6, 0.4, 0.1333, 0.066)};
 static const struct map_entry map_radial[] = {E(0, 0, 1, 1), E(0.333, 1, 1, 0), E(0.666, 1, 0, 1), E(1, 0, 1, 1)};
 static const struct map_entry map_grey[] = {E(0, 0, 0, 0), E(1, 1, 1, 1)};
+static const struct map_entry map_mandel[] = {E(0.001, 0, 0, 0), E(0.001, 0, 1, 1), E(0.012, 1, 1, 0),
+                                              E(0.015, 1, 0, 1), E(0.1, 0, 1, 1)};
 #undef E
 
 /* The colour map a pigment uses: its own, else its pattern's default. */
@@ -138,6 +140,7 @@ static const struct map_entry *pig_map(const struct pigment *pg, int *n)
 	case PAT_MARBLE: return USE(map_marble);
 	case PAT_WOOD: return USE(map_wood);
 	case PAT_RADIAL: return USE(map_radial);
+	case PAT_MANDEL: return USE(map_mandel);
 	default: return m;
 	}
 #undef USE

@@ -275,6 +275,31 @@ static double crackle(const struct pattern *pt, struct vec3 q)
 	return fmax(fmin(v, 1), 0);
 }
 
+/* mandel: the escape time of z -> z^e + c, c = (x, y), over the iterations
+ * (1 inside: POV-Ray's default exterior and interior types). */
+static double mandel(const struct pattern *pt, struct vec3 q)
+{
+	double a = q.x, b = q.y, a2 = a * a, b2 = b * b;
+	int max = pt->arms > 0 ? pt->arms : 1;
+	for (int i = 0; i < max; i++) {
+		double na, nb;
+		if (pt->exponent_i == 3) {
+			nb = 3 * a2 * b - b2 * b + q.y;
+			na = a2 * a - 3 * a * b2 + q.x;
+		} else if (pt->exponent_i == 4) {
+			nb = 4 * (a2 * a * b - a * b2 * b) + q.y;
+			na = a2 * a2 - 6 * a2 * b2 + b2 * b2 + q.x;
+		} else {
+			nb = 2 * a * b + q.y;
+			na = a2 - b2 + q.x;
+		}
+		a = na, b = nb, a2 = a * a, b2 = b * b;
+		if (a2 + b2 > 4)
+			return (double)i / max;
+	}
+	return 1;
+}
+
 double pattern_noise_raw(const struct pattern *pt, struct vec3 q)
 {
 	switch (pt->pattern) {
@@ -297,6 +322,11 @@ double pattern_noise_raw(const struct pattern *pt, struct vec3 q)
 	}
 	case PAT_SPIRAL1: return spiral(pt, q, false);
 	case PAT_SPIRAL2: return spiral(pt, q, true);
+	case PAT_CELLS: { /* a random value for each unit cube */
+		int h = noise_hash3((int)floor(q.x + EPS), (int)floor(q.y + EPS), (int)floor(q.z + EPS));
+		return fmin(noise_rand((unsigned long)h), 1);
+	}
+	case PAT_MANDEL: return mandel(pt, q);
 	default: return 0;
 	}
 }

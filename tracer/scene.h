@@ -32,7 +32,7 @@ enum pattern_kind {
 	/* the noise patterns (tracer/noise.h) and their kin */
 	PAT_BOZO, PAT_SPOTTED, PAT_BUMPS, PAT_DENTS, PAT_GRANITE, PAT_MARBLE, PAT_WOOD,
 	PAT_AGATE, PAT_WRINKLES, PAT_RIPPLES, PAT_WAVES, PAT_CRACKLE, PAT_QUILTED,
-	PAT_SPIRAL1, PAT_SPIRAL2,
+	PAT_SPIRAL1, PAT_SPIRAL2, PAT_CELLS, PAT_MANDEL,
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
 	PAT_KIND_COUNT
@@ -99,7 +99,8 @@ struct pattern {
 	struct vec3 form;         /* crackle: default <-1, 1, 0> */
 	bool solid;               /* crackle solid */
 	double control0, control1; /* quilted: defaults 1, 1 */
-	int arms;                 /* spiral1, spiral2: number of arms */
+	int arms;                 /* spiral1, spiral2: number of arms; mandel: iterations */
+	int exponent_i;           /* mandel: exponent 2 (default), 3 or 4 */
 	int nwaves;               /* ripples, waves: global_settings' number_of_waves (0: 10) */
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
