@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* noise.c: POV-Ray 3.7's noise functions (docs/design.md §3).
+/* noise.c: POV-Ray 3.7's noise functions (docs/design.md §10).
  *
  * Generators 1 and 2 are Skinner's lattice noise after Perlin: each integer
  * lattice point hashes (through a 4096-entry permutation) to a row of a

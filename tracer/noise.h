@@ -4,7 +4,7 @@
  * puts them: the lattice noise of generators 1 (original) and 2 (range
  * corrected, POV-Ray's default), Perlin's gradient noise (generator 3),
  * the vector noise that turbulence displaces points by, and fractal sums
- * of both (docs/design.md §3). Tables are built once, on first use, from
+ * of both (docs/design.md §10). Tables are built once, on first use, from
  * POV-Ray's own pseudo-random sequences; everything is read-only after. */
 #ifndef ARVO_NOISE_H
 #define ARVO_NOISE_H

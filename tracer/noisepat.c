@@ -4,7 +4,7 @@
  * spiral1, spiral2), its turbulence and warps, and the normals it computes
  * directly rather than from a pattern's slope (bumps, dents, ripples,
  * waves, wrinkles, quilted). Each follows POV-Ray's definition, including
- * its quirks, so a stock scene's textures match (docs/design.md §3):
+ * its quirks, so a stock scene's textures match (docs/design.md §10):
  * - a pattern's own `turbulence` is a warp in the list like any other; the
  *   patterns marble and wood skip it as a warp and use it themselves, and
  *   marble, wood, agate and the spirals find it only when it is the last
