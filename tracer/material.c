@@ -39,11 +39,38 @@ static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *
 	return 0;
 }
 
+/* Loads the image_map of a pigment and of the pigments inside it. */
+static int load_pigment(struct mat_cache *c, const struct pigment *pg, const char *ocio, struct diag *dg, int depth)
+{
+	const struct pattern *pt = pig_pattern(pg);
+	int err = 0;
+	if (depth > 32)
+		return 0;
+	if (pg->kind == PIG_IMAGE)
+		err = cache_add(c, pt, ocio, dg);
+	if (!err && pt->sub)
+		err = load_pigment(c, pt->sub, ocio, dg, depth + 1);
+	for (int i = 0; !err && i < pt->npmap; i++)
+		err = load_pigment(c, pt->pmap[i].pig, ocio, dg, depth + 1);
+	return err;
+}
+
+/* ... of a texture, its texture_map's textures and the layers under it. */
+static int load_texture(struct mat_cache *c, const struct texture *t, const char *ocio, struct diag *dg, int depth)
+{
+	int err = depth > 32 ? 0 : load_pigment(c, &t->pigment, ocio, dg, depth);
+	for (int i = 0; !err && depth <= 32 && i < t->nmap; i++)
+		err = load_texture(c, t->map[i].tex, ocio, dg, depth + 1);
+	if (!err && depth <= 32 && t->below)
+		err = load_texture(c, t->below, ocio, dg, depth + 1);
+	return err;
+}
+
 /* Walks an object tree, loading the image_map of every texture. */
 static int load_tree(struct mat_cache *c, const struct object *o, const char *ocio, struct diag *dg)
 {
-	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
-		int err = cache_add(c, pig_pattern(&o->tex->pigment), ocio, dg);
+	if (o->tex) {
+		int err = load_texture(c, o->tex, ocio, dg, 0);
 		if (err)
 			return err;
 	}
