@@ -81,6 +81,7 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	int warned_crand;          /* 'crand' ignored warning given */
 	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
 	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */

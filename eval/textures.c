@@ -264,6 +264,11 @@ void finish_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_METALLIC: arg_bool(E, n); return;
 	case TK_CONSERVE_ENERGY: f->conserve_energy = arg_bool(E, n); return;
 	case TK_EMISSION: f->emission = arg_colour(E, n); return;
+	case TK_CRAND: /* POV-Ray's random graininess: noise no two renders share */
+		arg_float(E, n);
+		if (!E->warned_crand++)
+			diag_warning(E->diag, n->loc, "'crand' is ignored (the finish renders without its graininess)");
+		return;
 	case TK_REFLECTION:
 		if (n->kind == N_BLOCK) {
 			struct sink r;
