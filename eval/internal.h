@@ -235,6 +235,8 @@ void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *s
  * normal_map { } of normal t. */
 void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
 void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* tiles { textures tile2 textures } of texture t: a checker of the two. */
+void tiles_block(struct eval *E, struct texture *t, const struct node *n);
 /* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
 bool is_pattern_kw(enum tok k);
 /* Patterns without their own noise_generator take global_settings', and

@@ -389,3 +389,35 @@ bool is_pattern_kw(enum tok k)
 	default: return noise_kind(k) != PAT_KIND_COUNT;
 	}
 }
+
+/* tiles { texture { … } … tile2 texture { … } … }: POV-Ray's old checker of
+ * (layered) textures. */
+void tiles_block(struct eval *E, struct texture *t, const struct node *n)
+{
+	struct texture *tile[2] = {NULL, NULL};
+	int k = 0;
+	for (int i = 0; i < n->nkids; i++) {
+		const struct node *it = n->kids[i];
+		if (it->kind == N_MOD && it->op == TK_TILE2) {
+			k = 1;
+			continue;
+		}
+		if (it->kind != N_BLOCK || it->op != TK_TEXTURE)
+			eval_fail(E, it->loc, "tiles holds textures, then tile2 and more textures");
+		const struct texture *x = eval_block(E, it).p.tex;
+		if (!tile[k]) {
+			tile[k] = texture_copy(E, x);
+		} else {
+			texture_layer(E, tile[k], x);
+		}
+	}
+	if (!tile[0] || !tile[1])
+		eval_fail(E, n->loc, "tiles needs a texture on each side of tile2");
+	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, 2);
+	m[0] = (struct tex_entry){0, tile[1]}; /* POV-Ray's tile2 on the checker's first colour */
+	m[1] = (struct tex_entry){1, tile[0]};
+	t->pigment = scene_default_texture().pigment;
+	t->pigment.kind = PIG_CHECKER;
+	t->map = m;
+	t->nmap = 2;
+}

@@ -343,6 +343,10 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		texture_map_block(E, t, n);
 		return;
 	}
+	if (n->op == TK_TILES) {
+		tiles_block(E, t, n);
+		return;
+	}
 	if (n->op == TK_TEXTURE) {
 		const struct texture *k = eval_block(E, n).p.tex;
 		enum pigment_kind pk = t->pigment.kind;
