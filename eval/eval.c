@@ -159,6 +159,7 @@ static struct value binary(struct eval *E, const struct node *n)
 		case TK_LT: return val_float(x < y);
 		case TK_LE: return val_float(x <= y);
 		case TK_GT: return val_float(x > y);
+		case TK_CARET: return val_float(pow(x, y)); /* in a function's pigment { } */
 		default: return val_float(x >= y);
 		}
 	}
@@ -504,6 +505,9 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 		const struct node *def = env_macro(E, n->str);
 		if (def)
 			return macro_value(E, def, n);
+		const struct value *fv = env_lookup(E, n->str);
+		if (fv && fv->kind == V_FUNCTION)
+			return function_call(E, n, fv->p.fn);
 		struct value r;
 		if (builtin_call(E, n, &r))
 			return r;
@@ -520,6 +524,15 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	}
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
+	case N_FUNC: return function_value(E, n);
+	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
+		struct sink s;
+		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+		eval_item(E, n->a, &s);
+		if (s.nresults == 0)
+			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+		return s.result;
+	}
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)

@@ -402,6 +402,8 @@ static void mesh2_block(struct eval *E, struct object *o, const struct node *n)
 		return;
 	}
 }
+static struct isosurface *iso_w(struct eval *E, struct object *o);
+static void isosurface_keyword(struct eval *E, struct object *o, const struct node *n);
 
 void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
@@ -450,12 +452,23 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		else
 			o->flags &= ~(unsigned)OF_HOLLOW;
 		return;
+	case TK_CONTAINED_BY: case TK_MAX_GRADIENT: case TK_ACCURACY: case TK_MAX_TRACE:
+	case TK_ALL_INTERSECTIONS: case TK_EVALUATE:
+		if (o->kind != OBJ_ISOSURFACE)
+			misplaced(E, s, n);
+		isosurface_keyword(E, o, n);
+		return;
 	case TK_OPEN:
-		if (o->kind != OBJ_CYLINDER && o->kind != OBJ_CONE && o->kind != OBJ_PRISM && o->kind != OBJ_SOR)
+		if (o->kind != OBJ_CYLINDER && o->kind != OBJ_CONE && o->kind != OBJ_PRISM && o->kind != OBJ_SOR &&
+		    o->kind != OBJ_ISOSURFACE)
 			misplaced(E, s, n);
 		o->flags |= OF_OPEN;
 		return;
-	case TK_THRESHOLD:
+	case TK_THRESHOLD: /* blob and isosurface */
+		if (o->kind == OBJ_ISOSURFACE) {
+			isosurface_keyword(E, o, n);
+			return;
+		}
 		if (o->kind != OBJ_BLOB)
 			misplaced(E, s, n);
 		blob_of(E, o)->threshold = arg_float(E, n);
@@ -534,6 +547,10 @@ void object_value(struct eval *E, struct sink *s, const struct value *v, struct 
 		return;
 	}
 	struct object *o = object_target(E, s, loc);
+	if (o->kind == OBJ_ISOSURFACE && v->kind == V_FUNCTION) { /* isosurface { function { … } … } */
+		iso_w(E, o)->fn = function_usable(E, v, loc);
+		return;
+	}
 	if (o->kind >= OBJ_FIRST_CSG || s->kw == TK_OBJECT) {
 		if (v->kind == V_OBJECT)
 			eval_fail(E, loc, "use object { Name } to place a declared object");
@@ -757,6 +774,68 @@ static void geom_mesh(struct eval *E, struct sink *s, struct object *o)
 			eval_fail(E, s->loc, "%s face %d has a normal index out of range", tok_name(s->kw), bad);
 		eval_fail(E, s->loc, "%s has no triangle", tok_name(s->kw));
 	}
+}
+
+/* The isosurface's settings, made its own to be written. */
+static struct isosurface *iso_w(struct eval *E, struct object *o)
+{
+	struct isosurface *s = NEW(E, struct isosurface);
+	if (o->g.isosurface.iso) {
+		*s = *o->g.isosurface.iso;
+	} else { /* POV-Ray's defaults */
+		s->lo = v3(-1, -1, -1), s->hi = v3(1, 1, 1);
+		s->max_gradient = 1.1;
+		s->accuracy = 0.001;
+	}
+	o->g.isosurface.iso = s;
+	return s;
+}
+
+/* contained_by { box { … } | sphere { … } }, threshold, max_gradient,
+ * accuracy; max_trace, all_intersections and evaluate are accepted (the
+ * nearest root is always found). */
+static void isosurface_keyword(struct eval *E, struct object *o, const struct node *n)
+{
+	switch (n->op) {
+	case TK_CONTAINED_BY: {
+		struct isosurface *s = iso_w(E, o);
+		if (n->nkids != 1 || !n->kids[0] || n->kids[0]->kind != N_BLOCK ||
+		    (n->kids[0]->op != TK_BOX && n->kids[0]->op != TK_SPHERE))
+			eval_fail(E, n->loc, "contained_by needs a box { } or a sphere { }");
+		struct value v = eval_block(E, n->kids[0]);
+		const struct object *c = v.p.obj;
+		if (c->xf)
+			eval_fail(E, n->kids[0]->loc, "the container cannot be transformed: transform the isosurface");
+		s->sphere = c->kind == OBJ_SPHERE;
+		if (s->sphere)
+			s->c = c->g.sphere.c, s->r = c->g.sphere.r;
+		else
+			s->lo = c->g.box.lo, s->hi = c->g.box.hi;
+		return;
+	}
+	case TK_THRESHOLD: iso_w(E, o)->threshold = arg_float(E, n); return;
+	case TK_MAX_GRADIENT: iso_w(E, o)->max_gradient = arg_positive(E, n); return;
+	case TK_ACCURACY: {
+		double a = arg_positive(E, n);
+		if (a < 1e-6)
+			eval_fail(E, n->kids[0]->loc, "accuracy must be at least 1e-6, found %g", a);
+		iso_w(E, o)->accuracy = a;
+		return;
+	}
+	case TK_MAX_TRACE: arg_int(E, n, 1, 1000000); return;
+	case TK_EVALUATE:
+		for (int i = 0; i < n->nkids; i++)
+			eval_float(E, n->kids[i]);
+		return;
+	default: return; /* all_intersections */
+	}
+}
+
+static void geom_isosurface(struct eval *E, struct sink *s, struct object *o)
+{
+	want_params(E, s, "a function: isosurface { function { … } contained_by { box { … } } }", 0, 0);
+	if (!o->g.isosurface.iso || !o->g.isosurface.iso->fn)
+		eval_fail(E, s->loc, "isosurface needs a function: isosurface { function { … } }");
 }
 
 /* The geometry builder of each primitive, indexed by enum object_kind. */

@@ -55,6 +55,7 @@ struct sink {
 struct eval {
 	struct diag *diag;
 	const struct eval_options *opt;
+	bool warned_crand;         /* finish { crand } warned about once */
 	struct arena arena;        /* ASTs, strings, arrays: lives until eval ends */
 	struct scene *scene;       /* what is being built (its arena holds the model) */
 	struct scope *scopes[MAX_SCOPES]; /* dynamic scope stack; [0] is global */
@@ -81,7 +82,6 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
-	int warned_crand;          /* 'crand' ignored warning given */
 	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
 	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
@@ -138,6 +138,14 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out);
 bool builtin_call(struct eval *E, const struct node *call, struct value *out);
 bool builtin_is_name(const char *name);
 
+/* ---- function.c: function { } ---- */
+/* Compiles a function { } node into a V_FUNCTION value. */
+struct value function_value(struct eval *E, const struct node *n);
+/* F(args) in an expression: a float, or a pigment function's colour. */
+struct value function_call(struct eval *E, const struct node *call, const struct fn *f);
+/* The function of v (V_FUNCTION), or a failure at loc when it cannot be used. */
+const struct fn *function_usable(struct eval *E, const struct value *v, struct srcloc loc);
+
 /* ---- objects.c: dispatch, and the helpers the builders share ---- */
 void sink_init(struct sink *s, enum sink_kind kind, enum tok kw, struct srcloc loc, void *target);
 /* "<keyword> is not valid <where s is>" at n. */
@@ -166,6 +174,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
+/* A fresh texture: top (and the layers under it) layered over bottom. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
@@ -212,6 +222,8 @@ void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char 
 void image_map_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* p becomes the pattern of the function v (pigment and normal). */
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc);
 void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);

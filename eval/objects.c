@@ -205,6 +205,14 @@ void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void
 	eval_items(E, blk, out);
 }
 
+/* POV-Ray's layered texture: top over bottom, as a fresh texture. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top)
+{
+	struct texture *t = texture_copy(E, bottom);
+	texture_layer(E, t, top);
+	return t;
+}
+
 struct value eval_block(struct eval *E, const struct node *blk)
 {
 	struct value v = {.kind = V_NONE};
@@ -224,6 +232,8 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.p.tex = texture_copy(E, NULL);
 		v.p.tex->loc = blk->loc;
 		run_block(E, blk, SK_TEXTURE, v.p.tex, &s);
+		if (blk->c) /* texture { A } texture { B }: B layered over A */
+			v.p.tex = texture_layered(E, v.p.tex, eval_block(E, blk->c).p.tex);
 		return v;
 	case TK_PIGMENT:
 		v.kind = V_PIGMENT;

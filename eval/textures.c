@@ -191,6 +191,15 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 }
 
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc)
+{
+	const struct fn *f = function_usable(E, v, loc);
+	p->kind = PIG_PATTERN;
+	struct pattern *pt = pat_w(E, p);
+	pt->pattern = PAT_FUNCTION;
+	pt->fn = f;
+}
+
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct pigment *p = s->target;
@@ -201,6 +210,11 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 	}
 	if (v->kind == V_PIGMENT && s->nparams == 0 && !s->modified) {
 		*p = *v->p.pig;
+		s->modified = 1;
+		return;
+	}
+	if (v->kind == V_FUNCTION) { /* pigment { function { … } colour_map { … } } */
+		function_pattern(E, p, v, loc);
 		s->modified = 1;
 		return;
 	}
@@ -261,14 +275,15 @@ void finish_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_ROUGHNESS: f->roughness = arg_positive(E, n); return;
 	case TK_PHONG: f->phong = arg_float(E, n); return;
 	case TK_PHONG_SIZE: f->phong_size = arg_float(E, n); return;
+	case TK_CRAND: /* POV-Ray's grain: noise arvo does not add */
+		arg_float(E, n);
+		if (!E->warned_crand)
+			diag_warning(E->diag, n->loc, "'crand' is not supported; ignored (here and in every finish)");
+		E->warned_crand = true;
+		return;
 	case TK_METALLIC: arg_bool(E, n); return;
 	case TK_CONSERVE_ENERGY: f->conserve_energy = arg_bool(E, n); return;
 	case TK_EMISSION: f->emission = arg_colour(E, n); return;
-	case TK_CRAND: /* POV-Ray's random graininess: noise no two renders share */
-		arg_float(E, n);
-		if (!E->warned_crand++)
-			diag_warning(E->diag, n->loc, "'crand' is ignored (the finish renders without its graininess)");
-		return;
 	case TK_REFLECTION:
 		if (n->kind == N_BLOCK) {
 			struct sink r;
@@ -435,6 +450,10 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct tnormal *t = s->target;
+	if (v->kind == V_FUNCTION) { /* normal { function { … } [amount] } */
+		function_pattern(E, &t->pat, v, loc);
+		return;
+	}
 	if (v->kind == V_SKIPPED) { /* a declared normal first */
 		if (v->p.nrm)
 			*t = *v->p.nrm;

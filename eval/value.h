@@ -13,6 +13,7 @@ enum val_kind {
 	V_FLOAT, V_VECTOR, V_COLOUR, V_STRING, V_ARRAY,
 	V_OBJECT, V_LIGHT, V_CAMERA, V_TEXTURE, V_PIGMENT, V_FINISH, V_INTERIOR,
 	V_MATERIAL, V_TRANSFORM, V_COLOUR_MAP, V_SKIPPED,
+	V_FUNCTION,  /* function { … } (tracer/fn.h) */
 	V_KIND_COUNT
 };
 
@@ -53,6 +54,7 @@ struct value {
 		struct xform *xf;
 		struct colour_map *cmap;
 		struct tnormal *nrm; /* V_SKIPPED (a normal): NULL when ignored */
+		const struct fn *fn; /* V_FUNCTION */
 	} p;
 };
 

@@ -26,6 +26,8 @@ struct parser {
 	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
 	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
+	int in_func;         /* inside function { }: '^' is a power; unsupported words in its
+	                      * pattern { } are left to the evaluator (a macro may never run it) */
 };
 
 static struct node *parse_expr(struct parser *p);
@@ -161,6 +163,7 @@ static int starts_expr(const struct parser *p)
 /* ==== expressions ========================================================= */
 
 static struct node *parse_keyword_item(struct parser *p);
+static struct node *parse_directive(struct parser *p);
 
 /* A value where a block may stand too: array initialisers, macro arguments,
  * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
@@ -307,6 +310,67 @@ static struct node *parse_postfix(struct parser *p, struct node *e)
 	}
 }
 
+static struct node *parse_block_body(struct parser *p, struct node *blk);
+
+/* function := 'function' ['(' [ident {',' ident}] ')'] '{' body '}'
+ * body := 'pigment' block | 'pattern' block | expr   (in expr, a '^' b is a power) */
+static struct node *parse_function(struct parser *p)
+{
+	struct node *n = node(p, N_FUNC, p->tok.loc);
+	advance(p);
+	if (check(p, TK_LPAREN)) {
+		struct srcloc open = p->tok.loc;
+		advance(p);
+		if (!check(p, TK_RPAREN)) {
+			do {
+				if (!check(p, TK_IDENT)) {
+					expected(p, "a parameter name");
+					return n;
+				}
+				struct node *id = node(p, N_IDENT, p->tok.loc);
+				id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+				id->len = p->tok.len;
+				ast_push(p->arena, n, id);
+				advance(p);
+			} while (accept(p, TK_COMMA));
+		}
+		expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	}
+	struct srcloc open = p->tok.loc;
+	if (!check(p, TK_LBRACE)) {
+		expected(p, "'{' after 'function'");
+		return n;
+	}
+	if (!enter(p))
+		return n;
+	advance(p);
+	int saved = p->no_gt;
+	p->no_gt = 0;
+	p->in_func++;
+	if (check(p, TK_PIGMENT) || check(p, TK_TRANSFORM)) {
+		n->a = parse_keyword_item(p);
+	} else if (check(p, TK_IDENT) && p->tok.len == 7 && memcmp(p->tok.text, "pattern", 7) == 0) {
+		struct node *b = node(p, N_BLOCK, p->tok.loc);
+		b->op = TK_PIGMENT;
+		b->str = "pattern";
+		advance(p);
+		n->a = parse_block_body(p, b);
+	} else {
+		n->a = parse_expr(p);
+	}
+	p->in_func--;
+	p->no_gt = saved;
+	leave(p);
+	if (p->panic) { /* skip the rest of the body, so its '}' closes nothing else */
+		for (int depth = 0; !check(p, TK_EOF) && !(depth == 0 && check(p, TK_RBRACE)); advance(p))
+			depth += check(p, TK_LBRACE) - check(p, TK_RBRACE);
+		accept(p, TK_RBRACE);
+		return n;
+	}
+	expect_close(p, TK_RBRACE, TK_LBRACE, open);
+	return n;
+}
+
 static bool colour_component(enum tok k)
 {
 	return k == TK_RED || k == TK_GREEN || k == TK_BLUE || k == TK_FILTER || k == TK_TRANSMIT;
@@ -370,12 +434,16 @@ static struct node *parse_primary(struct parser *p)
 			ast_push(p->arena, n, c);
 		}
 		return n;
+	} else if (t.kind == TK_DIR_IF || t.kind == TK_DIR_IFDEF || t.kind == TK_DIR_IFNDEF || t.kind == TK_DIR_SWITCH) {
+		/* POV-Ray's directives work between any tokens; arvo takes a
+		 * conditional where a value stands: its branch yields the value */
+		n = node(p, N_DIRVALUE, t.loc);
+		n->a = parse_directive(p);
+		return n;
 	} else if (t.kind == TK_ARRAY) {
 		return parse_array(p);
 	} else if (t.kind == TK_FUNCTION) {
-		error_at(p, t.loc, "user-defined functions are not supported");
-		advance(p);
-		return node(p, N_NUM, t.loc);
+		return parse_function(p);
 	} else {
 		expected(p, "an expression");
 		return node(p, N_NUM, t.loc);
@@ -396,7 +464,19 @@ static struct node *parse_unary(struct parser *p)
 		leave(p);
 		return n;
 	}
-	return parse_primary(p);
+	struct node *e = parse_primary(p);
+	if (p->in_func && check(p, TK_CARET)) { /* a ^ b, right to left, above unary minus */
+		struct node *n = node(p, N_BINARY, p->tok.loc);
+		n->op = TK_CARET;
+		advance(p);
+		n->a = e;
+		if (!enter(p))
+			return n;
+		n->b = parse_unary(p);
+		leave(p);
+		return n;
+	}
+	return e;
 }
 
 /* binary := unary {op binary}   (precedence climbing, left associative) */
@@ -531,7 +611,14 @@ static struct node *parse_keyword_item(struct parser *p)
 			p->in_normal--;
 			return n;
 		}
-		return parse_block_body(p, n);
+		parse_block_body(p, n);
+		/* POV-Ray's layered texture: `texture { A } texture { B }` in a row
+		 * is one texture, B over A; c links the next layer up */
+		if (t.kind == TK_TEXTURE && check(p, TK_TEXTURE) && !p->panic && enter(p)) {
+			n->c = parse_keyword_item(p);
+			leave(p);
+		}
+		return n;
 	case SH_BLOCK_OR_EXPR:
 		if (check(p, TK_LBRACE)) {
 			n->kind = N_BLOCK;
@@ -639,10 +726,6 @@ static struct node *parse_declare(struct parser *p, struct token d)
 	if (!expect(p, TK_EQ))
 		return n;
 	n->a = parse_value(p);
-	/* POV-Ray's layered texture, #declare T = texture { … } texture { … }:
-	 * each further texture becomes an item of the first, a layer on top */
-	while (n->a && n->a->kind == N_BLOCK && n->a->op == TK_TEXTURE && check(p, TK_TEXTURE) && !p->panic)
-		ast_push(p->arena, n->a, parse_keyword_item(p));
 	accept(p, TK_SEMI);
 	return n;
 }
@@ -879,8 +962,9 @@ static struct node *word_block(struct parser *p, struct node *id)
 		return parse_block_body(p, n);
 	}
 	skip_braces(p);
-	if (p->in_normal && tok_is_pov_word(id->str))
-		return id; /* normal { slope_map { } }: the evaluator ignores the normal */
+	if ((p->in_normal || p->in_func) && tok_is_pov_word(id->str))
+		return id; /* normal { slope_map { } }: the evaluator ignores the normal;
+		            * function { pattern { warp { } } }: an error if it is used */
 	if (strcmp(id->str, "radiosity") == 0)
 		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
 	else if (tok_is_pov_word(id->str))

@@ -9,6 +9,7 @@
 
 #include "material.h"
 #include "noise.h"
+#include "fn.h"
 
 /* 1 − v for v in [0,1], 0 beyond, 1 below 0 (POV-Ray's CLIP_DENSITY). */
 static double clip_density(double v) { return v < 0 ? 1 : v > 1 ? 0 : 1 - v; }
@@ -35,6 +36,18 @@ static double leopard_raw(struct vec3 q)
 	return s * s;
 }
 
+/* A function's value at q, reduced modulo 1 above 1 as POV-Ray's function
+ * pattern does (the wave step wraps negative values); 0 where the function
+ * is not finite. */
+static double function_raw(const struct fn *f, struct vec3 q)
+{
+	double a[FN_MAX_PARAMS] = {q.x, q.y, q.z};
+	double v = fn_eval(f, a);
+	if (!isfinite(v))
+		return 0;
+	return v > 1 ? fmod(v, 1) : v;
+}
+
 static double raw(const struct pigment *pg, struct vec3 q)
 {
 	if (pg->kind == PIG_GRADIENT)
@@ -52,6 +65,7 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_PIGMENT: /* in a normal: the grey of the pigment (without image maps) */
 		return pig_pattern(pg)->sub ? pattern_grey(mat_pigment(NULL, pig_pattern(pg)->sub, q)) : 0;
 	case PAT_AVERAGE: return 0;
+	case PAT_FUNCTION: return function_raw(pig_pattern(pg)->fn, q);
 	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}
 }

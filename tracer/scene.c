@@ -210,7 +210,8 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
 	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard",
 		"bozo", "spotted", "bumps", "dents", "granite", "marble", "wood", "agate", "wrinkles", "ripples", "waves",
-		"crackle", "quilted", "spiral1", "spiral2", "cells", "mandel", "pigment_pattern", "average"};
+		"crackle", "quilted", "spiral1", "spiral2", "cells", "mandel", "pigment_pattern", "average", "function"};
+	_Static_assert(sizeof pats / sizeof *pats == PAT_KIND_COUNT, "a name for every pattern kind");
 	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);

@@ -35,6 +35,7 @@ enum pattern_kind {
 	PAT_SPIRAL1, PAT_SPIRAL2, PAT_CELLS, PAT_MANDEL,
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
+	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
 	PAT_KIND_COUNT
 };
 
@@ -105,6 +106,7 @@ struct pattern {
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
 	int npmap;
+	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 };
 
 struct pigment {
@@ -276,6 +278,19 @@ struct mesh {
 	struct vec3 inside_dir;   /* inside_vector */
 };
 
+/* isosurface { function { … } contained_by { box | sphere } … }: the
+ * surface f = threshold inside the container; inside is f < threshold
+ * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
+struct isosurface {
+	const struct fn *fn;       /* f(x, y, z) in the object frame */
+	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
+	struct vec3 lo, hi, c;
+	double r;
+	double threshold;          /* default 0 */
+	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
+	double accuracy;           /* root tolerance, object units (default 0.001) */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -296,6 +311,7 @@ struct object {
 		struct { const struct flat_outline *f; } polygon;
 		struct { const struct revolution *r; } lathe;
 		struct { const struct sor_shape *s; } sor;
+		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */

@@ -6,7 +6,8 @@
  *   - sphere_inside: the radiance is ρ·I/(π·r²) everywhere;
  *   - mirror_a/b: a mirror shows exactly the reflected scene;
  *   - slab_a/b: a clear glass slab shifts the image by t·(tanθ - tanθt);
- *   - flags: no_image objects still cast shadows, no_shadow ones do not. */
+ *   - flags: no_image objects still cast shadows, no_shadow ones do not;
+ *   - fn_pattern: a function pattern shows the function's value. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -187,6 +188,27 @@ static void t_flags(void)
 	fb_free(fb);
 }
 
+/* pigment { function { … } } on a self-lit plane: each pixel is the
+ * function at the pixel's centre, 0.4·(x+1) + 0.15·y². */
+static void t_function_pattern(void)
+{
+	const int w = 16, h = 12;
+	struct framebuffer *fb = render_file("fn_pattern", w, h, 1, 2);
+	CHECK(fb != NULL);
+	if (!fb)
+		return;
+	double *want = malloc(sizeof *want * (size_t)(w * h));
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < w; x++) {
+			double X = (x + 0.5) / w * 2 - 1, Y = 1 - (y + 0.5) / h * 2;
+			want[y * w + x] = 0.4 * (X + 1) + 0.15 * Y * Y;
+		}
+	float *p = fb_find(fb, "G");
+	CHECK(p && worst(p, want, w * h) < 1e-4);
+	free(want);
+	fb_free(fb);
+}
+
 int main(void)
 {
 	RUN(t_plane_direct);
@@ -194,5 +216,6 @@ int main(void)
 	RUN(t_mirror);
 	RUN(t_slab);
 	RUN(t_flags);
+	RUN(t_function_pattern);
 	return test_done();
 }
