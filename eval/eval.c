@@ -387,6 +387,12 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
 	if (++E->calls > E->opt->max_calls)
 		eval_fail(E, call->loc, "macro call limit (%ld) exceeded; raise it with --max-calls", E->opt->max_calls);
+	if (!def->b && def->lazy) { /* a body that only parses as POV-Ray's tokens would, if at all */
+		struct node *b = parse_macro_body(def, E->diag, &E->arena);
+		if (!b)
+			eval_fail(E, call->loc, "macro '%s' cannot be run: its body has the syntax error above", def->str);
+		((struct node *)def)->b = b;
+	}
 	struct value args[64];
 	if (call->nkids > 64)
 		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
@@ -709,7 +715,8 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	free(real);
 	c->file = srcfile_add(shown, text, size);
 	int errors = E->diag->errors;
-	c->ast = parse_file(c->file, E->diag, &E->arena);
+	c->ast = parse_file_quiet(c->file, E->diag, &E->arena,
+	                          E->opt->pov_include_dir && strcmp(dir, E->opt->pov_include_dir) == 0);
 	if (E->diag->errors > errors)
 		longjmp(*E->fail, 1);
 	c->dir = dir_of(E, srcfile_get(c->file)->name);

@@ -58,6 +58,8 @@ enum node_kind {
 	N_LIST,    /* kids: items (a file, a branch, a body) */
 };
 
+struct lazy_body;
+
 struct node {
 	enum node_kind kind;
 	struct srcloc loc;  /* where the construct starts */
@@ -68,6 +70,9 @@ struct node {
 	struct node *a, *b, *c; /* fixed children, per kind */
 	struct node **kids; /* variable children (arena) */
 	int nkids;
+	const struct lazy_body *lazy; /* N_MACRO whose body did not parse: parsed
+	                               * when called (parse_macro_body), as POV-Ray
+	                               * reads a macro's tokens only then */
 };
 
 struct node *ast_new(struct arena *a, enum node_kind kind, struct srcloc loc);

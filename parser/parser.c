@@ -15,6 +15,13 @@
 
 #define MAX_DEPTH 200 /* nesting guard for blocks and expressions */
 
+/* A macro body kept as tokens (parse_macro): the lexer and parser state at
+ * its first token. */
+struct lazy_body {
+	struct lexer lx;
+	struct token tok, prev;
+};
+
 struct parser {
 	struct lexer lx;     /* the file's lexer */
 	struct token tok;    /* current token */
@@ -28,6 +35,10 @@ struct parser {
 	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
 	int in_func;         /* inside function { }: '^' is a power; unsupported words in its
 	                      * pattern { } are left to the evaluator (a macro may never run it) */
+	int quiet_macros;    /* no warning for a macro read only when called (POV-Ray's own files) */
+	int first_set;       /* a macro body's quiet trial (parse_macro): its first error */
+	struct srcloc first_loc;
+	char first_msg[256];
 };
 
 static struct node *parse_expr(struct parser *p);
@@ -83,6 +94,10 @@ static void error_at(struct parser *p, struct srcloc loc, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(msg, sizeof msg, fmt, ap);
 	va_end(ap);
+	if (!p->first_set) {
+		p->first_set = 1, p->first_loc = loc;
+		memcpy(p->first_msg, msg, sizeof msg);
+	}
 	diag_error(p->diag, loc, "%s", msg);
 }
 
@@ -101,8 +116,7 @@ static void expect_close(struct parser *p, enum tok close, enum tok open, struct
 	char msg[200];
 	snprintf(msg, sizeof msg, "%s expected (to close %s at %d:%d), found %s", tok_name(close),
 	         tok_name(open), at.line, at.col, found(p));
-	p->panic = 1;
-	diag_error(p->diag, p->tok.loc, "%s", msg);
+	error_at(p, p->tok.loc, "%s", msg);
 }
 
 static int expect(struct parser *p, enum tok k)
@@ -874,9 +888,74 @@ static struct node *parse_macro(struct parser *p, struct token d)
 		recover_header(p);
 	else
 		expect_close(p, TK_RPAREN, TK_LPAREN, open);
-	n->b = parse_body(p);
+	if (p->panic) {
+		n->b = parse_body(p);
+		expect_end(p, d.kind, d.loc);
+		return n;
+	}
+	/* POV-Ray reads a macro's tokens only when it is called, so its
+	 * directives may split blocks (`#if (M) merge { #else union { #end`),
+	 * which arvo's tree cannot hold. The body is tried quietly first: if
+	 * it parses it is parsed again for real (its warnings then appear);
+	 * if not it is skipped to its #end and parsed at its first call. */
+	struct lexer lx0 = p->lx;
+	struct token tok0 = p->tok, prev0 = p->prev;
+	int depth0 = p->depth;
+	long ntok0 = p->ntok;
+	struct diag *real = p->diag, quiet;
+	diag_init(&quiet, NULL);
+	p->diag = p->lx.diag = &quiet;
+	int first0 = p->first_set;
+	p->first_set = 0;
+	parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	int ok = quiet.errors == 0;
+	p->lx = lx0, p->tok = tok0, p->prev = prev0, p->depth = depth0, p->ntok = ntok0, p->panic = 0;
+	p->diag = real;
+	struct srcloc wloc = p->first_set ? p->first_loc : d.loc;
+	char wmsg[256];
+	snprintf(wmsg, sizeof wmsg, "%s", p->first_set ? p->first_msg : "a lexical error");
+	p->first_set = first0;
+	if (ok) {
+		n->b = parse_body(p);
+		expect_end(p, d.kind, d.loc);
+		return n;
+	}
+	struct lazy_body *lb = ARENA_NEW(p->arena, struct lazy_body);
+	lb->lx = lx0, lb->tok = tok0, lb->prev = prev0;
+	n->lazy = lb;
+	p->lx.diag = &quiet;
+	for (int level = 0; !check(p, TK_EOF); advance(p)) {
+		enum tok k = p->tok.kind;
+		if (k == TK_DIR_IF || k == TK_DIR_IFDEF || k == TK_DIR_IFNDEF || k == TK_DIR_WHILE ||
+		    k == TK_DIR_FOR || k == TK_DIR_SWITCH || k == TK_DIR_MACRO)
+			level++;
+		else if (k == TK_DIR_END && level-- == 0)
+			break;
+	}
+	p->lx.diag = real;
+	p->panic = 0;
+	if (check(p, TK_DIR_END) && !p->quiet_macros) /* else the missing #end is the error */
+		diag_warning(real, wloc, "macro '%s' is read only when called, as in POV-Ray: as written it does not parse (%s)",
+		             n->str, wmsg);
 	expect_end(p, d.kind, d.loc);
 	return n;
+}
+
+struct node *parse_macro_body(const struct node *def, struct diag *diag, struct arena *arena)
+{
+	struct parser p;
+	memset(&p, 0, sizeof p);
+	p.arena = arena;
+	p.diag = diag;
+	p.lx = def->lazy->lx;
+	p.lx.diag = diag;
+	p.tok = def->lazy->tok;
+	p.prev = def->lazy->prev;
+	int before = diag->errors;
+	struct node *body = parse_body(&p);
+	expect_end(&p, TK_DIR_MACRO, def->loc);
+	return diag->errors > before ? NULL : body;
 }
 
 /* directive := declare | if | ifdef | while | for | switch | macro
@@ -945,6 +1024,12 @@ static struct node *parse_directive_body(struct parser *p, struct token d)
 		return parse_block_body(p, n);
 	case TK_DIR_BREAK:
 		return node(p, N_BREAK, d.loc);
+	case TK_DIR_FOPEN: case TK_DIR_FCLOSE: case TK_DIR_READ: case TK_DIR_WRITE:
+		/* an error where it is parsed, so a macro that is never called
+		 * (strings.inc's Parse_String) may hold one */
+		error_at(p, d.loc, "%s is not supported: a scene cannot open, read or write files or run commands",
+		         tok_name(d.kind));
+		return NULL;
 	default:
 		error_at(p, d.loc, "%s without a matching opening directive", tok_name(d.kind));
 		return NULL;
@@ -1032,8 +1117,14 @@ static void parse_items(struct parser *p, struct node *list)
 /* file := items EOF */
 struct node *parse_file(int file, struct diag *diag, struct arena *arena)
 {
+	return parse_file_quiet(file, diag, arena, 0);
+}
+
+struct node *parse_file_quiet(int file, struct diag *diag, struct arena *arena, int quiet_macros)
+{
 	struct parser p;
 	memset(&p, 0, sizeof p);
+	p.quiet_macros = quiet_macros;
 	p.arena = arena;
 	p.diag = diag;
 	lex_init(&p.lx, file, diag, arena);
