@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "../tracer/noise.h"
 #include "../tracer/shape.h"
 
 /* ==== constants =========================================================== */
@@ -235,6 +236,16 @@ static struct value f_vrotate(struct call *c)
 {
 	struct xform r = xf_rotate(V(c, 1));
 	return val_vec3(xf_vector(&r, V(c, 0)));
+}
+
+/* vturbulence(lambda, omega, octaves, p): POV-Ray's turbulence vector. */
+static struct value f_vturbulence(struct call *c)
+{
+	double oct = F(c, 2);
+	if (!(oct >= 1 && oct <= 64))
+		domain(c, 2, "octaves must be 1 to 64");
+	struct turb_params t = {(int)oct, F(c, 1), F(c, 0)};
+	return val_vec3(noise_dturb(V(c, 3), &t));
 }
 
 static struct value f_vaxis_rotate(struct call *c)
@@ -505,7 +516,7 @@ static const struct builtin table[] = {
 	{"strupr", 1, 1, f_strupr}, {"substr", 3, 3, f_substr}, {"tan", 1, 1, f_tan},
 	{"tanh", 1, 1, f_tanh}, {"val", 1, 1, f_val}, {"vaxis_rotate", 3, 3, f_vaxis_rotate},
 	{"vcross", 2, 2, f_vcross}, {"vdot", 2, 2, f_vdot}, {"vlength", 1, 1, f_vlength},
-	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vstr", 5, 5, f_vstr},
+	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vturbulence", 4, 4, f_vturbulence}, {"vstr", 5, 5, f_vstr},
 };
 
 /* Every built-in name (the functions above and the constants below) in one

@@ -93,7 +93,14 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 		o->interior = in;
 	} else if (n->op == TK_TEXTURE) {
 		struct value v = eval_block(E, n);
-		o->tex = v.p.tex;
+		if (s->pending & 1) { /* a second texture in the block: a layer on top */
+			struct texture *t = texture_copy(E, o->tex);
+			texture_layer(E, t, v.p.tex);
+			o->tex = t;
+		} else {
+			o->tex = v.p.tex;
+		}
+		s->pending |= 1;
 	} else {
 		struct value v = eval_block(E, n);
 		if (v.p.mat->tex)

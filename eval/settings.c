@@ -246,6 +246,7 @@ void global_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_ADC_BAILOUT: g->adc_bailout = arg_float(E, n); return;
 	case TK_AMBIENT_LIGHT: g->ambient_light = arg_colour(E, n); return;
 	case TK_NOISE_GENERATOR: g->noise_generator = arg_int(E, n, 1, 3); return;
+	case TK_NUMBER_OF_WAVES: g->number_of_waves = arg_int(E, n, 1, 256); return;
 	case TK_PHOTONS:
 		g->illum.given = true;
 		sink_init(&sub, SK_PHOTONS, TK_GLOBAL_SETTINGS, n->loc, &g->illum);
