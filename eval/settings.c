@@ -191,6 +191,9 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_NORMAL: /* POV-Ray's camera ray perturbation */
+		diag_warning(E->diag, n->loc, "'normal' in a camera is not supported; ignored");
+		return;
 	case TK_PERSPECTIVE: c->kind = CAM_PERSPECTIVE; return;
 	case TK_ORTHOGRAPHIC: c->kind = CAM_ORTHOGRAPHIC; return;
 	case TK_FISHEYE: c->kind = CAM_FISHEYE; return;
