@@ -144,17 +144,20 @@ struct illum_spec {
 
 /* POV-Ray photons { } on an object, kept for the light pass. */
 struct photon_spec {
-	bool target;       /* target [spacing multiplier] */
 	double spacing;    /* spacing multiplier (default 1) */
+	bool target;       /* target [spacing multiplier] */
 	bool refraction;   /* refraction on|off */
 	bool reflection;   /* reflection on|off */
 	bool collect;      /* collect on|off (default on) */
 	bool pass_through; /* pass_through */
 };
 
+/* The members are ordered so that padding is least: 152 bytes a sphere. */
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
+	unsigned flags;              /* enum object_flags */
+	bool has_photons;            /* a photons { } block was given */
 	union {
 		struct { struct vec3 c; double r; } sphere;
 		struct { struct vec3 n; double d; } plane;        /* n·p = d */
@@ -169,10 +172,8 @@ struct object {
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
-	unsigned flags;              /* enum object_flags */
 	struct illum_spec illum;     /* illum_map { } */
 	struct photon_spec photons;  /* photons { } */
-	bool has_photons;            /* a photons { } block was given */
 };
 
 /* The object's frame → world transform (the identity when it has none). */
