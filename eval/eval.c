@@ -778,8 +778,13 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 	case N_VERSION: {
 		double v = eval_float(E, n->a);
 		E->scene->version = v;
-		if (E->include_depth == 0 && v < 4.0)
+		if (E->include_depth == 0 && v < 4.0) {
 			E->scene->legacy_lights = true;
+			/* a POV-Ray scene: arvo's library then reads POV-Ray's files
+			 * of the same names after itself (docs/design.md §2) */
+			if (E->opt->pov_include_dir)
+				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
+		}
 		return;
 	}
 	case N_MESSAGE: exec_message(E, n); return;
@@ -804,6 +809,8 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 			diag_warning(E->diag, n->loc, "'%s' is not supported in 'normal' yet; the normal is ignored", n->str);
 		return;
 	}
+	if (s->kind == SK_OBJECT && n->kind == N_VEC && object_long_vector(E, s, n))
+		return;
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
 }
@@ -896,8 +903,6 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 		if (diag->errors == 0) {
 			scope_push(E, scope_new(E), srcloc_none());
 			E->dir_stack[0] = dir_of(E, path);
-			if (opt->pov_include_dir) /* arvo's library reads POV-Ray's files after itself */
-				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
 			for (int i = 0; i < opt->ndefines; i++)
 				declare_define(E, opt->defines[i]);
 			struct sink s;

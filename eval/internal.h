@@ -27,7 +27,8 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE, SK_WARP,
+	SK_LIST      /* a mesh2 list: vertex_vectors { n, <…>, … } and the like */
 };
 
 #define SINK_MAX_PARAMS 8
@@ -40,11 +41,15 @@ struct sink {
 	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
 	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
 	int nparams;
+	struct outline_build *ob;  /* SK_OBJECT: text/prism/polygon/lathe/sor's lists (outlines.c) */
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
+	double *list;              /* SK_OBJECT: a long coefficient vector <a, b, …> (poly) */
+	int nlist;                 /* its length */
+	struct srcloc list_loc;    /* where it was written */
 };
 
 struct eval {
@@ -76,7 +81,10 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
+	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
+	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
@@ -102,6 +110,8 @@ char *eval_strdup(struct eval *E, const char *s, int len);
 /* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
+/* The same, but NULL (and no error) when it is not found or not allowed. */
+char *eval_try_file(struct eval *E, const char *name, struct srcloc loc);
 
 /* Counts one object or light made at loc against --max-objects. */
 void eval_count_object(struct eval *E, struct srcloc loc);
@@ -160,14 +170,38 @@ struct pattern *pat_w(struct eval *E, struct pigment *p);
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
 
 /* ---- geometry.c: objects ---- */
+/* Moves object o (its texture and children too) by X. */
+void object_transform(struct eval *E, struct object *o, const struct xform *X);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* A vector of more than 5 components in an object that takes one (poly's
+ * coefficients): stored in the sink; false when n is not one. */
+bool object_long_vector(struct eval *E, struct sink *s, const struct node *n);
+/* The items of a mesh2 list (SK_LIST). */
+void list_keyword(struct eval *E, struct sink *s, const struct node *n);
+void list_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */
 void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
                const struct object *parent);
+
+/* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
+/* Takes a positional value or a leading keyword (linear_spline, conic_sweep,
+ * ttf …) of those primitives; false when o is not one of them or n is not
+ * such a keyword. */
+bool outline_value(struct eval *E, struct sink *s, struct object *o, const struct value *v, struct srcloc loc);
+bool outline_keyword(struct eval *E, struct sink *s, struct object *o, const struct node *n);
+void geom_text(struct eval *E, struct sink *s, struct object *o);
+void geom_prism(struct eval *E, struct sink *s, struct object *o);
+void geom_polygon(struct eval *E, struct sink *s, struct object *o);
+void geom_lathe(struct eval *E, struct sink *s, struct object *o);
+void geom_sor(struct eval *E, struct sink *s, struct object *o);
+/* The glyph outlines of text in the TrueType font at path (font.c). */
+struct extrusion *font_text(struct eval *E, const char *path, const char *name, struct srcloc floc,
+                            const char *text, int len, struct srcloc tloc, double thickness,
+                            struct vec3 offset);
 
 /* ---- textures.c: pigments, colour maps, finishes, interiors, textures ---- */
 struct colour_map *colour_map_block(struct eval *E, const struct node *blk);
@@ -186,6 +220,22 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
 struct tnormal *normal_block(struct eval *E, const struct node *blk);
 void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+
+/* ---- patterns.c: noise patterns, turbulence, warps, pigment maps ---- */
+/* A pattern keyword of pigment s->target (bozo, turbulence, warp,
+ * pigment_map …); false when n is not one. */
+bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n);
+void warp_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* A pigment given in place of a colour of checker, hexagon or brick. */
+void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *sub, struct srcloc loc);
+/* texture_map { } of texture t (its pigment holds the pattern), and
+ * normal_map { } of normal t. */
+void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
+void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
+bool is_pattern_kw(enum tok k);
+/* Patterns without their own noise_generator take global_settings'. */
+void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */

@@ -209,7 +209,16 @@ static void parse_args(struct parser *p, struct node *call)
 	expect_close(p, TK_RPAREN, TK_LPAREN, open);
 }
 
-/* vector := '<' expr {',' expr} '>' */
+/* Does the current token start a further value without a comma before it?
+ * POV-Ray takes `<1 0 0>` and `area_light <4 0 0> <0 0 4> 10 10`: a
+ * number, a name or a parenthesis cannot continue the value before it. */
+static int next_value(const struct parser *p)
+{
+	enum tok k = p->tok.kind;
+	return !p->panic && (k == TK_NUMBER || k == TK_IDENT || k == TK_LPAREN);
+}
+
+/* vector := '<' expr {[','] expr} '>' */
 static struct node *parse_vector(struct parser *p)
 {
 	struct node *v = node(p, N_VEC, p->tok.loc);
@@ -218,7 +227,7 @@ static struct node *parse_vector(struct parser *p)
 	p->no_gt = 1;
 	do
 		ast_push(p->arena, v, parse_expr(p));
-	while (accept(p, TK_COMMA));
+	while ((accept(p, TK_COMMA) && !check(p, TK_GT)) || next_value(p)); /* <1,2,3,> too */
 	p->no_gt = saved;
 	expect_close(p, TK_GT, TK_LT, v->loc);
 	return v;
@@ -233,7 +242,8 @@ static struct node *parse_init(struct parser *p)
 		return n;
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
 		ast_push(p->arena, n, check(p, TK_LBRACE) ? parse_init(p) : parse_value(p));
-		if (!accept(p, TK_COMMA) || p->panic)
+		/* POV-Ray reads {"a" "b"} as {"a", "b"} */
+		if ((!accept(p, TK_COMMA) && !check(p, TK_STRING)) || p->panic)
 			break;
 	}
 	leave(p);
@@ -334,10 +344,14 @@ static struct node *parse_primary(struct parser *p)
 		expect_close(p, TK_RPAREN, TK_LPAREN, t.loc);
 	} else if (t.kind == TK_LT) {
 		n = parse_vector(p);
-	} else if (tok_shape(t.kind) == SH_PREFIX) {
+	} else if (tok_shape(t.kind) == SH_PREFIX || t.kind == TK_RED || t.kind == TK_GREEN || t.kind == TK_BLUE) {
+		/* a bare `red 0.75 green 0.75 blue 0.85` (POV-Ray's oldest pigment
+		 * syntax) is `color red 0.75 …` */
+		int bare = tok_shape(t.kind) != SH_PREFIX;
 		n = node(p, N_COLOUR, t.loc);
-		n->op = t.kind;
-		advance(p);
+		n->op = bare ? TK_COLOR : t.kind;
+		if (!bare)
+			advance(p);
 		if ((t.kind == TK_COLOR || t.kind == TK_COLOUR) && tok_shape(p->tok.kind) == SH_PREFIX) {
 			if (!enter(p)) /* "color color … rgb": bounded like any nesting */
 				return n;
@@ -345,7 +359,7 @@ static struct node *parse_primary(struct parser *p)
 			leave(p);
 			return r;
 		}
-		if (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind))
+		if (!bare && (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind)))
 			n->a = parse_expr(p); /* "color red 1 …" has none */
 		/* POV-Ray's trailing components: rgb 1 filter 0.5, color red 1 green 0.5 */
 		while (colour_component(p->tok.kind) && !p->panic) {
@@ -393,6 +407,10 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 	for (;;) {
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
+			break;
+		/* `box { <0,0,0> <1,1,1> }`: a '<' right after a vector starts the
+		 * next vector (POV-Ray compares floats only) */
+		if (p->tok.kind == TK_LT && left && left->kind == N_VEC)
 			break;
 		if (p->depth >= MAX_DEPTH) {
 			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
@@ -500,6 +518,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	}
 	switch (sh) {
 	case SH_BLOCK:
+		if (t.kind == TK_CLIPPED_BY && !check(p, TK_LBRACE))
+			return n; /* bounded_by { clipped_by }: a word */
+		if (t.kind == TK_CYLINDER && !check(p, TK_LBRACE)) {
+			ast_push(p->arena, n, parse_expr(p)); /* the camera's cylinder N */
+			return n;
+		}
 		n->kind = N_BLOCK;
 		if (t.kind == TK_NORMAL) {
 			p->in_normal++;
@@ -519,7 +543,8 @@ static struct node *parse_keyword_item(struct parser *p)
 	case SH_LIST:
 		do
 			ast_push(p->arena, n, parse_expr(p));
-		while (accept(p, TK_COMMA) && !p->panic);
+		while ((accept(p, TK_COMMA) && !p->panic) ||
+		       (t.kind == TK_AREA_LIGHT && (next_value(p) || check(p, TK_LT))));
 		return n;
 	case SH_OPTEXPR:
 		if (starts_expr(p))
