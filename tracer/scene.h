@@ -174,8 +174,8 @@ struct texture {
 	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
+	int nmap;                     /* entries in map (beside loc: no padding) */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
-	int nmap;
 };
 
 /* ---- objects ------------------------------------------------------------ */
