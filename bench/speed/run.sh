@@ -103,7 +103,7 @@ col_median() { awk -v c="$2" '{ print $c }' "$1" | median; }
 echo "section,name,objects,threads,arvo,povray,ratio,unit,target,met" > "$csv"
 
 # ---- eye pass against POV-Ray's trace time ----
-first= last=
+first= last= first_c= last_c=
 for n in $SIZES; do
 	a=$(arvo_eye "$n" "$THREADS"); rays=$(cat "$tmp/rays")
 	p=
@@ -123,11 +123,13 @@ for n in $SIZES; do
 		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" "" ""
 		row eye_rate_cpu spheres "$n" "$THREADS" "$crate" "" "" "rays/CPU s" "" ""
 	fi
-	[ -n "$first" ] || first=$a
-	last=$a
+	[ -n "$first" ] || first=$a first_c=$ac
+	last=$a last_c=$ac
 done
 g=$(ratio "$last" "$first")
 row scaling "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x" "<=3x" "$(met "$g" "<=" 3)"
+g=$(ratio "$last_c" "$first_c")
+row scaling_cpu "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x (CPU)" "<=3x" "$(met "$g" "<=" 3)"
 
 # ---- 1 -> 2 threads ----
 e1=$(arvo_eye 100000 1); e2=$(arvo_eye 100000 2); r=$(ratio "$e1" "$e2")
