@@ -16,10 +16,11 @@
  * primary rays/s/core at 100k spheres, 6.4 against 8.7 at 1k), and Embree
  * proposes a sphere only where the float segment meets its surface with
  * tnear >= 0, which a ray starting in the margin's shell (every ray spawned
- * on a sphere) can miss. RTC_SCENE_FLAG_ROBUST is not set: the margins
- * below already cover the float error of the non-robust box test, and it
- * costs 7 % of the traversal; _COMPACT (10-20 %) only from COMPACT_FROM
- * leaves on.
+ * on a sphere) can miss. Neither RTC_SCENE_FLAG_ROBUST nor _COMPACT is set:
+ * the margins below already cover the float error of the non-robust box
+ * test, and the two flags cost 7 % and 10-20 % of the traversal (compact
+ * saves 13 MB at 1M leaves, and cost bench/eye's 1M spheres a fifth of its
+ * eye-pass CPU).
  *
  * Float culling must never drop the true nearest hit. Boxes are padded
  * outward by a margin that covers rounding the ray to float: a ray that
@@ -72,10 +73,6 @@ struct query8 {
 	int lanes;             /* 8 */
 	struct query q[8];
 };
-
-/* Scenes with this many bounded leaves are built compact (slower to walk,
- * smaller). */
-#define COMPACT_FROM 500000
 
 /* ==== the device ========================================================= */
 
@@ -221,8 +218,6 @@ struct bvh *bvh_build(struct object **objs, int n)
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
 	t->scene = rtcNewScene(device);
-	if (t->nprims >= COMPACT_FROM) /* memory first: 1M leaves, 13 MB less */
-		rtcSetSceneFlags(t->scene, RTC_SCENE_FLAG_COMPACT);
 	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
 	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
 	rtcSetGeometryUserPrimitiveCount(g, (unsigned)t->nprims);
