@@ -159,6 +159,7 @@ static struct value binary(struct eval *E, const struct node *n)
 		case TK_LT: return val_float(x < y);
 		case TK_LE: return val_float(x <= y);
 		case TK_GT: return val_float(x > y);
+		case TK_CARET: return val_float(pow(x, y)); /* in a function's pigment { } */
 		default: return val_float(x >= y);
 		}
 	}
@@ -386,6 +387,12 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
 	if (++E->calls > E->opt->max_calls)
 		eval_fail(E, call->loc, "macro call limit (%ld) exceeded; raise it with --max-calls", E->opt->max_calls);
+	if (!def->b && def->lazy) { /* a body that only parses as POV-Ray's tokens would, if at all */
+		struct node *b = parse_macro_body(def, E->diag, &E->arena);
+		if (!b)
+			eval_fail(E, call->loc, "macro '%s' cannot be run: its body has the syntax error above", def->str);
+		((struct node *)def)->b = b;
+	}
 	struct value args[64];
 	if (call->nkids > 64)
 		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
@@ -504,6 +511,9 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 		const struct node *def = env_macro(E, n->str);
 		if (def)
 			return macro_value(E, def, n);
+		const struct value *fv = env_lookup(E, n->str);
+		if (fv && fv->kind == V_FUNCTION)
+			return function_call(E, n, fv->p.fn);
 		struct value r;
 		if (builtin_call(E, n, &r))
 			return r;
@@ -520,6 +530,15 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	}
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
+	case N_FUNC: return function_value(E, n);
+	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
+		struct sink s;
+		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+		eval_item(E, n->a, &s);
+		if (s.nresults == 0)
+			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+		return s.result;
+	}
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)
@@ -696,7 +715,8 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	free(real);
 	c->file = srcfile_add(shown, text, size);
 	int errors = E->diag->errors;
-	c->ast = parse_file(c->file, E->diag, &E->arena);
+	c->ast = parse_file_quiet(c->file, E->diag, &E->arena,
+	                          E->opt->pov_include_dir && strcmp(dir, E->opt->pov_include_dir) == 0);
 	if (E->diag->errors > errors)
 		longjmp(*E->fail, 1);
 	c->dir = dir_of(E, srcfile_get(c->file)->name);

@@ -20,6 +20,7 @@
 #include "light/lightpass.h"
 #include "material.h"
 #include "sampler.h"
+#include "shape.h"
 
 #define TILE 16 /* tile edge in pixels */
 #define NPLANES 27
@@ -227,7 +228,11 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			st->e_cut += ls.cut[k];
 			st->e_held += ls.deposited[k];
 		}
-		if (ls.nomap && c == 0) {
+		struct uv_range ur;
+		if (ls.nomap && c == 0 && !shape_uv_range(ls.nomap, &ur)) {
+			diag_warning(dg, ls.nomap->loc, "an %s has no (u,v) map: the caustic on it is not drawn",
+			             scene_object_kind_name(ls.nomap->kind));
+		} else if (ls.nomap && c == 0) {
 			diag_warning(dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
 			             "it gets no caustic (give illum_map a coarser cell or resolution)",
 			             scene_object_kind_name(ls.nomap->kind));

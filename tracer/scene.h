@@ -32,9 +32,10 @@ enum pattern_kind {
 	/* the noise patterns (tracer/noise.h) and their kin */
 	PAT_BOZO, PAT_SPOTTED, PAT_BUMPS, PAT_DENTS, PAT_GRANITE, PAT_MARBLE, PAT_WOOD,
 	PAT_AGATE, PAT_WRINKLES, PAT_RIPPLES, PAT_WAVES, PAT_CRACKLE, PAT_QUILTED,
-	PAT_SPIRAL1, PAT_SPIRAL2,
+	PAT_SPIRAL1, PAT_SPIRAL2, PAT_CELLS, PAT_MANDEL,
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
+	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
 	PAT_KIND_COUNT
 };
 
@@ -99,10 +100,13 @@ struct pattern {
 	struct vec3 form;         /* crackle: default <-1, 1, 0> */
 	bool solid;               /* crackle solid */
 	double control0, control1; /* quilted: defaults 1, 1 */
-	int arms;                 /* spiral1, spiral2: number of arms */
+	int arms;                 /* spiral1, spiral2: number of arms; mandel: iterations */
+	int exponent_i;           /* mandel: exponent 2 (default), 3 or 4 */
+	int nwaves;               /* ripples, waves: global_settings' number_of_waves (0: 10) */
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
 	int npmap;
+	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 };
 
 struct pigment {
@@ -176,6 +180,7 @@ struct texture {
 	struct srcloc loc; /* where the texture was written */
 	int nmap;                     /* entries in map (beside loc: no padding) */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
+	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
 };
 
 /* ---- objects ------------------------------------------------------------ */
@@ -271,6 +276,23 @@ struct mesh {
 	int side;                 /* the (u,v) atlas is side × side cells */
 	bool has_inside;          /* inside_vector given: the mesh is a solid */
 	struct vec3 inside_dir;   /* inside_vector */
+	bool clipped;             /* height_field water_level: no surface below clip_y */
+	double clip_y;
+	int hf_w, hf_h;           /* height_field: the grid (0: not one) */
+	bool hf_smooth;           /* height_field smooth: vertex normals at the end */
+};
+
+/* isosurface { function { … } contained_by { box | sphere } … }: the
+ * surface f = threshold inside the container; inside is f < threshold
+ * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
+struct isosurface {
+	const struct fn *fn;       /* f(x, y, z) in the object frame */
+	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
+	struct vec3 lo, hi, c;
+	double r;
+	double threshold;          /* default 0 */
+	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
+	double accuracy;           /* root tolerance, object units (default 0.001) */
 };
 
 /* The members are ordered so that padding is least: 152 bytes a sphere. */
@@ -296,6 +318,7 @@ struct object {
 		struct { const struct flat_outline *f; } polygon;
 		struct { const struct revolution *r; } lathe;
 		struct { const struct sor_shape *s; } sor;
+		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
@@ -380,6 +403,7 @@ struct global_settings {
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
 	int noise_generator;       /* default 2 (POV-Ray's range-corrected noise) */
+	int number_of_waves;       /* ripples and waves: sources (default 10) */
 	struct illum_settings illum;
 };
 

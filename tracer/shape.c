@@ -137,7 +137,7 @@ bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
 {
 	const struct prim_ops *ps = ops(o);
 	struct vec3 lp, lu, lv;
-	if (!ps || !ps->uv_point(o, u, v, &lp, &lu, &lv))
+	if (!ps || !ps->uv_point || !ps->uv_point(o, u, v, &lp, &lu, &lv))
 		return false;
 	if (p)
 		*p = xf_point(obj_xf(o), lp);
@@ -151,7 +151,7 @@ bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
 bool shape_uv_range(const struct object *o, struct uv_range *out)
 {
 	const struct prim_ops *p = ops(o);
-	if (!p)
+	if (!p || !p->uv_range) /* a surface without a parametrisation (isosurface) */
 		return false;
 	*out = p->uv_range(o);
 	return true;
@@ -160,7 +160,7 @@ bool shape_uv_range(const struct object *o, struct uv_range *out)
 double shape_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	const struct prim_ops *p = ops(o);
-	if (!p || !(u1 > u0) || !(v1 > v0))
+	if (!p || !p->cell_area || !(u1 > u0) || !(v1 > v0))
 		return 0;
 	return p->cell_area(o, u0, u1, v0, v1);
 }

@@ -32,7 +32,9 @@ struct prim_ops {
 	bool (*inside)(const struct object *o, struct vec3 p);
 	/* Object-frame bounds; ±INFINITY when unbounded. */
 	struct bbox (*bounds)(const struct object *o);
-	/* T(u,v) and its partials (any of the outputs may be NULL). */
+	/* T(u,v) and its partials (any of the outputs may be NULL). NULL, with
+	 * uv_range and cell_area, for a surface without a parametrisation
+	 * (the isosurface): it gets no illumination map. */
 	bool (*uv_point)(const struct object *o, double u, double v, struct vec3 *p,
 	                 struct vec3 *dpdu, struct vec3 *dpdv);
 	/* The (u,v) domain. */
