@@ -18,9 +18,8 @@
  * tnear >= 0, which a ray starting in the margin's shell (every ray spawned
  * on a sphere) can miss. Neither RTC_SCENE_FLAG_ROBUST nor _COMPACT is set:
  * the margins below already cover the float error of the non-robust box
- * test, and the two flags cost 7 % and 10-20 % of the traversal (compact
- * saves 13 MB at 1M leaves, and cost bench/eye's 1M spheres a fifth of its
- * eye-pass CPU).
+ * test, and the two flags cost 7 % and 10-20 % of the traversal in a
+ * stand-alone Embree test (compact would save 13-18 MB at 1M leaves).
  *
  * Float culling must never drop the true nearest hit. Boxes are padded
  * outward by a margin that covers rounding the ray to float: a ray that
