@@ -870,7 +870,9 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 	struct render_opts ro = {o->width, o->height, o->spp > 0 ? o->spp : 1, o->threads, o->quiet,
 	                         o->ocio_config, o->rays < 0 ? 0 : o->rays == 0 ? -1 : o->rays, o->dump_maps,
 	                         save_maps, load_maps, o->method, o->tolerance, o->passes,
-	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed};
+	                         {o->region[0], o->region[1], o->region[2], o->region[3]}, o->seed, true};
+	for (int i = 0; i < noutputs; i++) /* PNG outputs read R G B alone */
+		ro.beauty_only &= output_kind(outputs[i]) != 'e';
 	struct render_stats st;
 	struct framebuffer *fb;
 	if ((rc = render(scene, &ro, dg, &fb, &st)) != 0)

@@ -18,6 +18,9 @@ struct path {
 	long long rays;            /* rays traced so far */
 	struct band band;          /* BAND_ALL, or the channel or wavelength of a
 	                              path split off at dispersive glass */
+	const struct hit *pre;     /* the camera ray's hit, traced beforehand in a
+	                              packet (eye_pixels); used by the first trace */
+	int pre_state;             /* 1: pre holds it, -1: it missed, 0: none */
 };
 
 /* The AOVs of the first visible point (filled at depth 1 only). The
@@ -469,12 +472,15 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
                          struct aov *aov)
 {
 	const struct scene *s = pa->ctx->scene;
-	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5;
+	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5, pre = pa->pre_state;
+	pa->pre_state = 0;
 	if (depth > maxd || weight < s->gs.adc_bailout)
 		return v3(0, 0, 0);
 	struct hit h;
 	pa->rays++;
-	if (!bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h)) {
+	if (pre > 0)
+		h = *pa->pre;
+	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))) {
 		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
 		if (s->fog.type)
 			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
@@ -532,28 +538,41 @@ static void put3(float *dst, struct vec3 v, double k)
 	dst[2] = (float)(v.z * k);
 }
 
-/* Shades one pixel: spp camera samples, stratified over an m×m grid of the
- * pixel (m = ⌊√spp⌋, remaining samples uniform), averaged with equal weights.
- * The radiance and irradiance layers are means over the samples; A is the
- * share of samples that hit; Z, N, P and albedo are the nearest sample's
- * (the first of equals), so they describe one surface. */
-void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
+/* Starts sample i of pixel (x, y): its path (random numbers drawn so far)
+ * and its camera ray, stratified over an m×m grid of the pixel (m =
+ * ⌊√spp⌋, remaining samples uniform). */
+static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa)
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
+	bool jitter = ctx->spp > 1;
+	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
+	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0};
+	double jx = jitter ? smp_next(&pa->rng) : 0.5, jy = jitter ? smp_next(&pa->rng) : 0.5;
+	if (jitter && i < m * m) {
+		jx = (i % m + jx) / m;
+		jy = (i / m + jy) / m;
+	}
+	double l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
+	return cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+}
+
+/* Shades one pixel: spp camera samples averaged with equal weights. The
+ * radiance and irradiance layers are means over the samples; A is the
+ * share of samples that hit; Z, N, P and albedo are the nearest sample's
+ * (the first of equals), so they describe one surface. pre_state (1: hit,
+ * -1: miss) and pre give sample 0's camera hit when it was traced
+ * beforehand. */
+static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays,
+                  const struct hit *pre, int pre_state)
+{
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
-	bool jitter = ctx->spp > 1;
-	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	for (int i = 0; i < ctx->spp; i++) {
-		struct path pa = {ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL};
-		double jx = jitter ? smp_next(&pa.rng) : 0.5, jy = jitter ? smp_next(&pa.rng) : 0.5;
-		if (jitter && i < m * m) {
-			jx = (i % m + jx) / m;
-			jy = (i / m + jy) / m;
-		}
-		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
-		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+		struct path pa;
+		struct ray r = camera_sample(ctx, x, y, i, &pa);
+		if (i == 0)
+			pa.pre = pre, pa.pre_state = pre_state;
 		struct aov aov = {.z = INFINITY};
 		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
 			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
@@ -577,4 +596,24 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	put3(out->p, near.p, 1);
 	out->z = (float)near.z;
 	out->a = (float)(hits * k);
+}
+
+void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
+{
+	pixel(ctx, x, y, out, rays, NULL, 0);
+}
+
+void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
+                long long *rays)
+{
+	struct ray r[8] = {0};
+	struct hit h[8];
+	bool found[8];
+	for (int i = 0; i < n; i++) {
+		struct path pa;
+		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa);
+	}
+	bvh_intersect8(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE, h, found);
+	for (int i = 0; i < n; i++)
+		pixel(ctx, x[i], y[i], &out[i], rays, &h[i], found[i] ? 1 : -1);
 }

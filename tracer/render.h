@@ -12,6 +12,7 @@
 #ifndef ARVO_RENDER_H
 #define ARVO_RENDER_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "../common/diag.h"
@@ -36,6 +37,8 @@ struct render_opts {
 	                            [y0, y1) (the framebuffer is that region of the
 	                            frame); x1 == 0: the whole frame */
 	long seed;               /* --seed: 0, or another set of random numbers */
+	bool beauty_only;        /* the outputs read R G B alone (PNG): the other
+	                            layers are neither stored nor allocated */
 };
 
 /* The key a seed mixes into every random stream (0 for seed 0). */
@@ -59,6 +62,7 @@ struct render_stats {
 	int tol_rounds;       /* rounds of rays it took */
 	long tol_rays;        /* rays per light of the last round */
 	double t_eye;       /* seconds in the eye pass */
+	double cpu_eye;     /* CPU seconds of every thread in the eye pass */
 	long peak_rss_kb;   /* peak resident memory (getrusage) */
 	int threads;        /* threads used */
 };

@@ -178,8 +178,8 @@ struct texture {
 	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
+	int nmap;                     /* entries in map (beside loc: no padding) */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
-	int nmap;
 	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
 };
 
@@ -219,8 +219,8 @@ struct illum_spec {
 
 /* POV-Ray photons { } on an object, kept for the light pass. */
 struct photon_spec {
-	bool target;       /* target [spacing multiplier] */
 	double spacing;    /* spacing multiplier (default 1) */
+	bool target;       /* target [spacing multiplier] */
 	bool refraction;   /* refraction on|off */
 	bool reflection;   /* reflection on|off */
 	bool collect;      /* collect on|off (default on) */
@@ -295,9 +295,12 @@ struct isosurface {
 	double accuracy;           /* root tolerance, object units (default 0.001) */
 };
 
+/* The members are ordered so that padding is least: 152 bytes a sphere. */
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
+	unsigned flags;              /* enum object_flags */
+	bool has_photons;            /* a photons { } block was given */
 	union {
 		struct { struct vec3 c; double r; } sphere;
 		struct { struct vec3 n; double d; } plane;        /* n·p = d */
@@ -321,10 +324,8 @@ struct object {
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
-	unsigned flags;              /* enum object_flags */
 	struct illum_spec illum;     /* illum_map { } */
 	struct photon_spec photons;  /* photons { } */
-	bool has_photons;            /* a photons { } block was given */
 };
 
 /* The object's frame → world transform (the identity when it has none). */

@@ -61,10 +61,26 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	return true;
 }
 
+bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
+{
+	struct hit h;
+	if (o->kind == OBJ_SPHERE) {
+		struct ray lr = local_ray(o, r);
+		return sph_hit_t(o, &lr, tmin, tmax, t);
+	}
+	if (!shape_intersect(o, r, tmin, tmax, &h))
+		return false;
+	*t = h.t;
+	return true;
+}
+
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
 {
 	const struct prim_ops *p = ops(o);
 	struct hit h;
+	double t;
+	if (o->kind == OBJ_SPHERE)
+		return shape_hit_t(o, r, tmin, tmax, &t);
 	if (!p)
 		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, &h);
 	struct ray lr = local_ray(o, r);

@@ -47,6 +47,9 @@ struct uv_range {
 /* Nearest hit with tmin < t < tmax; fills *h and returns true, else false. */
 bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                      struct hit *h);
+/* The t of that nearest hit alone: the same t shape_intersect finds over the
+ * same interval, cheaper where the primitive can skip the rest (spheres). */
+bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
 /* Is the world point strictly inside the solid (OF_INVERSE honoured)? */

@@ -5,6 +5,7 @@
 #     (#version 3.7: lights, highlights, mirror, refraction, filter,
 #     transmit, absorption) against arvo's, same tolerance;
 #   - determinism: the EXR is bit-identical for --threads 1, 2, 7 and reruns;
+#     a PNG alone (R G B only stored) is the PNG written beside an EXR;
 #   - the OCIO path: a linear 0.18 through each view of the shipped config
 #     matches ocioconvert's answer to within one 8-bit step;
 #   - CLI: an output in a missing directory exits 73 and leaves nothing, an
@@ -82,6 +83,14 @@ for t in 1 7; do
 done
 cmp "$tmp/dof1.exr" "$tmp/dof7.exr" >> "$tmp/log" 2>&1 || st=1
 check "depth of field bit-identical for --threads 1 and 7" $st
+st=0
+for t in 1 7; do # a PNG alone stores R G B only (render_opts.beauty_only)
+	"$ARVO" -q --threads $t --width 37 --height 29 -o "$tmp/b$t.png" "$T/g_lights.scn" > "$tmp/log" 2>&1 || st=1
+done
+"$ARVO" -q --threads 2 --width 37 --height 29 -o "$tmp/b.exr" -o "$tmp/b2.png" "$T/g_lights.scn" >> "$tmp/log" 2>&1 || st=1
+cmp "$tmp/b1.png" "$tmp/b7.png" >> "$tmp/log" 2>&1 || st=1
+cmp "$tmp/b1.png" "$tmp/b2.png" >> "$tmp/log" 2>&1 || st=1
+check "a PNG alone is bit-identical to one written beside an EXR, for --threads 1 and 7" $st
 st=0
 for t in 1 2 7; do
 	"$ARVO" -q --threads $t --rays 200000 --width 33 --height 21 -o "$tmp/cau$t.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1 || st=1

@@ -3,7 +3,8 @@
  * loop over every object returns (same t, same primitive), for thousands of
  * random rays through a random scene of 1000 spheres, boxes and triangles
  * with planes, a flattened union and a CSG leaf; shadow queries and skip
- * masks agree too; degenerate and empty scenes work. */
+ * masks agree too; degenerate and empty scenes work; rays leaving sphere
+ * surfaces agree too. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -211,11 +212,65 @@ static void t_axis_rays(void)
 	bvh_free(b);
 }
 
+/* Rays that start on a sphere (as reflected, refracted and shadow rays do),
+ * in and out of it, among touching and overlapping spheres, some moved or
+ * turned and scaled: the nearest and any hit agree with brute force (the
+ * spheres' t-only test, whose full hit is filled in at the end, included). */
+static void t_from_surfaces(void)
+{
+	enum { NS = 400 };
+	static struct object o[NS];
+	struct object *top[NS];
+	rng_seed(24);
+	for (int i = 0; i < NS; i++) {
+		o[i] = mk_obj(OBJ_SPHERE);
+		o[i].g.sphere.r = rndr(0.05, 2);
+		/* every other sphere touches or overlaps the previous one */
+		struct vec3 c = i % 2 && i ? v_madd(o[i - 1].g.sphere.c, rnd_dir(), o[i - 1].g.sphere.r + o[i].g.sphere.r * rndr(0.5, 1))
+		                           : rnd_vec(-20, 20);
+		o[i].g.sphere.c = c;
+		if (i % 5 == 0) { /* the same sphere through a similarity */
+			o[i].g.sphere.c = v3(0, 0, 0);
+			o[i].g.sphere.r = 1;
+			o[i].xf = xf_keep(xf_then(xf_then(xf_scale(v3(0.7, 0.7, 0.7)), xf_rotate(rnd_vec(0, 90))),
+			                          xf_translate(c)));
+		}
+		top[i] = &o[i];
+	}
+	struct bvh *b = bvh_build(top, NS);
+	int mism = 0, hits = 0;
+	for (int i = 0; i < 20000; i++) {
+		const struct object *s = &o[(int)(rnd() * NS) % NS];
+		struct vec3 d = rnd_dir(), q;
+		shape_uv_point(s, rnd(), rnd(), &q, NULL, NULL);
+		struct ray r = {v_madd(q, d, i % 3 ? 1e-6 : 0), d};
+		double tmin = i % 2 ? 1e-9 : 0, tmax = i % 4 ? INFINITY : rndr(0.01, 30);
+		struct hit hb, hf;
+		bool gb = brute(top, NS, &r, tmin, tmax, 0, &hb);
+		bool gf = bvh_intersect(b, &r, tmin, tmax, &hf);
+		hits += gb;
+		bool bad = gb != gf || (gb && (hb.t != hf.t || hb.obj != hf.obj || hb.u != hf.u || hb.v != hf.v ||
+		                               hb.n.x != hf.n.x || hb.p.y != hf.p.y || hb.dpdv.z != hf.dpdv.z ||
+		                               hb.entering != hf.entering));
+		bool go = bvh_occluded(b, &r, tmin, tmax);
+		if ((bad || go != gb) && mism < 8)
+			printf("#   ray %d from %d (xf %d): brute %d t=%.17g obj %d, bvh %d t=%.17g obj %d, occluded %d\n", i,
+			       (int)(s - o), s->xf != NULL, gb, gb ? hb.t : 0, gb ? (int)(hb.obj - o) : -1, gf,
+			       gf ? hf.t : 0, gf ? (int)(hf.obj - o) : -1, go);
+		mism += bad + (go != gb);
+	}
+	printf("# %d hits of 20000 rays from surfaces, %d mismatches\n", hits, mism);
+	CHECK(mism == 0);
+	CHECK(hits > 5000);
+	bvh_free(b);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
 	RUN(t_occluded_and_skip);
 	RUN(t_degenerate_and_empty);
 	RUN(t_axis_rays);
+	RUN(t_from_surfaces);
 	return test_done();
 }

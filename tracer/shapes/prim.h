@@ -49,6 +49,10 @@ struct prim_ops {
 #include "../objects.def"
 
 
+/* The sphere's nearest root in (tmin, tmax), in its own frame: the t its
+ * intersect finds, without the point, normal and (u,v) (shape_hit_t). */
+bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
+
 /* ---- helpers shared by the primitives (shape.c) ------------------------- */
 
 /* When o->xf's linear part is a rotation times a uniform scale s (possibly

@@ -62,18 +62,27 @@ static bool sph_roots(const struct object *o, const struct ray *r, double *t0, d
 	return prim_quadratic(a, b, c, disc, t0, t1);
 }
 
+/* The nearer root in range (tmin < t < tmax). */
+bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
+{
+	double t0, t1;
+	if (!(S_R(o) > 0) || !sph_roots(o, r, &t0, &t1))
+		return false;
+	if (t0 > tmin && t0 < tmax)
+		*t = t0;
+	else if (t1 > tmin && t1 < tmax)
+		*t = t1;
+	else
+		return false;
+	return true;
+}
+
 /* The nearer root in range; the point is projected back onto the sphere. */
 static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                           struct local_hit *lh)
 {
-	double t0, t1, t;
-	if (!(S_R(o) > 0) || !sph_roots(o, r, &t0, &t1))
-		return false;
-	if (t0 > tmin && t0 < tmax)
-		t = t0;
-	else if (t1 > tmin && t1 < tmax)
-		t = t1;
-	else
+	double t;
+	if (!sph_hit_t(o, r, tmin, tmax, &t))
 		return false;
 	struct vec3 q = v_sub(ray_at(*r, t), S_C(o));
 	double l = v_len(q);
