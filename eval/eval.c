@@ -494,6 +494,19 @@ struct value eval_expr(struct eval *E, const struct node *n)
 	return v;
 }
 
+/* (#if (A) 1 #else 2 #end): the branch taken yields one value. Kept out of
+ * eval_expr_node, so that its sink is not in the frame of every level of
+ * every expression (under ASan that halved the nesting the stack allows). */
+__attribute__((noinline)) static struct value directive_value(struct eval *E, const struct node *n)
+{
+	struct sink s;
+	sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+	eval_item(E, n->a, &s);
+	if (s.nresults == 0)
+		eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+	return s.result;
+}
+
 static struct value eval_expr_node(struct eval *E, const struct node *n)
 {
 	switch (n->kind) {
@@ -531,14 +544,7 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
 	case N_FUNC: return function_value(E, n);
-	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
-		struct sink s;
-		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
-		eval_item(E, n->a, &s);
-		if (s.nresults == 0)
-			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
-		return s.result;
-	}
+	case N_DIRVALUE: return directive_value(E, n);
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)
@@ -563,7 +569,7 @@ void eval_count_object(struct eval *E, struct srcloc loc)
 		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
-static void exec_declare(struct eval *E, const struct node *n)
+__attribute__((noinline)) static void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
 	if (builtin_is_name(n->str))
@@ -647,7 +653,7 @@ static int ifdef_test(struct eval *E, const struct node *a)
 	eval_fail(E, a->loc, "#ifdef needs an identifier");
 }
 
-static void exec_message(struct eval *E, const struct node *n)
+__attribute__((noinline)) static void exec_message(struct eval *E, const struct node *n)
 {
 	int len;
 	const char *s = eval_string(E, n->a, &len);
@@ -683,7 +689,7 @@ struct inc_cache {
 };
 
 /* Reads and parses an include file, or finds it parsed already. */
-static struct inc_cache *load_include(struct eval *E, const struct node *n, const char *name)
+__attribute__((noinline)) static struct inc_cache *load_include(struct eval *E, const struct node *n, const char *name)
 {
 	const char *dir;
 	char *real = eval_find_file(E, name, n->loc, "include file", &dir);
