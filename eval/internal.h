@@ -174,8 +174,8 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
-struct texture *texture_layer(struct eval *E, const struct texture *bottom, const struct texture *top,
-                              struct srcloc loc);
+/* A fresh texture: top (and the layers under it) layered over bottom. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
@@ -228,6 +228,8 @@ void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* Puts texture top (and the layers under it) on top of t, as a layer. */
+void texture_layer(struct eval *E, struct texture *t, const struct texture *top);
 /* normal { }: a fresh perturbation, or NULL when it uses what arvo lacks
  * (warned once: the scene renders with the plain normal). */
 struct tnormal *normal_block(struct eval *E, const struct node *blk);
@@ -245,9 +247,12 @@ void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *s
  * normal_map { } of normal t. */
 void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
 void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* tiles { textures tile2 textures } of texture t: a checker of the two. */
+void tiles_block(struct eval *E, struct texture *t, const struct node *n);
 /* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
 bool is_pattern_kw(enum tok k);
-/* Patterns without their own noise_generator take global_settings'. */
+/* Patterns without their own noise_generator take global_settings', and
+ * every pattern its number_of_waves. */
 void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */
@@ -260,6 +265,7 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
 void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
 void fog_keyword(struct eval *E, struct sink *s, const struct node *n);
 void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

@@ -154,6 +154,11 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->below) { /* and the layers under it */
+		struct texture *b = texture_copy(E, t->below);
+		texture_transform(E, b, X);
+		t->below = b;
+	}
 	if (t->map) { /* a texture_map's textures move with it */
 		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap);
 		for (int i = 0; i < t->nmap; i++) {
@@ -200,28 +205,11 @@ void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void
 	eval_items(E, blk, out);
 }
 
-/* POV-Ray's layered texture: top over bottom. The result shades with the
- * top layer's finish (and its normal, else the bottom's); its pigment
- * composites the two pigments (tracer/material.c layered()). A layer with
- * a texture_map is not composited: the top one is used, with a warning. */
-struct texture *texture_layer(struct eval *E, const struct texture *bottom, const struct texture *top,
-                              struct srcloc loc)
+/* POV-Ray's layered texture: top over bottom, as a fresh texture. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top)
 {
-	struct texture *t = texture_copy(E, top);
-	if (bottom->map || top->map) {
-		diag_warning(E->diag, loc, "a layered texture with a texture_map is not supported; the top layer is used");
-		return t;
-	}
-	if (!t->normal)
-		t->normal = bottom->normal;
-	t->pigment = (struct pigment){.kind = PIG_PATTERN};
-	struct pattern *pt = pat_w(E, &t->pigment);
-	pt->pattern = PAT_LAYERED;
-	struct pig_entry *m = ARENA_ARRAY(&SC(E)->arena, struct pig_entry, 2);
-	m[0] = (struct pig_entry){0, &bottom->pigment};
-	m[1] = (struct pig_entry){1, &top->pigment};
-	pt->pmap = m;
-	pt->npmap = 2;
+	struct texture *t = texture_copy(E, bottom);
+	texture_layer(E, t, top);
 	return t;
 }
 
@@ -245,7 +233,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.p.tex->loc = blk->loc;
 		run_block(E, blk, SK_TEXTURE, v.p.tex, &s);
 		if (blk->c) /* texture { A } texture { B }: B layered over A */
-			v.p.tex = texture_layer(E, v.p.tex, eval_block(E, blk->c).p.tex, blk->c->loc);
+			v.p.tex = texture_layered(E, v.p.tex, eval_block(E, blk->c).p.tex);
 		return v;
 	case TK_PIGMENT:
 		v.kind = V_PIGMENT;
@@ -304,6 +292,20 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.kind = V_COLOUR_MAP;
 		v.p.cmap = colour_map_block(E, blk);
 		return v;
+	case TK_SKY_SPHERE: { /* #declare S = sky_sphere { … } (skies.inc): built aside */
+		struct scene *sc = SC(E);
+		struct pigment *sky0 = sc->sky;
+		int n0 = sc->nsky;
+		const struct xform *xf0 = sc->sky_xf;
+		sc->sky = NULL, sc->nsky = 0, sc->sky_xf = NULL;
+		run_block(E, blk, SK_SKY, sc, &s);
+		struct sky_value *sv = NEW(E, struct sky_value);
+		*sv = (struct sky_value){sc->sky, sc->nsky, sc->sky_xf};
+		sc->sky = sky0, sc->nsky = n0, sc->sky_xf = xf0;
+		v.kind = V_SKY;
+		v.p.sky = sv;
+		return v;
+	}
 	default:
 		eval_fail(E, blk->loc, "%s cannot be used as a value", tok_name(blk->op));
 	}
@@ -481,6 +483,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
 	case SK_NORMAL: normal_value(E, s, v, loc); return;
 	case SK_FOG: fog_value(E, s, v, loc); return;
+	case SK_SKY: sky_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
 	case SK_LIST: list_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:

@@ -194,25 +194,11 @@ static int map_entries(struct eval *E, const struct node *blk, size_t size, void
 
 static void pig_entry_cb(struct eval *E, void *e, const struct node *n) { pigment_entry(E, e, n); }
 
-/* Checks that positions do not decrease (average takes weights instead). */
-static void check_order(struct eval *E, const struct node *blk, const double *pos, size_t stride, int n,
-                        const char *what)
-{
-	for (int i = 1; i < n; i++) {
-		double a = *(const double *)((const char *)pos + stride * (size_t)(i - 1));
-		double b = *(const double *)((const char *)pos + stride * (size_t)i);
-		if (b < a)
-			eval_fail(E, blk->kids[i]->loc, "%s positions must not decrease (%g after %g)", what, b, a);
-	}
-}
-
 static void pigment_map_block(struct eval *E, struct pigment *p, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct pig_entry), &arr, pig_entry_cb, "pigment_map");
 	struct pattern *pt = pat_w(E, p);
-	if (!(p->kind == PIG_PATTERN && pt->pattern == PAT_AVERAGE))
-		check_order(E, n, &((struct pig_entry *)arr)->pos, sizeof(struct pig_entry), k, "pigment_map");
 	pt->pmap = arr;
 	pt->npmap = k;
 }
@@ -237,6 +223,8 @@ static enum pattern_kind noise_kind(enum tok t)
 	case TK_QUILTED: return PAT_QUILTED;
 	case TK_SPIRAL1: return PAT_SPIRAL1;
 	case TK_SPIRAL2: return PAT_SPIRAL2;
+	case TK_CELLS: return PAT_CELLS;
+	case TK_MANDEL: return PAT_MANDEL;
 	case TK_AVERAGE: return PAT_AVERAGE;
 	default: return PAT_KIND_COUNT;
 	}
@@ -261,6 +249,10 @@ static void noise_pattern(struct eval *E, struct pigment *p, const struct node *
 	}
 	if (n->op == TK_AGATE)
 		own_turb(E, p);
+	if (n->op == TK_MANDEL) {
+		pt->arms = arg_int(E, n, 1, 1000000); /* the iterations */
+		pt->exponent_i = 2;
+	}
 }
 
 bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -277,6 +269,7 @@ bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 	switch (n->op) {
 	case TK_AGATE_TURB: pat_w(E, p)->agate_turb = arg_float(E, n); return true;
+	case TK_EXPONENT: pat_w(E, p)->exponent_i = arg_int(E, n, 2, 4); return true;
 	case TK_METRIC: pat_w(E, p)->metric = arg_positive(E, n); return true;
 	case TK_FORM: pat_w(E, p)->form = arg_vec3(E, n); return true;
 	case TK_OFFSET: pat_w(E, p)->offset = arg_float(E, n); return true;
@@ -324,9 +317,11 @@ void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *s
 void patterns_finish(struct eval *E)
 {
 	int g = SC(E)->gs.noise_generator;
-	for (int i = 0; i < E->npats; i++)
+	for (int i = 0; i < E->npats; i++) {
 		if (E->pats[i]->noise_gen == 0)
 			E->pats[i]->noise_gen = g;
+		E->pats[i]->nwaves = SC(E)->gs.number_of_waves;
+	}
 }
 
 /* ==== texture_map and normal_map ========================================= */
@@ -370,7 +365,6 @@ void texture_map_block(struct eval *E, struct texture *t, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct tex_entry), &arr, tex_entry_cb, "texture_map");
-	check_order(E, n, &((struct tex_entry *)arr)->pos, sizeof(struct tex_entry), k, "texture_map");
 	t->map = arr;
 	t->nmap = k;
 }
@@ -379,7 +373,6 @@ void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct nrm_entry), &arr, nrm_entry_cb, "normal_map");
-	check_order(E, n, &((struct nrm_entry *)arr)->pos, sizeof(struct nrm_entry), k, "normal_map");
 	t->map = arr;
 	t->nmap = k;
 }
@@ -393,8 +386,40 @@ bool is_pattern_kw(enum tok k)
 	case TK_TRIANGLE_WAVE: case TK_SINE_WAVE: case TK_SCALLOP_WAVE: case TK_CUBIC_WAVE: case TK_POLY_WAVE:
 	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA: case TK_WARP: case TK_AGATE_TURB:
 	case TK_METRIC: case TK_FORM: case TK_OFFSET: case TK_SOLID: case TK_CONTROL0: case TK_CONTROL1:
-	case TK_NOISE_GENERATOR: case TK_PIGMENT_PATTERN:
+	case TK_NOISE_GENERATOR: case TK_PIGMENT_PATTERN: case TK_EXPONENT:
 		return true;
 	default: return noise_kind(k) != PAT_KIND_COUNT;
 	}
+}
+
+/* tiles { texture { … } … tile2 texture { … } … }: POV-Ray's old checker of
+ * (layered) textures. */
+void tiles_block(struct eval *E, struct texture *t, const struct node *n)
+{
+	struct texture *tile[2] = {NULL, NULL};
+	int k = 0;
+	for (int i = 0; i < n->nkids; i++) {
+		const struct node *it = n->kids[i];
+		if (it->kind == N_MOD && it->op == TK_TILE2) {
+			k = 1;
+			continue;
+		}
+		if (it->kind != N_BLOCK || it->op != TK_TEXTURE)
+			eval_fail(E, it->loc, "tiles holds textures, then tile2 and more textures");
+		const struct texture *x = eval_block(E, it).p.tex;
+		if (!tile[k]) {
+			tile[k] = texture_copy(E, x);
+		} else {
+			texture_layer(E, tile[k], x);
+		}
+	}
+	if (!tile[0] || !tile[1])
+		eval_fail(E, n->loc, "tiles needs a texture on each side of tile2");
+	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, 2);
+	m[0] = (struct tex_entry){0, tile[1]}; /* POV-Ray's tile2 on the checker's first colour */
+	m[1] = (struct tex_entry){1, tile[0]};
+	t->pigment = scene_default_texture().pigment;
+	t->pigment.kind = PIG_CHECKER;
+	t->map = m;
+	t->nmap = 2;
 }

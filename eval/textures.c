@@ -38,11 +38,10 @@ void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n
 /* Appends the entry (params[ip], params[ic]) of the sink to the map. */
 static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic)
 {
+	/* any position, in any order, as POV-Ray takes them (its own woods.inc
+	 * has 1.001 and a step back); the search finds the first entry at or
+	 * above the value */
 	double pos = val_want_float(E, &sk->params[ip], sk->ploc[ip]);
-	/* POV-Ray takes positions outside [0, 1] (stones1.inc has 1.001): the
-	 * pattern's values stay in [0, 1] and interpolate towards them */
-	if (m->n > 0 && pos < m->e[m->n - 1].pos) /* POV-Ray's search never reaches it: it acts at the last position */
-		pos = m->e[m->n - 1].pos;
 	if (m->n >= 256)
 		eval_fail(E, n->loc, "colour_map has more than 256 entries");
 	struct map_entry *e = ARENA_ARRAY(&SC(E)->arena, struct map_entry, m->n + 1);
@@ -132,6 +131,17 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		pat_w(E, p)->pattern = n->op == TK_RADIAL ? PAT_RADIAL : n->op == TK_ONION ? PAT_ONION
 		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
 		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
+		return;
+	case TK_QUICK_COLOR: case TK_QUICK_COLOUR: /* POV-Ray's preview colour (quality below 6): not used */
+		arg_colour(E, n);
+		return;
+	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's component */
+		if (p->kind != PIG_SOLID)
+			misplaced(E, s, n);
+		if (n->op == TK_FILTER)
+			p->c[0].f = arg_float(E, n);
+		else
+			p->c[0].t = arg_float(E, n);
 		return;
 	case TK_FREQUENCY: pat_w(E, p)->frequency = arg_float(E, n); return;
 	case TK_PHASE: pat_w(E, p)->phase = arg_float(E, n); return;
@@ -320,6 +330,31 @@ void interior_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 }
 
+void texture_layer(struct eval *E, struct texture *t, const struct texture *top)
+{
+	struct texture *below = texture_copy(E, t);
+	const struct texture *bottom = top;
+	int depth = 0;
+	while (bottom->below && depth++ < 64) /* top may be layered itself */
+		bottom = bottom->below;
+	if (depth >= 64)
+		eval_fail(E, E->stmt, "more than 64 texture layers");
+	if (bottom == top) {
+		*t = *top;
+		t->below = below;
+		return;
+	}
+	/* copy top's chain, its last layer resting on below */
+	struct texture *k = t;
+	*t = *top;
+	while (k->below) {
+		struct texture *next = texture_copy(E, k->below);
+		k->below = next;
+		k = next;
+	}
+	k->below = below;
+}
+
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct texture *t = s->target;
@@ -332,6 +367,28 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 	if (n->op == TK_TEXTURE_MAP) {
 		texture_map_block(E, t, n);
+		return;
+	}
+	if (n->op == TK_TILES) {
+		tiles_block(E, t, n);
+		return;
+	}
+	if (n->op == TK_TEXTURE) {
+		const struct texture *k = eval_block(E, n).p.tex;
+		enum pigment_kind pk = t->pigment.kind;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) { /* checker texture { } texture { } */
+			int most = pk == PIG_HEXAGON ? 3 : 2;
+			if (t->nmap >= most)
+				eval_fail(E, n->loc, "%s takes %d textures, found more", pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
+			struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
+			if (t->nmap)
+				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+			m[t->nmap] = (struct tex_entry){t->nmap, k};
+			t->map = m;
+			t->nmap++;
+			return;
+		}
+		texture_layer(E, t, k); /* a layer on top of what t is so far */
 		return;
 	}
 	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */

@@ -312,9 +312,11 @@ static struct vec3 caustic_at(const struct eye_ctx *ctx, const struct hit *h)
 	return E;
 }
 
-/* The radiance leaving hit h along -d under texture tex (not a map). */
+/* The radiance leaving hit h along -d under texture tex (not a map). An
+ * upper layer of a layered texture reflects and refracts nothing: what its
+ * filter and transmit let through is the layer below (shade_map). */
 static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct texture *tex, struct vec3 d,
-                             int depth, double weight, unsigned skip, struct aov *aov)
+                             int depth, double weight, unsigned skip, struct aov *aov, bool upper)
 {
 	const struct scene *s = pa->ctx->scene;
 	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
@@ -338,7 +340,7 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = specular(pa, &sf, v_norm(d), depth, weight, skip);
+	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
@@ -368,10 +370,27 @@ static void aov_blend(struct aov *a, const struct aov *b, double wa, double wb)
 /* The radiance leaving hit h under texture t: a texture_map blends the
  * light of its two textures at h, each shaded in full, as POV-Ray does. */
 static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
-                             int depth, double weight, unsigned skip, struct aov *aov, int level)
+                             int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
 {
+	if (t->below && level <= 16) { /* layered: this layer, then what shows through it */
+		struct colour pc = mat_pigment(pa->ctx->mats, &t->pigment, h->p);
+		struct vec3 through = v_add(v_scale(col3(pc), pc.f), v3(pc.t, pc.t, pc.t));
+		struct texture self = *t; /* the layer alone */
+		self.below = NULL;
+		struct vec3 out = shade_map(pa, h, &self, d, depth, weight, skip, aov, level + 1, true);
+		if (v_maxc(through) <= 0)
+			return out;
+		struct aov under;
+		if (aov)
+			under = *aov;
+		struct vec3 b = shade_map(pa, h, t->below, d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
+		                          level + 1, false);
+		if (aov)
+			aov_blend(aov, &under, 1, v_maxc(through));
+		return v_add(out, v_mul(through, b));
+	}
 	if (!t->map || level > 16)
-		return shade_tex(pa, h, t, d, depth, weight, skip, aov);
+		return shade_tex(pa, h, t, d, depth, weight, skip, aov, upper);
 	const struct texture *k[2];
 	double w[2];
 	struct aov a[2];
@@ -380,7 +399,7 @@ static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct 
 	for (int i = 0; i < n; i++) {
 		if (aov)
 			a[i] = *aov;
-		struct vec3 c = shade_map(pa, h, k[i], d, depth, weight * w[i], skip, aov ? &a[i] : NULL, level + 1);
+		struct vec3 c = shade_map(pa, h, k[i], d, depth, weight * w[i], skip, aov ? &a[i] : NULL, level + 1, upper);
 		out = v_madd(out, c, w[i]);
 	}
 	if (aov) {
@@ -394,7 +413,7 @@ static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct 
 static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, int depth,
                          double weight, unsigned skip, struct aov *aov)
 {
-	return shade_map(pa, h, mat_texture(h->obj), d, depth, weight, skip, aov, 0);
+	return shade_map(pa, h, mat_texture(h->obj), d, depth, weight, skip, aov, 0, false);
 }
 
 /* POV-Ray's sky_sphere along unit d: the pigments at d in the sky's
@@ -415,8 +434,9 @@ static struct vec3 sky(const struct eye_ctx *ctx, struct vec3 d)
 }
 
 /* POV-Ray's fog over a ray segment from o along unit d of length len
- * (a miss: far away): the share e^(-len·density/distance) of c passes,
- * never less than the fog's transmit; the fog's colour fills the rest. A
+ * (a miss: far away): the share k = e^(-len·density/distance) of c passes,
+ * never less than the fog's transmit, tinted by the fog's filter; the fog's
+ * colour fills 1 - k. A
  * ground fog's density is 1 below fog_offset and 1/(1 + (h/fog_alt)²) at
  * height h above it, averaged exactly along the segment. */
 static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double len, struct vec3 c)
@@ -436,8 +456,11 @@ static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double
 	}
 	double k = fmax(exp(-len * density / f->distance), f->c.t);
 	struct vec3 fc = col3(f->c);
-	struct vec3 mix = v_add(v_scale(fc, 1 - f->c.f), v_scale(v_mul(fc, c), f->c.f));
-	return v_add(v_scale(c, k), v_scale(mix, 1 - k));
+	/* as POV-Ray: what passes is also filtered by the fog's colour
+	 * (1 - filter + filter·colour); the fog's colour fills the rest */
+	double fl = f->c.f;
+	struct vec3 pass = v_add(v3(1 - fl, 1 - fl, 1 - fl), v_scale(fc, fl));
+	return v_add(v_scale(v_mul(pass, c), k), v_scale(fc, 1 - k));
 }
 
 /* The radiance arriving along r: the background on a miss, else the shaded

@@ -31,7 +31,7 @@ static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *
 		c->paths = mem_realloc(c->paths, sizeof *c->paths * (size_t)c->cap);
 		c->imgs = mem_realloc(c->imgs, sizeof *c->imgs * (size_t)c->cap);
 	}
-	struct img_opts io = {ocio, NULL, 0};
+	struct img_opts io = {ocio, NULL, 0, 0};
 	int err = img_load(path, &io, &c->imgs[c->n], dg, pg->image_loc, pg->image_name);
 	if (err)
 		return err;
@@ -39,11 +39,38 @@ static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *
 	return 0;
 }
 
+/* Loads the image_map of a pigment and of the pigments inside it. */
+static int load_pigment(struct mat_cache *c, const struct pigment *pg, const char *ocio, struct diag *dg, int depth)
+{
+	const struct pattern *pt = pig_pattern(pg);
+	int err = 0;
+	if (depth > 32)
+		return 0;
+	if (pg->kind == PIG_IMAGE)
+		err = cache_add(c, pt, ocio, dg);
+	if (!err && pt->sub)
+		err = load_pigment(c, pt->sub, ocio, dg, depth + 1);
+	for (int i = 0; !err && i < pt->npmap; i++)
+		err = load_pigment(c, pt->pmap[i].pig, ocio, dg, depth + 1);
+	return err;
+}
+
+/* ... of a texture, its texture_map's textures and the layers under it. */
+static int load_texture(struct mat_cache *c, const struct texture *t, const char *ocio, struct diag *dg, int depth)
+{
+	int err = depth > 32 ? 0 : load_pigment(c, &t->pigment, ocio, dg, depth);
+	for (int i = 0; !err && depth <= 32 && i < t->nmap; i++)
+		err = load_texture(c, t->map[i].tex, ocio, dg, depth + 1);
+	if (!err && depth <= 32 && t->below)
+		err = load_texture(c, t->below, ocio, dg, depth + 1);
+	return err;
+}
+
 /* Walks an object tree, loading the image_map of every texture. */
 static int load_tree(struct mat_cache *c, const struct object *o, const char *ocio, struct diag *dg)
 {
-	if (o->tex && o->tex->pigment.kind == PIG_IMAGE) {
-		int err = cache_add(c, pig_pattern(&o->tex->pigment), ocio, dg);
+	if (o->tex) {
+		int err = load_texture(c, o->tex, ocio, dg, 0);
 		if (err)
 			return err;
 	}
@@ -117,6 +144,8 @@ static const struct map_entry map_marble[] = {E(0, 0.9, 0.8, 0.8), E(0.9, 0.9, 0
 static const struct map_entry map_wood[] = {E(0.6, 0.666, 0.312, 0.2), E(0.6, 0.4, 0.1333, 0.066)};
 static const struct map_entry map_radial[] = {E(0, 0, 1, 1), E(0.333, 1, 1, 0), E(0.666, 1, 0, 1), E(1, 0, 1, 1)};
 static const struct map_entry map_grey[] = {E(0, 0, 0, 0), E(1, 1, 1, 1)};
+static const struct map_entry map_mandel[] = {E(0.001, 0, 0, 0), E(0.001, 0, 1, 1), E(0.012, 1, 1, 0),
+                                              E(0.015, 1, 0, 1), E(0.1, 0, 1, 1)};
 #undef E
 
 /* The colour map a pigment uses: its own, else its pattern's default. */
@@ -138,6 +167,7 @@ static const struct map_entry *pig_map(const struct pigment *pg, int *n)
 	case PAT_MARBLE: return USE(map_marble);
 	case PAT_WOOD: return USE(map_wood);
 	case PAT_RADIAL: return USE(map_radial);
+	case PAT_MANDEL: return USE(map_mandel);
 	default: return m;
 	}
 #undef USE
@@ -153,7 +183,7 @@ static struct colour colour_map(const struct pigment *pg, double v)
 	for (int i = 1; i < n; i++)
 		if (v <= m[i].pos) {
 			double span = m[i].pos - m[i - 1].pos;
-			return span > 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
+			return span != 0 ? c_lerp(m[i - 1].c, m[i].c, (v - m[i - 1].pos) / span) : m[i].c;
 		}
 	return m[n - 1].c;
 }
@@ -174,7 +204,7 @@ static struct colour texel(const struct img *im, long x, long y)
  * bottom-left at the origin, repeating unless `once`. */
 static struct colour image_map(const struct mat_cache *c, const struct pigment *pg, struct vec3 q)
 {
-	const struct img *im = cache_find(c, pig_pattern(pg)->image ? pig_pattern(pg)->image : "");
+	const struct img *im = c ? cache_find(c, pig_pattern(pg)->image ? pig_pattern(pg)->image : "") : NULL;
 	if (!im || im->w <= 0)
 		return c_rgb(1, 0, 1);
 	if (pig_pattern(pg)->once && (q.x < 0 || q.x >= 1 || q.y < 0 || q.y >= 1))
@@ -200,6 +230,8 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 static double value_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 q, int depth)
 {
 	const struct pattern *pt = pig_pattern(pg);
+	if (pg->kind == PIG_CHECKER || pg->kind == PIG_HEXAGON || pg->kind == PIG_BRICK)
+		return pattern_block(pg, q); /* a map's entry by number */
 	if (pg->kind == PIG_PATTERN && pt->pattern == PAT_PIGMENT)
 		return pattern_wave(pg, pt->sub ? pattern_grey(pigment_at(c, pt->sub, q, depth + 1)) : 0);
 	return pattern_value(pg, q);
@@ -238,24 +270,6 @@ static struct colour average(const struct mat_cache *c, const struct pattern *pt
 
 /* A pigment at world point p; depth bounds nested maps (a pigment_map's
  * entry may itself be one). */
-/* A layered texture's pigments, each over the ones below (pmap[0] is the
- * bottom): a layer shows its own colour by 1 - filter - transmit, and lets
- * the layers below through by filter (tinted by its colour) plus transmit;
- * what the whole lets through is the product of the layers' shares. */
-static struct colour layered(const struct mat_cache *c, const struct pattern *pt, struct vec3 q, int depth)
-{
-	struct colour out = pigment_at(c, pt->pmap[0].pig, q, depth);
-	for (int i = 1; i < pt->npmap; i++) {
-		struct colour k = pigment_at(c, pt->pmap[i].pig, q, depth);
-		double own = fmax(0, 1 - k.f - k.t), pass = k.f + k.t;
-		out.r = own * k.r + (k.f * k.r + k.t) * out.r;
-		out.g = own * k.g + (k.f * k.g + k.t) * out.g;
-		out.b = own * k.b + (k.f * k.b + k.t) * out.b;
-		out.f *= pass, out.t *= pass;
-	}
-	return out;
-}
-
 static struct colour pigment_at(const struct mat_cache *c, const struct pigment *pg, struct vec3 p, int depth)
 {
 	if (pg->kind == PIG_SOLID)
@@ -274,8 +288,6 @@ static struct colour pigment_at(const struct mat_cache *c, const struct pigment 
 	case PIG_GRADIENT: case PIG_PATTERN: {
 		if (pt->pattern == PAT_AVERAGE && pg->kind == PIG_PATTERN)
 			return pt->pmap ? average(c, pt, q, depth + 1) : c_rgb(0, 0, 0);
-		if (pt->pattern == PAT_LAYERED && pg->kind == PIG_PATTERN)
-			return layered(c, pt, q, depth + 1);
 		double v = value_at(c, pg, q, depth);
 		if (pt->pmap && pt->npmap > 0)
 			return pigment_map(c, pt, v, q, depth + 1);

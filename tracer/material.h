@@ -38,7 +38,8 @@ int mat_texture_pick(const struct mat_cache *c, const struct texture *t, struct 
  * (t itself when it has no map): what the light pass sees there. */
 const struct texture *mat_texture_leaf(const struct mat_cache *c, const struct texture *t, struct vec3 p);
 
-/* The pigment's colour (with filter and transmit) at world point p. */
+/* The pigment's colour (with filter and transmit) at world point p (c NULL:
+ * image maps are magenta). */
 struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, struct vec3 p);
 
 #endif

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* noise.c: POV-Ray 3.7's noise functions (docs/design.md §3).
+/* noise.c: POV-Ray 3.7's noise functions (docs/design.md §10).
  *
  * Generators 1 and 2 are Skinner's lattice noise after Perlin: each integer
  * lattice point hashes (through a 4096-entry permutation) to a row of a
@@ -57,7 +57,7 @@ static const double rnums[267] = {
 
 #define GRAD_N 2048    /* Perlin gradients (a power of two) */
 #define NRAND 32768    /* pattern random numbers */
-#define NWAVES 10      /* POV-Ray's number_of_waves */
+#define NWAVES 256     /* wave sources made: number_of_waves at most */
 
 static struct {
 	double rt[2 * 267];           /* each number, then its half */

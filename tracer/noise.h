@@ -4,7 +4,7 @@
  * puts them: the lattice noise of generators 1 (original) and 2 (range
  * corrected, POV-Ray's default), Perlin's gradient noise (generator 3),
  * the vector noise that turbulence displaces points by, and fractal sums
- * of both (docs/design.md §3). Tables are built once, on first use, from
+ * of both (docs/design.md §10). Tables are built once, on first use, from
  * POV-Ray's own pseudo-random sequences; everything is read-only after. */
 #ifndef ARVO_NOISE_H
 #define ARVO_NOISE_H
@@ -36,7 +36,8 @@ double noise_cycloidal(double v);
 double noise_triangle(double v);
 /* POV-Ray's hash of an integer lattice point into 0..4095. */
 int noise_hash3(int x, int y, int z);
-/* The n-th wave source (unit vector) and frequency of ripples and waves. */
+/* The n-th wave source (unit vector) and frequency of ripples and waves
+ * (n < 256, POV-Ray's sequence; it uses the first number_of_waves). */
 struct vec3 noise_wave_source(int n);
 double noise_wave_freq(int n);
 

@@ -4,7 +4,7 @@
  * spiral1, spiral2), its turbulence and warps, and the normals it computes
  * directly rather than from a pattern's slope (bumps, dents, ripples,
  * waves, wrinkles, quilted). Each follows POV-Ray's definition, including
- * its quirks, so a stock scene's textures match (docs/design.md §3):
+ * its quirks, so a stock scene's textures match (docs/design.md §10):
  * - a pattern's own `turbulence` is a warp in the list like any other; the
  *   patterns marble and wood skip it as a warp and use it themselves, and
  *   marble, wood, agate and the spirals find it only when it is the last
@@ -183,12 +183,16 @@ static double spiral(const struct pattern *pt, struct vec3 q, bool two)
 	return two ? noise_triangle(rad) + noise_triangle(v) : v;
 }
 
-/* ripples and waves: ten point sources of circular waves; waves gives each
- * its own frequency and amplitude. */
+/* ripples and waves: point sources of circular waves (ten unless
+ * number_of_waves says); waves gives each its own frequency and amplitude. */
+/* The number of wave sources (global_settings' number_of_waves). */
+static int nwaves(const struct pattern *pt) { return pt->nwaves > 0 ? pt->nwaves : 10; }
+
 static double ripples(const struct pattern *pt, struct vec3 q, bool waves)
 {
 	double sum = 0;
-	for (int i = 0; i < 10; i++) {
+	int n = nwaves(pt);
+	for (int i = 0; i < n; i++) {
 		double len = v_len(v_sub(q, noise_wave_source(i)));
 		if (len == 0)
 			len = 1;
@@ -199,7 +203,7 @@ static double ripples(const struct pattern *pt, struct vec3 q, bool waves)
 			sum += noise_cycloidal(len * pt->frequency + pt->phase);
 		}
 	}
-	return waves ? 0.2 * (2.5 + sum / 10) : 0.5 * (1 + sum / 10);
+	return waves ? 0.2 * (2.5 + sum / n) : 0.5 * (1 + sum / n);
 }
 
 /* quilted's cubic of the distance from the cell centre. */
@@ -271,6 +275,31 @@ static double crackle(const struct pattern *pt, struct vec3 q)
 	return fmax(fmin(v, 1), 0);
 }
 
+/* mandel: the escape time of z -> z^e + c, c = (x, y), over the iterations
+ * (1 inside: POV-Ray's default exterior and interior types). */
+static double mandel(const struct pattern *pt, struct vec3 q)
+{
+	double a = q.x, b = q.y, a2 = a * a, b2 = b * b;
+	int max = pt->arms > 0 ? pt->arms : 1;
+	for (int i = 0; i < max; i++) {
+		double na, nb;
+		if (pt->exponent_i == 3) {
+			nb = 3 * a2 * b - b2 * b + q.y;
+			na = a2 * a - 3 * a * b2 + q.x;
+		} else if (pt->exponent_i == 4) {
+			nb = 4 * (a2 * a * b - a * b2 * b) + q.y;
+			na = a2 * a2 - 6 * a2 * b2 + b2 * b2 + q.x;
+		} else {
+			nb = 2 * a * b + q.y;
+			na = a2 - b2 + q.x;
+		}
+		a = na, b = nb, a2 = a * a, b2 = b * b;
+		if (a2 + b2 > 4)
+			return (double)i / max;
+	}
+	return 1;
+}
+
 double pattern_noise_raw(const struct pattern *pt, struct vec3 q)
 {
 	switch (pt->pattern) {
@@ -293,6 +322,11 @@ double pattern_noise_raw(const struct pattern *pt, struct vec3 q)
 	}
 	case PAT_SPIRAL1: return spiral(pt, q, false);
 	case PAT_SPIRAL2: return spiral(pt, q, true);
+	case PAT_CELLS: { /* a random value for each unit cube */
+		int h = noise_hash3((int)floor(q.x + EPS), (int)floor(q.y + EPS), (int)floor(q.z + EPS));
+		return fmin(noise_rand((unsigned long)h), 1);
+	}
+	case PAT_MANDEL: return mandel(pt, q);
 	default: return 0;
 	}
 }
@@ -313,13 +347,13 @@ bool pattern_normal_direct(const struct tnormal *t, struct vec3 q, struct vec3 *
 		return true;
 	}
 	case PAT_RIPPLES: case PAT_WAVES:
-		for (int i = 0; i < 10; i++) {
+		for (int i = 0, k = nwaves(pt); i < k; i++) {
 			struct vec3 d = v_sub(q, noise_wave_source(i));
 			double len = v_len(d), f = pt->pattern == PAT_WAVES ? noise_wave_freq(i) : 1;
 			if (len == 0)
 				len = 1;
 			double s = noise_cycloidal(len * pt->frequency * f + pt->phase) * a / f;
-			*n = v_madd(*n, d, s / (len * 10));
+			*n = v_madd(*n, d, s / (len * nwaves(pt)));
 		}
 		return true;
 	case PAT_WRINKLES: {

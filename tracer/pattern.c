@@ -7,6 +7,7 @@
 
 #include <math.h>
 
+#include "material.h"
 #include "noise.h"
 #include "fn.h"
 
@@ -61,7 +62,9 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
 	case PAT_PLANAR: return clip_density(fabs(q.y));
 	case PAT_LEOPARD: return leopard_raw(q);
-	case PAT_PIGMENT: case PAT_AVERAGE: case PAT_LAYERED: return 0; /* material.c computes these */
+	case PAT_PIGMENT: /* in a normal: the grey of the pigment (without image maps) */
+		return pig_pattern(pg)->sub ? pattern_grey(mat_pigment(NULL, pig_pattern(pg)->sub, q)) : 0;
+	case PAT_AVERAGE: return 0;
 	case PAT_FUNCTION: return function_raw(pig_pattern(pg)->fn, q);
 	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}
@@ -224,6 +227,15 @@ struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 
 		{-0.471404521, -0.333333333, -0.816496581}, {0, 1, 0}};
 	const double delta = 0.02;
 	struct vec3 np = normal_in(&t->pat, n), q = pattern_point(&t->pat, p);
+	if (t->map && t->nmap > 0 && t->pat.kind == PIG_PATTERN && pig_pattern(&t->pat)->pattern == PAT_AVERAGE) {
+		struct vec3 sum = v3(0, 0, 0); /* average: the entries' normals by weight */
+		double total = 0;
+		for (int i = 0; i < t->nmap; i++) {
+			sum = v_madd(sum, entry_normal(t->map[i].n, q, np), t->map[i].pos);
+			total += t->map[i].pos;
+		}
+		return normal_out(&t->pat, total != 0 ? v_scale(sum, 1 / total) : np);
+	}
 	if (t->map && t->nmap > 0) /* normal_map: the two entries' normals blended */
 		return normal_out(&t->pat, normal_map(t, pattern_value(&t->pat, q), q, np));
 	if (!pattern_normal_direct(t, q, &np)) {

@@ -18,6 +18,7 @@ void scene_init(struct scene *s)
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
 	s->gs.noise_generator = 2;
+	s->gs.number_of_waves = 10;
 	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }
@@ -209,7 +210,7 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
 	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard",
 		"bozo", "spotted", "bumps", "dents", "granite", "marble", "wood", "agate", "wrinkles", "ripples", "waves",
-		"crackle", "quilted", "spiral1", "spiral2", "pigment_pattern", "average", "function", "layered"};
+		"crackle", "quilted", "spiral1", "spiral2", "cells", "mandel", "pigment_pattern", "average", "function"};
 	_Static_assert(sizeof pats / sizeof *pats == PAT_KIND_COUNT, "a name for every pattern kind");
 	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);

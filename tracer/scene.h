@@ -32,11 +32,10 @@ enum pattern_kind {
 	/* the noise patterns (tracer/noise.h) and their kin */
 	PAT_BOZO, PAT_SPOTTED, PAT_BUMPS, PAT_DENTS, PAT_GRANITE, PAT_MARBLE, PAT_WOOD,
 	PAT_AGATE, PAT_WRINKLES, PAT_RIPPLES, PAT_WAVES, PAT_CRACKLE, PAT_QUILTED,
-	PAT_SPIRAL1, PAT_SPIRAL2,
+	PAT_SPIRAL1, PAT_SPIRAL2, PAT_CELLS, PAT_MANDEL,
 	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
 	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
 	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
-	PAT_LAYERED,  /* a layered texture's pigments, pmap bottom first */
 	PAT_KIND_COUNT
 };
 
@@ -101,7 +100,9 @@ struct pattern {
 	struct vec3 form;         /* crackle: default <-1, 1, 0> */
 	bool solid;               /* crackle solid */
 	double control0, control1; /* quilted: defaults 1, 1 */
-	int arms;                 /* spiral1, spiral2: number of arms */
+	int arms;                 /* spiral1, spiral2: number of arms; mandel: iterations */
+	int exponent_i;           /* mandel: exponent 2 (default), 3 or 4 */
+	int nwaves;               /* ripples, waves: global_settings' number_of_waves (0: 10) */
 	const struct pigment *sub; /* pigment_pattern's pigment */
 	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
 	int npmap;
@@ -179,6 +180,7 @@ struct texture {
 	struct srcloc loc; /* where the texture was written */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
 	int nmap;
+	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
 };
 
 /* ---- objects ------------------------------------------------------------ */
@@ -274,6 +276,10 @@ struct mesh {
 	int side;                 /* the (u,v) atlas is side × side cells */
 	bool has_inside;          /* inside_vector given: the mesh is a solid */
 	struct vec3 inside_dir;   /* inside_vector */
+	bool clipped;             /* height_field water_level: no surface below clip_y */
+	double clip_y;
+	int hf_w, hf_h;           /* height_field: the grid (0: not one) */
+	bool hf_smooth;           /* height_field smooth: vertex normals at the end */
 };
 
 /* isosurface { function { … } contained_by { box | sphere } … }: the
@@ -396,6 +402,7 @@ struct global_settings {
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
 	int noise_generator;       /* default 2 (POV-Ray's range-corrected noise) */
+	int number_of_waves;       /* ripples and waves: sources (default 10) */
 	struct illum_settings illum;
 };
 
