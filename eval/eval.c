@@ -689,7 +689,7 @@ struct inc_cache {
 };
 
 /* Reads and parses an include file, or finds it parsed already. */
-static struct inc_cache *load_include(struct eval *E, const struct node *n, const char *name)
+__attribute__((noinline)) static struct inc_cache *load_include(struct eval *E, const struct node *n, const char *name)
 {
 	const char *dir;
 	char *real = eval_find_file(E, name, n->loc, "include file", &dir);
