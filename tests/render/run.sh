@@ -211,4 +211,11 @@ check "photons { spacing 0.01 } on a unit sphere shoots pi*3/spacing^2 light ray
 	cat "$tmp/l" >> "$tmp/log" &&
 	awk 'NR == 1 { ok = $3 > 0.0499 && $3 < 0.0501 && $4 == 0 && $5 == 0.5 } NR == 2 { ok = ok && $3 == 0 && $4 == 1 && $5 == 0 } END { exit !ok }' "$tmp/l"
 check "a layered texture shades each layer with its finish, through the top one's transmit; a declared sky_sphere is used by name" $?
+# fog with filter (POV-Ray's formula): <0.3472, 0.5104, 0.6736> to 1e-3
+"$ARVO" -q --width 4 --height 4 -o "$tmp/fog.exr" "$T/fog_filter.scn" > "$tmp/log" 2>&1 &&
+	oiiotool "$tmp/fog.exr" --ch R,G,B --printstats 2>> "$tmp/log" | grep "Stats Avg" > "$tmp/f" &&
+	cat "$tmp/f" >> "$tmp/log" &&
+	awk 'function near(a, b) { return a > b - 1e-3 && a < b + 1e-3 }
+	     { ok = near($3, 0.3472) && near($4, 0.5104) && near($5, 0.6736) } END { exit !ok }' "$tmp/f"
+check "fog with filter: what passes is tinted by the fog colour, as POV-Ray's, to 1e-3" $?
 echo "1..$n"
