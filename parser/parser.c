@@ -32,6 +32,7 @@ struct parser {
 	int depth;           /* recursion depth (blocks, directives, expressions) */
 	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
+	int in_mesh_list;    /* inside vertex_vectors { 14 <…> … } and the like: numbers are never compared */
 	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
 	int in_func;         /* inside function { }: '^' is a power; unsupported words in its
 	                      * pattern { } are left to the evaluator (a macro may never run it) */
@@ -508,6 +509,9 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 		 * next vector (POV-Ray compares floats only) */
 		if (p->tok.kind == TK_LT && left && left->kind == N_VEC)
 			break;
+		/* `vertex_vectors { 14 <-1, -1, -1>, … }`: the count, then a vector */
+		if (p->tok.kind == TK_LT && p->in_mesh_list && left && left->kind == N_NUM)
+			break;
 		if (p->depth >= MAX_DEPTH) {
 			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
 			break;
@@ -621,6 +625,13 @@ static struct node *parse_keyword_item(struct parser *p)
 			return n;
 		}
 		n->kind = N_BLOCK;
+		if (t.kind == TK_VERTEX_VECTORS || t.kind == TK_NORMAL_VECTORS || t.kind == TK_UV_VECTORS ||
+		    t.kind == TK_FACE_INDICES || t.kind == TK_NORMAL_INDICES || t.kind == TK_UV_INDICES) {
+			p->in_mesh_list++;
+			parse_block_body(p, n);
+			p->in_mesh_list--;
+			return n;
+		}
 		if (t.kind == TK_NORMAL) {
 			p->in_normal++;
 			parse_block_body(p, n);
