@@ -174,6 +174,14 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
 		return;
 	}
+	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's */
+		if (p->kind != PIG_SOLID || !s->modified)
+			misplaced(E, s, n);
+		if (n->op == TK_FILTER)
+			p->c[0].f = arg_float(E, n);
+		else
+			p->c[0].t = arg_float(E, n);
+		return;
 	case TK_PIGMENT:
 		if (p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK) {
 			struct pigment *sub = NEW(E, struct pigment);
@@ -403,10 +411,14 @@ struct tnormal *normal_block(struct eval *E, const struct node *blk)
 	struct sink s;
 	t->pat = scene_default_texture().pigment;
 	t->pat.kind = PIG_SOLID; /* no pattern yet */
-	t->amount = 0.5;
+	t->amount = E->default_bump > 0 ? E->default_bump : 0.5; /* #default { normal { bump_size … } } */
 	run_block(E, blk, SK_NORMAL, t, &s);
 	if (s.pending)
 		return NULL;
+	if (blk->kind == N_BLOCK && E->in_default && t->pat.kind == PIG_SOLID) {
+		E->default_bump = t->amount; /* a default bump size alone: no warning */
+		return NULL;
+	}
 	if (t->pat.kind == PIG_SOLID || t->pat.kind == PIG_IMAGE) {
 		if (!E->warned_normal++)
 			diag_warning(E->diag, blk->loc, "'normal' without a pattern arvo supports is ignored");
@@ -433,7 +445,27 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: case TK_PIGMENT_MAP: misplaced(E, s, n);
 	case TK_BUMP_SIZE: t->amount = arg_float(E, n); return;
 	case TK_NORMAL_MAP: normal_map_block(E, t, n); return;
-	case TK_SPIRAL1: case TK_SPIRAL2:
+	case TK_NORMAL: { /* checker normal { } normal { }, or normal_map { [v normal { … }] } */
+		const struct tnormal *k = normal_block(E, n);
+		enum pigment_kind pk = t->pat.kind;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) {
+			int most = pk == PIG_HEXAGON ? 3 : 2;
+			if (t->nmap >= most)
+				eval_fail(E, n->loc, "this pattern takes %d normals, found more", most);
+			struct nrm_entry *m = ARENA_ARRAY(&SC(E)->arena, struct nrm_entry, t->nmap + 1);
+			if (t->nmap)
+				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+			m[t->nmap] = (struct nrm_entry){t->nmap, k};
+			t->map = m;
+			t->nmap++;
+		} else if (k) {
+			*t = *k;
+		} else {
+			s->pending = 1;
+		}
+		return;
+	}
+	case TK_SPIRAL1: case TK_SPIRAL2: case TK_MANDEL:
 		if (n->nkids == 2) { /* spiral1 arms, bump size */
 			struct node one = *n;
 			one.nkids = 1;
