@@ -352,6 +352,22 @@ void texture_layer(struct eval *E, struct texture *t, const struct texture *top)
 	k->below = below;
 }
 
+/* The next texture of checker, hexagon or brick texture t. */
+static void texture_entry(struct eval *E, struct texture *t, const struct texture *k, struct srcloc loc)
+{
+	enum pigment_kind pk = t->pigment.kind;
+	int most = pk == PIG_HEXAGON ? 3 : 2;
+	if (t->nmap >= most)
+		eval_fail(E, loc, "%s takes %d textures, found more",
+		          pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
+	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
+	if (t->nmap)
+		memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+	m[t->nmap] = (struct tex_entry){t->nmap, k};
+	t->map = m;
+	t->nmap++;
+}
+
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct texture *t = s->target;
@@ -371,21 +387,18 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	if (n->op == TK_TEXTURE) {
-		const struct texture *k = eval_block(E, n).p.tex;
 		enum pigment_kind pk = t->pigment.kind;
-		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) { /* checker texture { } texture { } */
-			int most = pk == PIG_HEXAGON ? 3 : 2;
-			if (t->nmap >= most)
-				eval_fail(E, n->loc, "%s takes %d textures, found more", pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
-			struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
-			if (t->nmap)
-				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
-			m[t->nmap] = (struct tex_entry){t->nmap, k};
-			t->map = m;
-			t->nmap++;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) {
+			/* checker texture { } texture { }: the parser links textures in a
+			 * row as layers (n->c); here each is one of the pattern's */
+			for (const struct node *k = n; k; k = k->c) {
+				struct node one = *k;
+				one.c = NULL;
+				texture_entry(E, t, eval_block(E, &one).p.tex, k->loc);
+			}
 			return;
 		}
-		texture_layer(E, t, k); /* a layer on top of what t is so far */
+		texture_layer(E, t, eval_block(E, n).p.tex); /* a layer on top of what t is so far */
 		return;
 	}
 	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */
