@@ -42,7 +42,7 @@ struct fcomp {
 	const char *names[FN_MAX_PARAMS]; /* parameter names */
 	int nparams;
 	bool defaults;        /* no parameter list: x y z, with u and v for x and y */
-	struct fn_op *code;   /* growing; copied into the scene arena at the end */
+	struct fn_op *code;   /* growing in the evaluator's arena; copied into the scene's at the end */
 	int n, cap;
 	int sp, maxsp;        /* operand stack, now and at most */
 	int depth;            /* deepest callee */
@@ -55,9 +55,12 @@ static const struct fn_info *info(const struct fn *f) { return (const struct fn_
 
 static void emit(struct fcomp *c, struct srcloc loc, enum fn_opcode op, int i, int push)
 {
-	if (c->n == c->cap) {
+	if (c->n == c->cap) { /* the arena, not malloc: a failure unwinds past this */
 		c->cap = c->cap ? c->cap * 2 : 32;
-		c->code = mem_realloc(c->code, sizeof *c->code * (size_t)c->cap);
+		struct fn_op *code = ARENA_ARRAY(&c->E->arena, struct fn_op, c->cap);
+		if (c->n)
+			memcpy(code, c->code, sizeof *code * (size_t)c->n);
+		c->code = code;
 	}
 	c->code[c->n++] = (struct fn_op){.op = (unsigned char)op, .i = (unsigned short)i};
 	c->sp += push;
@@ -329,6 +332,13 @@ static void pattern_body(struct eval *E, struct fn_info *fi, const struct node *
 	run_block(E, blk, SK_PIGMENT, &fi->fn.pig, &s);
 	if (fi->fn.pig.kind == PIG_IMAGE)
 		eval_fail(E, blk->loc, "an image_map cannot be used in a function");
+	const struct fn *inner = pig_pattern(&fi->fn.pig)->fn; /* pattern { function { … } } */
+	if (fi->fn.pig.kind == PIG_PATTERN && pig_pattern(&fi->fn.pig)->pattern == PAT_FUNCTION && inner) {
+		fi->fn.depth = inner->depth + 1;
+		fi->fn.cost = inner->cost + 50;
+		if (fi->fn.depth > FN_MAX_DEPTH)
+			eval_fail(E, blk->loc, "functions nested too deeply (more than %d calls within calls)", FN_MAX_DEPTH);
+	}
 }
 
 struct value function_value(struct eval *E, const struct node *n)
@@ -366,6 +376,8 @@ struct value function_value(struct eval *E, const struct node *n)
 		struct fn_internal_info ii = fn_internal(k >= 0 && k < FN_INTERNAL_COUNT ? (int)k : -1);
 		fi->fn.kind = FN_INTERNAL;
 		fi->fn.internal = (int)k;
+		fi->fn.pig = scene_default_texture().pigment;
+		pat_w(E, &fi->fn.pig); /* its noise_gen becomes the scene's when the scene ends */
 		fi->fn.nparams = ii.nparams;
 		fi->fn.depth = 1;
 		fi->fn.cost = 50;
@@ -390,23 +402,11 @@ struct value function_value(struct eval *E, const struct node *n)
 		c.names[0] = "x", c.names[1] = "y", c.names[2] = "z";
 		c.nparams = 3;
 	}
-	/* the partial program is freed if compiling fails (eval_fail unwinds) */
-	jmp_buf here, *outer = E->fail;
-	if (setjmp(here)) {
-		free(c.code);
-		E->fail = outer;
-		longjmp(*outer, 1);
-	}
-	E->fail = &here;
 	compile(&c, body);
-	E->fail = outer;
-	if (c.depth + 1 > FN_MAX_DEPTH) {
-		free(c.code);
+	if (c.depth + 1 > FN_MAX_DEPTH)
 		eval_fail(E, n->loc, "functions nested too deeply (more than %d calls within calls)", FN_MAX_DEPTH);
-	}
 	struct fn_op *code = ARENA_ARRAY(&SC(E)->arena, struct fn_op, c.n);
 	memcpy(code, c.code, sizeof *code * (size_t)c.n);
-	free(c.code);
 	fi->fn.kind = FN_CODE;
 	fi->fn.code = code;
 	fi->fn.ncode = c.n;

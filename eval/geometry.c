@@ -3,10 +3,12 @@
  * modifiers; when it ends, the primitive's geom_ function (one per PRIM of
  * tracer/objects.def) checks the parameters and fixes the geometry. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
 #include "../tracer/polysolve.h"
+#include "../tracer/output/imageio.h"
 #include "../tracer/shape.h"
 
 /* Applies X to an object, its texture and its children (POV-Ray moves the
@@ -43,7 +45,7 @@ static enum object_kind object_kind_of(enum tok kw)
 #define CSG(n, w) case TK_##n: return OBJ_##n;
 #include "../tracer/objects.def"
 	case TK_QUARTIC: case TK_CUBIC: case TK_QUADRIC: return OBJ_POLY;
-	case TK_MESH2: case TK_SMOOTH_TRIANGLE: return OBJ_MESH;
+	case TK_MESH2: case TK_SMOOTH_TRIANGLE: case TK_HEIGHT_FIELD: return OBJ_MESH;
 	default: return OBJ_KIND_COUNT;
 	}
 }
@@ -405,6 +407,85 @@ static void mesh2_block(struct eval *E, struct object *o, const struct node *n)
 static struct isosurface *iso_w(struct eval *E, struct object *o);
 static void isosurface_keyword(struct eval *E, struct object *o, const struct node *n);
 
+/* height_field { png "file" … }: the image's heights as POV-Ray reads them
+ * (a palette image's index·256, a grey image's value, an 8-bit colour
+ * image's red·256 + green, a 16-bit one's grey), over 65536; the grid
+ * x = i/(w−1), z = j/(h−1), the image's bottom row at z = 0; each cell two
+ * triangles split along the diagonal from (i+1, j) to (i, j+1). */
+static void height_field_image(struct eval *E, struct object *o, const struct node *n)
+{
+	struct mesh *m = mesh_of(E, o);
+	if (m->hf_w)
+		eval_fail(E, n->loc, "height_field has its image already");
+	struct value v = arg1(E, n);
+	if (v.kind != V_STRING)
+		eval_fail(E, n->kids[0]->loc, "expected a file name string, found %s", val_type_name(&v));
+	char *real = eval_find_file(E, v.p.s, n->loc, "image file", NULL);
+	if (E->opt->on_file) /* -M: the image is a dependency */
+		E->opt->on_file(real, E->opt->on_file_ctx);
+	struct img im;
+	struct img_opts io = {NULL, NULL, 1, 1};
+	int err = img_load(real, &io, &im, E->diag, n->loc, v.p.s);
+	free(real);
+	if (err) {
+		E->missing = 1;
+		longjmp(*E->fail, 1);
+	}
+	if (im.w < 2 || im.h < 2) {
+		img_free(&im);
+		eval_fail(E, n->loc, "a height_field image needs at least 2 x 2 pixels");
+	}
+	int w = im.w, h = im.h;
+	m->hf_w = w;
+	m->hf_h = h;
+	m->nv = w * h;
+	m->vert = ARENA_ARRAY(&SC(E)->arena, struct vec3, m->nv);
+	for (int j = 0; j < h; j++)
+		for (int i = 0; i < w; i++) {
+			const float *px = im.px + ((size_t)(h - 1 - j) * (size_t)w + (size_t)i) * (size_t)im.nch;
+			double hv;
+			if (im.indexed)
+				hv = floor(px[0] * 255.0f + 0.5f) * 256;
+			else if (im.depth > 8)
+				hv = floor((0.297f * px[0] + 0.589f * px[1] + 0.114f * px[2]) * 65535.0f);
+			else
+				hv = floor(px[0] * 255.0f + 0.5f) * 256 + floor(px[1] * 255.0f + 0.5f);
+			m->vert[j * w + i] = v3((double)i / (w - 1), hv / 65536, (double)j / (h - 1));
+		}
+	img_free(&im);
+	m->nt = 2 * (w - 1) * (h - 1);
+	m->tri = ARENA_ARRAY(&SC(E)->arena, struct mesh_tri, m->nt);
+	int k = 0;
+	for (int j = 0; j + 1 < h; j++)
+		for (int i = 0; i + 1 < w; i++) {
+			int a = j * w + i, b = a + 1, c = a + w, d = c + 1;
+			m->tri[k++] = (struct mesh_tri){{a, c, b}, {-1, -1, -1}}; /* normal up */
+			m->tri[k++] = (struct mesh_tri){{d, b, c}, {-1, -1, -1}};
+		}
+	m->has_inside = true;
+	m->inside_dir = v3(0, 1, 0);
+}
+
+/* height_field smooth: each grid point's normal from its neighbours'
+ * heights (one-sided at the edges). */
+static void height_field_normals(struct eval *E, struct mesh *m)
+{
+	int w = m->hf_w, h = m->hf_h;
+	m->nn = w * h;
+	m->norm = ARENA_ARRAY(&SC(E)->arena, struct vec3, m->nn);
+	for (int j = 0; j < h; j++)
+		for (int i = 0; i < w; i++) {
+			int i0 = i > 0 ? i - 1 : i, i1 = i + 1 < w ? i + 1 : i;
+			int j0 = j > 0 ? j - 1 : j, j1 = j + 1 < h ? j + 1 : j;
+			struct vec3 dx = v_sub(m->vert[j * w + i1], m->vert[j * w + i0]);
+			struct vec3 dz = v_sub(m->vert[j1 * w + i], m->vert[j0 * w + i]);
+			m->norm[j * w + i] = v_norm(v_cross(dz, dx));
+		}
+	for (int t = 0; t < m->nt; t++)
+		for (int k = 0; k < 3; k++)
+			m->tri[t].n[k] = m->tri[t].v[k];
+}
+
 void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct xform X;
@@ -474,6 +555,22 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		blob_of(E, o)->threshold = arg_float(E, n);
 		if (!(blob_of(E, o)->threshold > 0))
 			eval_fail(E, n->kids[0]->loc, "blob threshold must be positive");
+		return;
+	case TK_PNG:
+		if (s->kw != TK_HEIGHT_FIELD)
+			misplaced(E, s, n);
+		height_field_image(E, o, n);
+		return;
+	case TK_WATER_LEVEL:
+		if (s->kw != TK_HEIGHT_FIELD)
+			misplaced(E, s, n);
+		mesh_of(E, o)->clip_y = arg_float(E, n); /* a fraction of the full height */
+		mesh_of(E, o)->clipped = true;
+		return;
+	case TK_SMOOTH:
+		if (s->kw != TK_HEIGHT_FIELD)
+			misplaced(E, s, n);
+		mesh_of(E, o)->hf_smooth = true;
 		return;
 	case TK_INSIDE_VECTOR:
 		if (o->kind != OBJ_MESH || s->kw == TK_SMOOTH_TRIANGLE)
@@ -764,6 +861,12 @@ static void geom_mesh(struct eval *E, struct sink *s, struct object *o)
 		mesh_triangle_params(E, m, s, true);
 		if (m->nt == 0)
 			eval_fail(E, s->loc, "degenerate smooth_triangle (its corners are collinear)");
+	} else if (s->kw == TK_HEIGHT_FIELD) {
+		want_params(E, s, "an image: height_field { png \"file.png\" }", 0, 0);
+		if (!m->hf_w)
+			eval_fail(E, s->loc, "height_field needs an image: height_field { png \"file.png\" }");
+		if (m->hf_smooth)
+			height_field_normals(E, m);
 	} else {
 		want_params(E, s, s->kw == TK_MESH ? "triangles: mesh { triangle { <a>, <b>, <c> } … }"
 		                                   : "lists: mesh2 { vertex_vectors { … } face_indices { … } }", 0, 0);

@@ -267,6 +267,7 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
 void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
 void fog_keyword(struct eval *E, struct sink *s, const struct node *n);
 void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

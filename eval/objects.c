@@ -292,6 +292,20 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.kind = V_COLOUR_MAP;
 		v.p.cmap = colour_map_block(E, blk);
 		return v;
+	case TK_SKY_SPHERE: { /* #declare S = sky_sphere { … } (skies.inc): built aside */
+		struct scene *sc = SC(E);
+		struct pigment *sky0 = sc->sky;
+		int n0 = sc->nsky;
+		const struct xform *xf0 = sc->sky_xf;
+		sc->sky = NULL, sc->nsky = 0, sc->sky_xf = NULL;
+		run_block(E, blk, SK_SKY, sc, &s);
+		struct sky_value *sv = NEW(E, struct sky_value);
+		*sv = (struct sky_value){sc->sky, sc->nsky, sc->sky_xf};
+		sc->sky = sky0, sc->nsky = n0, sc->sky_xf = xf0;
+		v.kind = V_SKY;
+		v.p.sky = sv;
+		return v;
+	}
 	default:
 		eval_fail(E, blk->loc, "%s cannot be used as a value", tok_name(blk->op));
 	}
@@ -472,6 +486,7 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
 	case SK_NORMAL: normal_value(E, s, v, loc); return;
 	case SK_FOG: fog_value(E, s, v, loc); return;
+	case SK_SKY: sky_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
 	case SK_LIST: list_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:

@@ -440,11 +440,12 @@ void geom_text(struct eval *E, struct sink *s, struct object *o)
 		free(plain);
 		free(with);
 	}
-	char *path = eval_find_file(E, name, b->font_loc, "font file", NULL);
+	char *found = eval_find_file(E, name, b->font_loc, "font file", NULL);
 	if (E->opt->on_file)
-		E->opt->on_file(path, E->opt->on_file_ctx);
+		E->opt->on_file(found, E->opt->on_file_ctx);
+	char *path = eval_strdup(E, found, (int)strlen(found)); /* font_text may fail: nothing to free then */
+	free(found);
 	struct extrusion *e = font_text(E, path, b->font, b->font_loc, b->v[0].p.s, b->v[0].n, b->loc[0], th, off);
-	free(path);
 	e->open = false;
 	o->g.text.e = e;
 }

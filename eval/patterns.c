@@ -157,7 +157,7 @@ static double entry_pos(struct eval *E, const struct node *n, int *first)
 {
 	const struct node *k = n->kids[0];
 	*first = 0;
-	if (k->kind == N_BLOCK || k->kind == N_MOD || k->kind == N_WORD || k->kind == N_SKIPPED)
+	if (k->kind == N_BLOCK || k->kind == N_MOD || k->kind == N_WORD || k->kind == N_SKIPPED || k->kind == N_FUNC)
 		return 1;
 	struct value v = eval_expr(E, k);
 	if (v.kind != V_FLOAT)

@@ -145,8 +145,13 @@ static void camera_look_at(struct eval *E, struct camera *c, struct vec3 at, str
 		eval_fail(E, loc, "camera location and look_at must differ");
 	d = v_norm(d);
 	struct vec3 r = v_cross(c->sky, d);
-	if (v_len(r) < 1e-12)
-		eval_fail(E, loc, "camera looks along its sky vector; set sky to something else");
+	if (v_len(r) < 1e-12) { /* as POV-Ray: keep the right vector given (or the default) */
+		diag_warning(E->diag, loc, "camera looks along its sky vector; the right vector is kept (set sky to choose 'up')");
+		r = v_sub(c->right, v_scale(d, v_dot(c->right, d)));
+		if (v_len(r) < 1e-12)
+			eval_fail(E, loc, "camera looks along its sky vector and its right vector; set sky to something else");
+		hand = 1;
+	}
 	r = v_norm(r);
 	c->up = v_scale(v_norm(v_cross(d, r)), ul);
 	c->direction = v_scale(d, dl);
@@ -186,6 +191,9 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_NORMAL: /* POV-Ray's camera ray perturbation */
+		diag_warning(E->diag, n->loc, "'normal' in a camera is not supported; ignored");
+		return;
 	case TK_PERSPECTIVE: c->kind = CAM_PERSPECTIVE; return;
 	case TK_ORTHOGRAPHIC: c->kind = CAM_ORTHOGRAPHIC; return;
 	case TK_FISHEYE: c->kind = CAM_FISHEYE; return;
@@ -328,6 +336,24 @@ void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
 		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
 	p[sc->nsky++] = *v.p.pig;
 	sc->sky = p;
+}
+
+/* sky_sphere { S … }: a declared sky_sphere's pigments and transform, then
+ * what follows. */
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct scene *sc = s->target;
+	if (v->kind != V_SKY)
+		eval_fail(E, loc, "expected a sky_sphere or a pigment { } in sky_sphere, found %s", val_type_name(v));
+	const struct sky_value *sv = v->p.sky;
+	struct pigment *p = ARENA_ARRAY(&sc->arena, struct pigment, sc->nsky + sv->n);
+	if (sc->nsky)
+		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
+	memcpy(p + sc->nsky, sv->pig, sizeof *p * (size_t)sv->n);
+	sc->sky = p;
+	sc->nsky += sv->n;
+	if (sv->xf)
+		sc->sky_xf = xform_then(E, sc->sky_xf, sv->xf);
 }
 
 /* fog { [fog_type 1|2] distance d colour c [fog_offset h fog_alt a up v] } */

@@ -132,6 +132,17 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
 		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
 		return;
+	case TK_QUICK_COLOR: case TK_QUICK_COLOUR: /* POV-Ray's preview colour (quality below 6): not used */
+		arg_colour(E, n);
+		return;
+	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's component */
+		if (p->kind != PIG_SOLID)
+			misplaced(E, s, n);
+		if (n->op == TK_FILTER)
+			p->c[0].f = arg_float(E, n);
+		else
+			p->c[0].t = arg_float(E, n);
+		return;
 	case TK_FREQUENCY: pat_w(E, p)->frequency = arg_float(E, n); return;
 	case TK_PHASE: pat_w(E, p)->phase = arg_float(E, n); return;
 	case TK_RAMP_WAVE: pat_w(E, p)->wave = WAVE_RAMP; return;
@@ -174,14 +185,6 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
 		return;
 	}
-	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's */
-		if (p->kind != PIG_SOLID || !s->modified)
-			misplaced(E, s, n);
-		if (n->op == TK_FILTER)
-			p->c[0].f = arg_float(E, n);
-		else
-			p->c[0].t = arg_float(E, n);
-		return;
 	case TK_PIGMENT:
 		if (p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK) {
 			struct pigment *sub = NEW(E, struct pigment);

@@ -35,6 +35,8 @@ struct parser {
 	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
 	int in_func;         /* inside function { }: '^' is a power; unsupported words in its
 	                      * pattern { } are left to the evaluator (a macro may never run it) */
+	int in_texture;      /* inside texture { }: textures in a row are a pattern's (checker
+	                      * texture { A } texture { B }), not layers */
 	int quiet_macros;    /* no warning for a macro read only when called (POV-Ray's own files) */
 	int first_set;       /* a macro body's quiet trial (parse_macro): its first error */
 	struct srcloc first_loc;
@@ -625,10 +627,12 @@ static struct node *parse_keyword_item(struct parser *p)
 			p->in_normal--;
 			return n;
 		}
+		p->in_texture += t.kind == TK_TEXTURE;
 		parse_block_body(p, n);
+		p->in_texture -= t.kind == TK_TEXTURE;
 		/* POV-Ray's layered texture: `texture { A } texture { B }` in a row
 		 * is one texture, B over A; c links the next layer up */
-		if (t.kind == TK_TEXTURE && check(p, TK_TEXTURE) && !p->panic && enter(p)) {
+		if (t.kind == TK_TEXTURE && check(p, TK_TEXTURE) && !p->in_texture && !p->panic && enter(p)) {
 			n->c = parse_keyword_item(p);
 			leave(p);
 		}

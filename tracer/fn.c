@@ -2,11 +2,11 @@
 /* fn.c: the stack machine that runs compiled functions, and POV-Ray's
  * internal(N) functions (docs/design.md §2, "Functions"). */
 #include "fn.h"
-#include "noise.h"
 
 #include <math.h>
 
 #include "material.h"
+#include "noise.h"
 #include "pattern.h"
 
 /* ==== internal(N) ========================================================= */
@@ -14,6 +14,7 @@
 /* POV-Ray's built-in functions take x, y, z and then their own parameters
  * p[0] …; each is defined by its documentation (functions.inc). */
 typedef double (*internal_fn)(const double *a);
+typedef double (*noise_fn)(const double *a, int gen); /* gen: the scene's noise generator */
 
 #define X a[0]
 #define Y a[1]
@@ -77,19 +78,45 @@ static double i_spikes_2d(const double *a)
 	return -(P(0) * cos(P(1) * X) * cos(P(2) * Z) * exp(-P(3) * (X * X + Z * Z)) - Y);
 }
 
-/* f_noise3d(x, y, z): POV-Ray's solid noise in [0, 1] (its default
- * generator, 2); f_noise_generator(x, y, z, gen) with generator gen. */
-static double i_noise3d(const double *a) { return noise_at(v3(X, Y, Z), 2); }
-static double i_noise_generator(const double *a)
+/* f_noise3d: the scene's noise, in [0, 1]. */
+static double i_noise3d(const double *a, int gen) { return noise_at(v3(X, Y, Z), gen); }
+
+/* f_noise_generator(x, y, z, generator): generator 1-3's noise (0 reads as 2, POV-Ray's default). */
+static double i_noise_generator(const double *a, int gen)
 {
-	int g = (int)P(0);
-	return noise_at(v3(X, Y, Z), g >= 1 && g <= 3 ? g : 2);
+	int g = (int)fmod(fabs(P(0)), 4);
+	(void)gen;
+	return noise_at(v3(X, Y, Z), g ? g : 2);
+}
+
+/* f_ridged_mf(x, y, z, H, lacunarity, octaves, offset, gain, generator):
+ * Musgrave's ridged multifractal over the scene's noise: each octave's
+ * ridge (offset − |2·noise − 1|)², weighted by the previous octave's
+ * signal times gain (clamped to [0, 1]) and by frequency^−H. */
+static double i_ridged_mf(const double *a, int gen)
+{
+	int g = (int)fmod(fabs(P(5)), 4);
+	struct vec3 p = v3(X, Y, Z);
+	double sig = P(3) - fabs(noise_at(p, g ? g : gen) * 2 - 1);
+	sig *= sig;
+	double sum = sig, freq = 1;
+	int octaves = P(2) > 64 ? 64 : (int)P(2);
+	for (int i = 1; i < octaves; i++) {
+		p = v_scale(p, P(1));
+		freq *= P(1);
+		double w = fmin(1, fmax(0, sig * P(4)));
+		sig = P(3) - fabs(noise_at(p, g ? g : gen) * 2 - 1);
+		sig = sig * sig * w;
+		sum += sig * pow(freq, -P(0));
+	}
+	return sum;
 }
 
 static const struct {
 	const char *name;
 	int extra;       /* parameters after x, y, z */
-	internal_fn fn;  /* NULL: not built */
+	internal_fn fn;  /* NULL (and noise NULL): not built */
+	noise_fn noise;  /* the functions of the noise */
 } internals[FN_INTERNAL_COUNT] = {
 	[45] = {"f_paraboloid", 1, i_paraboloid},
 	[47] = {"f_ph", 0, i_ph},
@@ -101,8 +128,9 @@ static const struct {
 	[69] = {"f_th", 0, i_th},
 	[70] = {"f_torus", 2, i_torus},
 	[71] = {"f_torus2", 3, i_torus2},
-	[76] = {"f_noise3d", 0, i_noise3d},
-	[78] = {"f_noise_generator", 1, i_noise_generator},
+	[59] = {"f_ridged_mf", 6, NULL, i_ridged_mf},
+	[76] = {"f_noise3d", 0, NULL, i_noise3d},
+	[78] = {"f_noise_generator", 1, NULL, i_noise_generator},
 };
 
 #undef X
@@ -113,7 +141,7 @@ static const struct {
 struct fn_internal_info fn_internal(int n)
 {
 	struct fn_internal_info r = {NULL, 0};
-	if (n >= 0 && n < FN_INTERNAL_COUNT && internals[n].fn)
+	if (n >= 0 && n < FN_INTERNAL_COUNT && (internals[n].fn || internals[n].noise))
 		r = (struct fn_internal_info){internals[n].name, 3 + internals[n].extra};
 	return r;
 }
@@ -226,7 +254,12 @@ double fn_eval(const struct fn *f, const double *args)
 {
 	switch (f->kind) {
 	case FN_CODE: return run(f, args);
-	case FN_INTERNAL: return internals[f->internal].fn(args);
+	case FN_INTERNAL: {
+		int gen = pig_pattern(&f->pig)->noise_gen;
+		if (internals[f->internal].noise)
+			return internals[f->internal].noise(args, gen ? gen : 2);
+		return internals[f->internal].fn(args);
+	}
 	case FN_PATTERN: return pattern_at(&f->pig, v3(args[0], args[1], args[2]));
 	default: {
 		struct colour c = fn_eval_colour(f, args);

@@ -65,7 +65,8 @@ struct fn {
 	const struct fn_op *code; /* FN_CODE */
 	int ncode;
 	int internal;            /* FN_INTERNAL: POV-Ray's number */
-	struct pigment pig;      /* FN_PATTERN, FN_PIGMENT */
+	struct pigment pig;      /* FN_PATTERN, FN_PIGMENT; FN_INTERNAL: its pattern's noise_gen is the
+	                          * scene's noise generator (0 until the scene ends: 2) */
 	struct srcloc loc;       /* where `function` was written */
 };
 

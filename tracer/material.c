@@ -31,7 +31,7 @@ static int cache_add(struct mat_cache *c, const struct pattern *pg, const char *
 		c->paths = mem_realloc(c->paths, sizeof *c->paths * (size_t)c->cap);
 		c->imgs = mem_realloc(c->imgs, sizeof *c->imgs * (size_t)c->cap);
 	}
-	struct img_opts io = {ocio, NULL, 0};
+	struct img_opts io = {ocio, NULL, 0, 0};
 	int err = img_load(path, &io, &c->imgs[c->n], dg, pg->image_loc, pg->image_name);
 	if (err)
 		return err;

@@ -276,6 +276,10 @@ struct mesh {
 	int side;                 /* the (u,v) atlas is side × side cells */
 	bool has_inside;          /* inside_vector given: the mesh is a solid */
 	struct vec3 inside_dir;   /* inside_vector */
+	bool clipped;             /* height_field water_level: no surface below clip_y */
+	double clip_y;
+	int hf_w, hf_h;           /* height_field: the grid (0: not one) */
+	bool hf_smooth;           /* height_field smooth: vertex normals at the end */
 };
 
 /* isosurface { function { … } contained_by { box | sphere } … }: the

@@ -103,7 +103,21 @@ static void t_iso_walls(void)
 	CHECK_NEAR(h.t, 5.5, 1e-12);
 	o.flags |= OF_OPEN;
 	CHECK(!shape_intersect(&o, &r, 0, INFINITY, &h));
-	CHECK(!shape_uv_range(&o, &(struct uv_range){0}));
+}
+
+/* The radial (u,v) about the container's centre: a hit's (u,v) gives its
+ * point back, and the unit sphere's field has the sphere's area. */
+static void t_iso_uv(void)
+{
+	struct object o = iso(&sphere_fn, true);
+	struct ray r = {v3(0.3, 0.2, -5), v3(0, 0, 1)};
+	struct hit h;
+	struct vec3 p, pu, pv;
+	CHECK(shape_intersect(&o, &r, 0, INFINITY, &h));
+	CHECK(shape_uv_point(&o, h.u, h.v, &p, &pu, &pv));
+	CHECK(v_len(v_sub(p, h.p)) < 1e-9);
+	CHECK(v_dot(v_cross(pu, pv), h.n) > 0); /* outward */
+	CHECK_NEAR(shape_area(&o), 4 * M_PI, 1e-6);
 }
 
 /* A torus field about y through f_torus; random rays from outside that hit
@@ -140,6 +154,7 @@ int main(void)
 	RUN(t_machine);
 	RUN(t_iso_sphere);
 	RUN(t_iso_walls);
+	RUN(t_iso_uv);
 	RUN(t_iso_torus);
 	return test_done();
 }

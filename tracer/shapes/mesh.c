@@ -22,6 +22,10 @@
  * that vector crosses the mesh an odd number of times (POV-Ray's rule);
  * without, nothing is inside.
  *
+ * A height_field is such a mesh too (eval/geometry.c makes its grid of
+ * triangles, inside_vector up); its water_level hides the surface below
+ * that height (clip_y).
+ *
  * Parametrisation: an atlas. With k = ⌈√nt⌉, triangle i has the cell
  * column i mod k, row ⌊i/k⌋ of a k × k grid over [0,1]², and inside the
  * cell its own barycentric (a, b) as triangle.c's (u,v):
@@ -249,6 +253,8 @@ static void walk(struct walk *W)
 			double tt, a, b;
 			if (!tri_hit(m, t, W->r, &tt, &a, &b) || !(tt > W->lo))
 				continue;
+			if (m->clipped && !W->count_all && W->r->o.y + tt * W->r->d.y < m->clip_y)
+				continue; /* under a height field's water level */
 			if (W->count_all) {
 				W->crossings++;
 				continue;
@@ -375,6 +381,10 @@ static void me_dump(const struct object *o, FILE *out)
 	fprintf(out, "triangles %d vertices %d normals %d", m->nt, m->nv, m->nn);
 	if (m->has_inside)
 		fputs(" inside_vector ", out), prim_dump_vec(out, m->inside_dir);
+	if (m->hf_w)
+		fprintf(out, " height_field %dx%d", m->hf_w, m->hf_h);
+	if (m->clipped)
+		fprintf(out, " water_level %.6g", m->clip_y);
 }
 
 const struct prim_ops shape_mesh_ops = {
