@@ -83,6 +83,8 @@ struct eval {
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
 	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
+	double default_bump;       /* #default { normal { bump_size } } (0: POV-Ray's 0.5) */
+	int in_default;            /* evaluating #default { }'s items */
 	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */

@@ -382,10 +382,13 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
 		finish_block(E, n, &t->finish);
-	else if (n->op == TK_NORMAL)
+	else if (n->op == TK_NORMAL) {
+		E->in_default++;
 		t->normal = normal_block(E, n);
-	else
+		E->in_default--;
+	} else {
 		misplaced(E, s, n);
+	}
 }
 
 void sink_keyword(struct eval *E, struct sink *s, const struct node *n)

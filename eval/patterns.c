@@ -150,14 +150,29 @@ static void warp_block(struct eval *E, struct pigment *p, const struct node *n)
 
 /* ==== maps ================================================================ */
 
+/* The position of map entry n: its first item when that is a number (the
+ * body then starts at *first = 1); else 1, as POV-Ray's average takes
+ * [texture-body] without a weight (*first = 0). */
+static double entry_pos(struct eval *E, const struct node *n, int *first)
+{
+	const struct node *k = n->kids[0];
+	*first = 0;
+	if (k->kind == N_BLOCK || k->kind == N_MOD || k->kind == N_WORD || k->kind == N_SKIPPED || k->kind == N_FUNC)
+		return 1;
+	struct value v = eval_expr(E, k);
+	if (v.kind != V_FLOAT)
+		return 1;
+	*first = 1;
+	return v.v[0];
+}
+
 /* [position pigment-body] of a pigment_map. */
 static void pigment_entry(struct eval *E, struct pig_entry *e, const struct node *n)
 {
+	int first;
 	if (n->kind != N_ENTRY || n->nkids < 1)
 		eval_fail(E, n->loc, "a pigment_map entry is [position pigment]");
-	/* [function { … } …]: POV-Ray's average takes entries without a weight (1) */
-	int first = n->kids[0] && n->kids[0]->kind == N_FUNC ? 0 : 1;
-	e->pos = first ? eval_float(E, n->kids[0]) : 1;
+	e->pos = entry_pos(E, n, &first);
 	struct pigment *pg = NEW(E, struct pigment);
 	*pg = scene_default_texture().pigment;
 	struct sink s;
@@ -331,14 +346,15 @@ void patterns_finish(struct eval *E)
 static void tex_entry_cb(struct eval *E, void *out, const struct node *n)
 {
 	struct tex_entry *e = out;
+	int first;
 	if (n->nkids < 1)
 		eval_fail(E, n->loc, "a texture_map entry is [position texture]");
-	e->pos = eval_float(E, n->kids[0]);
+	e->pos = entry_pos(E, n, &first);
 	struct texture *t = texture_copy(E, NULL);
 	t->loc = n->loc;
 	struct sink s;
 	sink_init(&s, SK_TEXTURE, TK_TEXTURE_MAP, n->loc, t);
-	for (int i = 1; i < n->nkids; i++)
+	for (int i = first; i < n->nkids; i++)
 		eval_item(E, n->kids[i], &s);
 	e->tex = t;
 }
@@ -347,16 +363,17 @@ static void tex_entry_cb(struct eval *E, void *out, const struct node *n)
 static void nrm_entry_cb(struct eval *E, void *out, const struct node *n)
 {
 	struct nrm_entry *e = out;
+	int first;
 	if (n->nkids < 1)
 		eval_fail(E, n->loc, "a normal_map entry is [position normal]");
-	e->pos = eval_float(E, n->kids[0]);
+	e->pos = entry_pos(E, n, &first);
 	struct tnormal *t = NEW(E, struct tnormal);
 	t->pat = scene_default_texture().pigment;
 	t->pat.kind = PIG_SOLID;
-	t->amount = 0.5;
+	t->amount = E->default_bump > 0 ? E->default_bump : 0.5;
 	struct sink s;
 	sink_init(&s, SK_NORMAL, TK_NORMAL_MAP, n->loc, t);
-	for (int i = 1; i < n->nkids; i++)
+	for (int i = first; i < n->nkids; i++)
 		eval_item(E, n->kids[i], &s);
 	e->n = s.pending || t->pat.kind == PIG_SOLID || t->pat.kind == PIG_IMAGE ? NULL : t;
 }

@@ -355,6 +355,22 @@ void texture_layer(struct eval *E, struct texture *t, const struct texture *top)
 	k->below = below;
 }
 
+/* The next texture of checker, hexagon or brick texture t. */
+static void texture_entry(struct eval *E, struct texture *t, const struct texture *k, struct srcloc loc)
+{
+	enum pigment_kind pk = t->pigment.kind;
+	int most = pk == PIG_HEXAGON ? 3 : 2;
+	if (t->nmap >= most)
+		eval_fail(E, loc, "%s takes %d textures, found more",
+		          pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
+	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
+	if (t->nmap)
+		memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+	m[t->nmap] = (struct tex_entry){t->nmap, k};
+	t->map = m;
+	t->nmap++;
+}
+
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct texture *t = s->target;
@@ -374,21 +390,18 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	if (n->op == TK_TEXTURE) {
-		const struct texture *k = eval_block(E, n).p.tex;
 		enum pigment_kind pk = t->pigment.kind;
-		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) { /* checker texture { } texture { } */
-			int most = pk == PIG_HEXAGON ? 3 : 2;
-			if (t->nmap >= most)
-				eval_fail(E, n->loc, "%s takes %d textures, found more", pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
-			struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
-			if (t->nmap)
-				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
-			m[t->nmap] = (struct tex_entry){t->nmap, k};
-			t->map = m;
-			t->nmap++;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) {
+			/* checker texture { } texture { }: the parser links textures in a
+			 * row as layers (n->c); here each is one of the pattern's */
+			for (const struct node *k = n; k; k = k->c) {
+				struct node one = *k;
+				one.c = NULL;
+				texture_entry(E, t, eval_block(E, &one).p.tex, k->loc);
+			}
 			return;
 		}
-		texture_layer(E, t, k); /* a layer on top of what t is so far */
+		texture_layer(E, t, eval_block(E, n).p.tex); /* a layer on top of what t is so far */
 		return;
 	}
 	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */
@@ -414,10 +427,14 @@ struct tnormal *normal_block(struct eval *E, const struct node *blk)
 	struct sink s;
 	t->pat = scene_default_texture().pigment;
 	t->pat.kind = PIG_SOLID; /* no pattern yet */
-	t->amount = 0.5;
+	t->amount = E->default_bump > 0 ? E->default_bump : 0.5; /* #default { normal { bump_size … } } */
 	run_block(E, blk, SK_NORMAL, t, &s);
 	if (s.pending)
 		return NULL;
+	if (blk->kind == N_BLOCK && E->in_default && t->pat.kind == PIG_SOLID) {
+		E->default_bump = t->amount; /* a default bump size alone: no warning */
+		return NULL;
+	}
 	if (t->pat.kind == PIG_SOLID || t->pat.kind == PIG_IMAGE) {
 		if (!E->warned_normal++)
 			diag_warning(E->diag, blk->loc, "'normal' without a pattern arvo supports is ignored");
@@ -444,7 +461,27 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: case TK_PIGMENT_MAP: misplaced(E, s, n);
 	case TK_BUMP_SIZE: t->amount = arg_float(E, n); return;
 	case TK_NORMAL_MAP: normal_map_block(E, t, n); return;
-	case TK_SPIRAL1: case TK_SPIRAL2:
+	case TK_NORMAL: { /* checker normal { } normal { }, or normal_map { [v normal { … }] } */
+		const struct tnormal *k = normal_block(E, n);
+		enum pigment_kind pk = t->pat.kind;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) {
+			int most = pk == PIG_HEXAGON ? 3 : 2;
+			if (t->nmap >= most)
+				eval_fail(E, n->loc, "this pattern takes %d normals, found more", most);
+			struct nrm_entry *m = ARENA_ARRAY(&SC(E)->arena, struct nrm_entry, t->nmap + 1);
+			if (t->nmap)
+				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+			m[t->nmap] = (struct nrm_entry){t->nmap, k};
+			t->map = m;
+			t->nmap++;
+		} else if (k) {
+			*t = *k;
+		} else {
+			s->pending = 1;
+		}
+		return;
+	}
+	case TK_SPIRAL1: case TK_SPIRAL2: case TK_MANDEL:
 		if (n->nkids == 2) { /* spiral1 arms, bump size */
 			struct node one = *n;
 			one.nkids = 1;

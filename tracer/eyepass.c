@@ -370,6 +370,38 @@ static void aov_blend(struct aov *a, const struct aov *b, double wa, double wb)
 	a->spec = v_add(v_scale(a->spec, wa), v_scale(b->spec, wb));
 }
 
+static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
+                             int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper);
+
+/* average texture_map { [w texture] … }: every texture shaded, their light
+ * and their AOV layers weighted by w. */
+static struct vec3 shade_average(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
+                                 int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
+{
+	double total = 0;
+	for (int i = 0; i < t->nmap; i++)
+		total += t->map[i].pos;
+	struct vec3 out = v3(0, 0, 0);
+	if (total == 0)
+		return out;
+	struct aov start = aov ? *aov : (struct aov){0}, sum = start;
+	for (int i = 0; i < t->nmap; i++) {
+		double w = t->map[i].pos / total;
+		struct aov a = start;
+		struct vec3 c = shade_map(pa, h, t->map[i].tex, d, depth, weight * fabs(w), skip, aov ? &a : NULL,
+		                          level + 1, upper);
+		out = v_madd(out, c, w);
+		if (aov) {
+			if (i == 0)
+				sum = a;
+			aov_blend(&sum, &a, i == 0 ? w : 1, i == 0 ? 0 : w);
+		}
+	}
+	if (aov)
+		*aov = sum;
+	return out;
+}
+
 /* The radiance leaving hit h under texture t: a texture_map blends the
  * light of its two textures at h, each shaded in full, as POV-Ray does. */
 static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
@@ -394,6 +426,8 @@ static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct 
 	}
 	if (!t->map || level > 16)
 		return shade_tex(pa, h, t, d, depth, weight, skip, aov, upper);
+	if (t->pigment.kind == PIG_PATTERN && pig_pattern(&t->pigment)->pattern == PAT_AVERAGE)
+		return shade_average(pa, h, t, d, depth, weight, skip, aov, level, upper);
 	const struct texture *k[2];
 	double w[2];
 	struct aov a[2];

@@ -179,11 +179,21 @@ static void ready(void) { pthread_once(&once, init); }
 
 /* ==== lattice noise (generators 1 and 2) ================================= */
 
+double noise_tame(double x)
+{
+	if (isnan(x))
+		return 0;
+	if (fabs(x) < 1e9)
+		return x;
+	return isinf(x) ? 0 : fmod(x, 4096); /* the lattice repeats every 4096 */
+}
+
 /* One axis of p on the lattice: the hash index of the cell below, and the
  * offset from it (POV-Ray's rounding of negative coordinates, 1e-10 short
  * of a whole step, kept). */
 static int cell(double x, double *frac)
 {
+	x = noise_tame(x);
 	int t = x >= 0 ? (int)x : (int)(x - (1 - 1.0e-10));
 	*frac = x - t;
 	return (t + 10000) & 0xFFF;
@@ -267,7 +277,7 @@ struct vec3 noise_vec(struct vec3 p)
 
 static void perlin_axis(double v, int *b0, int *b1, double *r0)
 {
-	double t = v + 10000000.023157213;
+	double t = noise_tame(v) + 10000000.023157213;
 	int it = (int)floor(t);
 	*b0 = it & (GRAD_N - 1);
 	*b1 = (*b0 + 1) & (GRAD_N - 1);
@@ -369,6 +379,8 @@ double noise_wave_freq(int n)
 double noise_cycloidal(double v)
 {
 	ready();
+	if (!isfinite(v))
+		return 0;
 	int i = v >= 0 ? (int)((v - floor(v)) * 1000) : (int)(-(v + floor(-v)) * 1000);
 	i = i < 0 ? 0 : i > 999 ? 999 : i; /* guards against rounding, and NaN's cast */
 	return v >= 0 ? T.sintab[i] : -T.sintab[i];

@@ -34,6 +34,10 @@ double noise_rand(unsigned long k);
 double noise_cycloidal(double v);
 /* POV-Ray's triangle wave: 0 at whole v, 1 at halves. */
 double noise_triangle(double v);
+/* x itself within ±1e9; beyond, x modulo the lattice's period 4096 (0 for
+ * NaN and infinities), so no coordinate overflows an int (POV-Ray's own
+ * noise is undefined there). */
+double noise_tame(double x);
 /* POV-Ray's hash of an integer lattice point into 0..4095. */
 int noise_hash3(int x, int y, int z);
 /* The n-th wave source (unit vector) and frequency of ripples and waves

@@ -46,7 +46,7 @@ static struct vec3 warp_repeat(const struct warp *w, struct vec3 q)
 	float blk = (float)floor(c[w->axis] / w->width);
 	double r[3] = {c[0], c[1], c[2]};
 	r[w->axis] = c[w->axis] - blk * w->width;
-	if ((int)blk & 1) {
+	if (fmod(fabs((double)blk), 2) >= 1) { /* an odd block (no int overflow for huge ones) */
 		for (int i = 0; i < 3; i++)
 			r[i] *= f[i];
 		if (f[w->axis] < 0)
@@ -243,6 +243,7 @@ static double metric_root(double m, double s)
  * nearest), searching the 81 cells within a knight's move. */
 static double crackle(const struct pattern *pt, struct vec3 q)
 {
+	q = v3(noise_tame(q.x), noise_tame(q.y), noise_tame(q.z));
 	int fx = (int)floor(q.x - EPS), fy = (int)floor(q.y - EPS), fz = (int)floor(q.z - EPS);
 	double m = pt->metric, d[3] = {INFINITY, INFINITY, INFINITY};
 	struct vec3 nearest = v3(0, 0, 0);
@@ -323,7 +324,8 @@ double pattern_noise_raw(const struct pattern *pt, struct vec3 q)
 	case PAT_SPIRAL1: return spiral(pt, q, false);
 	case PAT_SPIRAL2: return spiral(pt, q, true);
 	case PAT_CELLS: { /* a random value for each unit cube */
-		int h = noise_hash3((int)floor(q.x + EPS), (int)floor(q.y + EPS), (int)floor(q.z + EPS));
+		int h = noise_hash3((int)floor(noise_tame(q.x) + EPS), (int)floor(noise_tame(q.y) + EPS),
+		                    (int)floor(noise_tame(q.z) + EPS));
 		return fmin(noise_rand((unsigned long)h), 1);
 	}
 	case PAT_MANDEL: return mandel(pt, q);

@@ -236,8 +236,12 @@ struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 
 		}
 		return normal_out(&t->pat, total != 0 ? v_scale(sum, 1 / total) : np);
 	}
-	if (t->map && t->nmap > 0) /* normal_map: the two entries' normals blended */
-		return normal_out(&t->pat, normal_map(t, pattern_value(&t->pat, q), q, np));
+	if (t->map && t->nmap > 0) { /* normal_map: the two entries' normals blended */
+		enum pigment_kind k = t->pat.kind;
+		double v = k == PIG_CHECKER || k == PIG_HEXAGON || k == PIG_BRICK ? pattern_block(&t->pat, q)
+		                                                                 : pattern_value(&t->pat, q);
+		return normal_out(&t->pat, normal_map(t, v, q, np));
+	}
 	if (!pattern_normal_direct(t, q, &np)) {
 		double gain = -5 * t->amount;
 		for (int i = 0; i < 4; i++)
