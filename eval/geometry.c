@@ -769,15 +769,17 @@ bool object_long_vector(struct eval *E, struct sink *s, const struct node *n)
 {
 	if (n->nkids <= 5 || (s->kw != TK_POLY && s->kw != TK_QUARTIC && s->kw != TK_CUBIC))
 		return false;
-	if (s->list)
+	struct object *o = s->target; /* kept in the object, not the sink: sinks are on the stack */
+	if (o->g.poly.list)
 		eval_fail(E, n->loc, "%s takes one coefficient vector", tok_name(s->kw));
 	if (s->modified)
 		eval_fail(E, n->loc, "%s parameters must come before its modifiers", tok_name(s->kw));
-	s->list = ARENA_ARRAY(&E->arena, double, n->nkids);
+	double *c = ARENA_ARRAY(&E->arena, double, n->nkids);
 	for (int i = 0; i < n->nkids; i++)
-		s->list[i] = eval_float(E, n->kids[i]);
-	s->nlist = n->nkids;
-	s->list_loc = n->loc;
+		c[i] = eval_float(E, n->kids[i]);
+	o->g.poly.list = c;
+	o->g.poly.nlist = n->nkids;
+	o->g.poly.list_loc = n->loc;
 	return true;
 }
 
@@ -820,11 +822,12 @@ static void geom_poly(struct eval *E, struct sink *s, struct object *o)
 			want_params(E, s, n == 4 ? "35 coefficients: quartic { <a, b, …> }" : "20 coefficients: cubic { <a, b, …> }", 0, 0);
 		}
 		int count = (n + 1) * (n + 2) * (n + 3) / 6;
-		if (!s->list)
+		if (!o->g.poly.list)
 			eval_fail(E, s->loc, "%s expects a vector of %d coefficients", tok_name(s->kw), count);
-		if (s->nlist != count)
-			eval_fail(E, s->list_loc, "%s of order %d expects %d coefficients, found %d", tok_name(s->kw), n, count, s->nlist);
-		poly_from_list(E, o, n, s->list);
+		if (o->g.poly.nlist != count)
+			eval_fail(E, o->g.poly.list_loc, "%s of order %d expects %d coefficients, found %d", tok_name(s->kw), n, count,
+			          o->g.poly.nlist);
+		poly_from_list(E, o, n, o->g.poly.list);
 	}
 	if (o->g.poly.p->nterms == 0)
 		eval_fail(E, s->loc, "%s has no non-zero coefficient", tok_name(s->kw));

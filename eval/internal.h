@@ -47,9 +47,6 @@ struct sink {
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
-	double *list;              /* SK_OBJECT: a long coefficient vector <a, b, …> (poly) */
-	int nlist;                 /* its length */
-	struct srcloc list_loc;    /* where it was written */
 };
 
 struct eval {

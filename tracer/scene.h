@@ -310,7 +310,8 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
-		struct { const struct polynomial *p; } poly;
+		struct { const struct polynomial *p; const double *list; int nlist; struct srcloc list_loc; } poly;
+		/* list…: the coefficient vector while the evaluator builds p */
 		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
 		struct { const struct blob *b; } blob;
 		struct { const struct mesh *m; } mesh;
