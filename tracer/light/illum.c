@@ -109,8 +109,12 @@ struct illum_map {
 	struct arena pool;        /* tiles and their finished values */
 	struct tile **tiles;      /* allocated tiles, in order of allocation */
 	long ntiles, cap;         /* used and allocated entries of tiles[] */
-	long *slots;              /* hash: tile index + 1, 0 = empty */
-	long nslots;              /* power of two, > 2·ntiles */
+	long *slots;              /* hash of the tiles outside the window: tile index + 1, 0 = empty */
+	long nslots;              /* power of two, > 2·nhashed */
+	long nhashed;             /* tiles in the hash */
+	int32_t *win;             /* the window: tile index + 1 (0 = none) of tile (wti + a, wtj + b)
+	                             at win[b·wnu + a]; NULL when there is none */
+	long wti, wtj, wnu, wnv;  /* the window's first tile and its size in tiles */
 	long last;                /* tile index of the last deposit (cache), -1 */
 	bool finished;            /* irradiance is current */
 	long dropped;             /* deposits with non-finite (u,v) */
@@ -135,9 +139,22 @@ static uint64_t tile_hash(int32_t ti, int32_t tj)
 	return z ^ (z >> 31);
 }
 
-/* Index of tile (ti,tj) in m->tiles, or -1. */
+/* Where tile (ti,tj) sits in the window, or NULL when outside it. */
+static int32_t *win_slot(const struct illum_map *m, long ti, long tj)
+{
+	unsigned long a = (unsigned long)(ti - m->wti), b = (unsigned long)(tj - m->wtj);
+	if (!m->win || a >= (unsigned long)m->wnu || b >= (unsigned long)m->wnv)
+		return NULL;
+	return &m->win[b * (unsigned long)m->wnu + a];
+}
+
+/* Index of tile (ti,tj) in m->tiles, or -1: the window's array, else the
+ * hash. */
 static long tile_find(const struct illum_map *m, int32_t ti, int32_t tj)
 {
+	const int32_t *w = win_slot(m, ti, tj);
+	if (w)
+		return (long)*w - 1;
 	if (!m->nslots)
 		return -1;
 	for (uint64_t h = tile_hash(ti, tj);; h++) {
@@ -158,6 +175,28 @@ static void slot_insert(struct illum_map *m, long idx)
 	m->slots[h & (uint64_t)(m->nslots - 1)] = idx + 1;
 }
 
+/* Enters tile idx into the window or, outside it, the hash (growing it). */
+static void tile_index(struct illum_map *m, long idx)
+{
+	int32_t *w = win_slot(m, m->tiles[idx]->ti, m->tiles[idx]->tj);
+	if (w) {
+		*w = (int32_t)(idx + 1);
+		return;
+	}
+	if (2 * ++m->nhashed >= m->nslots) {
+		long ns = m->nslots ? 2 * m->nslots : 16;
+		free(m->slots);
+		m->bytes -= (size_t)m->nslots * sizeof *m->slots;
+		m->slots = mem_calloc((size_t)ns, sizeof *m->slots);
+		m->bytes += (size_t)ns * sizeof *m->slots;
+		m->nslots = ns;
+		for (long k = 0; k < m->ntiles; k++)
+			if (k != idx && !win_slot(m, m->tiles[k]->ti, m->tiles[k]->tj))
+				slot_insert(m, k);
+	}
+	slot_insert(m, idx);
+}
+
 /* Appends tile t (not yet in the map), growing the table; returns its index. */
 static long tile_insert(struct illum_map *m, struct tile *t)
 {
@@ -168,19 +207,76 @@ static long tile_insert(struct illum_map *m, struct tile *t)
 		m->cap = cap;
 	}
 	m->tiles[m->ntiles++] = t;
-	if (2 * m->ntiles >= m->nslots) {
-		long ns = m->nslots ? 2 * m->nslots : 16;
-		free(m->slots);
-		m->bytes -= (size_t)m->nslots * sizeof *m->slots;
-		m->slots = mem_calloc((size_t)ns, sizeof *m->slots);
-		m->bytes += (size_t)ns * sizeof *m->slots;
-		m->nslots = ns;
-		for (long k = 0; k < m->ntiles; k++)
-			slot_insert(m, k);
-	} else {
-		slot_insert(m, m->ntiles - 1);
-	}
+	tile_index(m, m->ntiles - 1);
 	return m->ntiles - 1;
+}
+
+#define WIN_MIN 65536L         /* a window of this many tiles is always allowed */
+#define WIN_MAX (1L << 26)     /* and none beyond this (256 MiB of int32) */
+
+/* Widens the window to hold tiles [ti0, ti1] × [tj0, tj1] (and the window
+ * it had), when that costs at most WIN_MIN + 8·(tiles + more) entries: so a
+ * map's tiles are found by indexing an array, and the window costs at most
+ * 32 bytes per tile (a tile holds ~280). Tiles inside it leave the hash.
+ * more: tiles about to be added. */
+static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1, long more)
+{
+	if (ti0 > ti1 || tj0 > tj1)
+		return true;
+	if (m->win) {
+		ti0 = ti0 < m->wti ? ti0 : m->wti, tj0 = tj0 < m->wtj ? tj0 : m->wtj;
+		ti1 = ti1 > m->wti + m->wnu - 1 ? ti1 : m->wti + m->wnu - 1;
+		tj1 = tj1 > m->wtj + m->wnv - 1 ? tj1 : m->wtj + m->wnv - 1;
+		if (ti0 == m->wti && tj0 == m->wtj && ti1 - ti0 + 1 == m->wnu && tj1 - tj0 + 1 == m->wnv)
+			return true;
+	}
+	double nu = (double)(ti1 - ti0) + 1, nv = (double)(tj1 - tj0) + 1;
+	if (nu * nv > (double)WIN_MAX || nu * nv > (double)WIN_MIN + 8 * ((double)m->ntiles + (double)more))
+		return false;
+	free(m->win);
+	m->bytes -= (size_t)(m->wnu * m->wnv) * sizeof *m->win;
+	m->wti = ti0, m->wtj = tj0, m->wnu = (long)nu, m->wnv = (long)nv;
+	m->win = mem_calloc((size_t)(m->wnu * m->wnv), sizeof *m->win);
+	m->bytes += (size_t)(m->wnu * m->wnv) * sizeof *m->win;
+	if (m->slots)
+		memset(m->slots, 0, sizeof *m->slots * (size_t)m->nslots);
+	m->nhashed = 0;
+	for (long k = 0; k < m->ntiles; k++) {
+		int32_t *w = win_slot(m, m->tiles[k]->ti, m->tiles[k]->tj);
+		if (w)
+			*w = (int32_t)(k + 1);
+		else
+			m->nhashed++, slot_insert(m, k);
+	}
+	return true;
+}
+
+static int cmp_i32(const void *a, const void *b)
+{
+	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+	return x < y ? -1 : x > y;
+}
+
+#define WIN_SAMPLE 32768 /* tile coordinates looked at to place the window */
+
+/* Places the window over where most of n tiles (coordinates ti[k·stride],
+ * tj[k·stride] of a sample) are: over all of them when the window may be
+ * that large, else over the central 99.8 %, 99 %, 96 % or 90 % on each axis
+ * (a few grazing rays land far away; their tiles stay in the hash).
+ * Returns the quantile used (0: all), or -1 when no window was made. */
+static double win_fit(struct illum_map *m, int32_t *ti, int32_t *tj, long ns, long more)
+{
+	static const double q[] = {0, 0.001, 0.005, 0.02, 0.05};
+	if (ns <= 0)
+		return 0;
+	qsort(ti, (size_t)ns, sizeof *ti, cmp_i32);
+	qsort(tj, (size_t)ns, sizeof *tj, cmp_i32);
+	for (int k = 0; k < 5; k++) {
+		long lo = (long)(q[k] * (double)(ns - 1)), hi = ns - 1 - lo;
+		if (win_grow(m, ti[lo], ti[hi], tj[lo], tj[hi], more))
+			return q[k];
+	}
+	return -1;
 }
 
 /* Appends a zeroed tile (ti,tj); returns its index. */
@@ -379,6 +475,7 @@ void illum_free(struct illum_map *m)
 	arena_free(&m->pool);
 	free(m->tiles);
 	free(m->slots);
+	free(m->win);
 	loops_free(&m->loops);
 	free(m->pts);
 	free(m->rows);
@@ -543,21 +640,142 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 	illum_free(src);
 }
 
-struct band_job {
-	struct illum_map *part;
-	const struct illum_splat *s;
-	long n;
-	int band, nb;
+/* ---- batched point deposits (illum_deposit_all) ----
+ * Three steps, none of which hashes or allocates per deposit once the
+ * window holds the deposits' tiles:
+ *   1. every splat is split onto its nodes (axis_split) once, in parallel
+ *      chunks: a `prep` each;
+ *   2. one thread widens the window to the preps' tiles and creates the
+ *      missing tiles, in row-major tile order when the window holds them
+ *      (tiles near in the map are near in memory), else in splat order;
+ *   3. the accumulators are added band by band, one thread per band of
+ *      tile rows (band_of), each band's deposits in splat order: a node
+ *      receives the same additions in the same order for any thread count,
+ *      so even its float Σw² is bit-identical. */
+struct prep {
+	int32_t i[2], j[2]; /* the nodes, as axis_split gives them */
+	double wu[2], wv[2];/* and their weights */
+	double e[3];        /* energy_clean'd */
 };
 
-/* Job k of the array at ctx (a parallel_for item). */
-static void band_work(void *ctx, long k, int worker)
+struct deposit_job {
+	struct illum_map *m;
+	const struct illum_splat *s;
+	struct prep *p;
+	bool *ok;           /* p[k] is a deposit (finite, some energy) */
+	long n, chunk;
+	int nb;
+	long dropped;       /* per chunk: non-finite (u,v) */
+	long ti0, ti1, tj0, tj1; /* per chunk: the tiles its preps reach */
+};
+
+/* Step 1 for chunk k of the splats (a parallel_for item). */
+static void prep_work(void *ctx, long k, int worker)
 {
 	(void)worker;
-	struct band_job *b = (struct band_job *)ctx + k;
-	for (long i = 0; i < b->n; i++)
-		deposit_band(b->part, b->s[i].u, b->s[i].v, b->s[i].e, b->band, b->nb);
+	struct deposit_job *J = (struct deposit_job *)ctx + k, *D = (struct deposit_job *)ctx;
+	const struct illum_map *m = D->m;
+	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
+	J->dropped = 0;
+	J->ti0 = J->tj0 = LONG_MAX, J->ti1 = J->tj1 = LONG_MIN;
+	for (long q = lo; q < hi; q++) {
+		const struct illum_splat *sp = &D->s[q];
+		struct prep *p = &D->p[q];
+		D->ok[q] = false;
+		if (!isfinite(sp->u) || !isfinite(sp->v)) {
+			J->dropped++;
+			continue;
+		}
+		if (!energy_clean(sp->e, p->e))
+			continue;
+		long iu[2], iv[2];
+		double fu, fv;
+		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &fu);
+		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &fv);
+		p->wu[0] = 1 - fu, p->wu[1] = fu, p->wv[0] = 1 - fv, p->wv[1] = fv;
+		for (int a = 0; a < 2; a++) {
+			p->i[a] = (int32_t)iu[a], p->j[a] = (int32_t)iv[a];
+			long ti = floordiv(iu[a]), tj = floordiv(iv[a]);
+			J->ti0 = ti < J->ti0 ? ti : J->ti0, J->ti1 = ti > J->ti1 ? ti : J->ti1;
+			J->tj0 = tj < J->tj0 ? tj : J->tj0, J->tj1 = tj > J->tj1 ? tj : J->tj1;
+		}
+		D->ok[q] = true;
+	}
 }
+
+/* Step 2: every tile a deposit will touch exists. */
+static void prep_tiles(struct deposit_job *D, long nchunks)
+{
+	struct illum_map *m = D->m;
+	long n = 0, ns = 0;
+	for (long k = 0; k < nchunks; k++)
+		m->dropped += D[k].dropped;
+	for (long q = 0; q < D->n; q++)
+		n += D->ok[q];
+	long stride = n / WIN_SAMPLE + 1;
+	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1)), *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
+	for (long q = 0, c = 0; q < D->n; q++)
+		if (D->ok[q] && c++ % stride == 0)
+			ti[ns] = (int32_t)floordiv(D->p[q].i[0]), tj[ns++] = (int32_t)floordiv(D->p[q].j[0]);
+	win_fit(m, ti, tj, ns, n);
+	free(ti), free(tj);
+	long ti0 = LONG_MAX, tj0 = LONG_MAX, ti1 = LONG_MIN, tj1 = LONG_MIN; /* marked in the window */
+	for (long q = 0; q < D->n; q++) {
+		if (!D->ok[q])
+			continue;
+		const struct prep *p = &D->p[q];
+		for (int b = 0; b < 2; b++)
+			for (int a = 0; a < 2; a++) {
+				if (!(p->wu[a] * p->wv[b] > 0))
+					continue;
+				long i = floordiv(p->i[a]), j = floordiv(p->j[b]);
+				int32_t *w = win_slot(m, i, j);
+				if (w) { /* mark it wanted (-1); created below in row-major order */
+					if (!*w) {
+						*w = -1;
+						ti0 = i < ti0 ? i : ti0, ti1 = i > ti1 ? i : ti1;
+						tj0 = j < tj0 ? j : tj0, tj1 = j > tj1 ? j : tj1;
+					}
+				} else if (tile_find(m, (int32_t)i, (int32_t)j) < 0) {
+					tile_add(m, (int32_t)i, (int32_t)j);
+				}
+			}
+	}
+	for (long b = tj0; b <= tj1; b++)
+		for (long a = ti0; a <= ti1; a++)
+			if (*win_slot(m, a, b) == -1) {
+				*win_slot(m, a, b) = 0;
+				tile_add(m, (int32_t)a, (int32_t)b);
+			}
+}
+
+/* Step 3 for band k of nb (a parallel_for item). */
+static void accumulate_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	struct deposit_job *D = ctx;
+	struct illum_map *m = D->m;
+	for (long q = 0; q < D->n; q++) {
+		if (!D->ok[q])
+			continue;
+		const struct prep *p = &D->p[q];
+		for (int b = 0; b < 2; b++) {
+			if (D->nb > 1 && band_of(p->j[b], D->nb) != (int)k)
+				continue;
+			for (int a = 0; a < 2; a++) {
+				double w = p->wu[a] * p->wv[b];
+				if (!(w > 0))
+					continue;
+				long ti = floordiv(p->i[a]), tj = floordiv(p->j[b]);
+				struct tile *t = m->tiles[tile_find(m, (int32_t)ti, (int32_t)tj)];
+				acc_add(&t->n[(p->j[b] - tj * ILLUM_TILE) * ILLUM_TILE + (p->i[a] - ti * ILLUM_TILE)], w, p->e,
+				        m->inv_unit);
+			}
+		}
+	}
+}
+
+#define PREP_CHUNK 16384 /* splats per step-1 item */
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
@@ -566,17 +784,19 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	for (long i = 0; i < n; i++)
 		emax = fmax(emax, energy_max(s[i].e));
 	map_reserve(m, (double)n * emax);
-	if (nb == 1 || n < 8192) {
-		for (long i = 0; i < n; i++)
-			deposit_band(m, s[i].u, s[i].v, s[i].e, 0, 1);
+	if (n <= 0)
 		return;
-	}
-	struct band_job jobs[64];
-	for (int b = 0; b < nb; b++)
-		jobs[b] = (struct band_job){illum_new_like(m), s, n, b, nb};
-	parallel_for(nb, nb, band_work, jobs);
-	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
-		adopt(m, jobs[b].part);
+	if (n < 8192)
+		nb = 1;
+	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK;
+	struct deposit_job *D = mem_alloc(sizeof *D * (size_t)nchunks);
+	D[0] = (struct deposit_job){m, s, mem_alloc(sizeof *D->p * (size_t)n), mem_alloc(sizeof *D->ok * (size_t)n), n,
+	                            PREP_CHUNK, nb, 0, 0, 0, 0, 0};
+	parallel_for(nchunks, nb, prep_work, D);
+	prep_tiles(D, nchunks);
+	parallel_for(nb, nb, accumulate_work, D);
+	m->finished = false;
+	free(D->p), free(D->ok), free(D);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)
@@ -1209,6 +1429,15 @@ static void finish_work(void *ctx, long job, int worker)
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
 {
 	bool plane = m->obj->kind == OBJ_PLANE;
+	if (m->nhashed) { /* readers (the isolated rule, lookups) index the window */
+		long stride = m->ntiles / WIN_SAMPLE + 1, ns = 0;
+		int32_t *ti = mem_alloc(sizeof *ti * (size_t)(m->ntiles / stride + 1));
+		int32_t *tj = mem_alloc(sizeof *tj * (size_t)(m->ntiles / stride + 1));
+		for (long k = 0; k < m->ntiles; k += stride)
+			ti[ns] = m->tiles[k]->ti, tj[ns++] = m->tiles[k]->tj;
+		win_fit(m, ti, tj, ns, 0);
+		free(ti), free(tj);
+	}
 	for (long k = 0; k < m->ntiles; k++)
 		if (!plane && !m->tiles[k]->area)
 			m->tiles[k]->area = ARENA_ARRAY(&m->pool, double, TN);
