@@ -653,20 +653,28 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
  *      receives the same additions in the same order for any thread count,
  *      so even its float Σw² is bit-identical. */
 struct prep {
-	int32_t i[2], j[2]; /* the nodes, as axis_split gives them */
-	double wu[2], wv[2];/* and their weights */
-	double e[3];        /* energy_clean'd */
+	int32_t i, j;       /* the lower nodes of the split (axis_split's i0), INT32_MIN: no deposit */
+	double fu, fv;      /* the weights of the upper ones */
 };
+
+/* The nodes and weights of p: the same numbers axis_split gave. */
+static void prep_nodes(const struct illum_map *m, const struct prep *p, long iu[2], long iv[2], double wu[2],
+                       double wv[2])
+{
+	const struct axis *a = &m->ax[0], *b = &m->ax[1];
+	iu[0] = p->i, iv[0] = p->j;
+	iu[1] = a->wraps && p->i + 1 == a->n ? 0 : p->i + 1;
+	iv[1] = b->wraps && p->j + 1 == b->n ? 0 : p->j + 1;
+	wu[0] = 1 - p->fu, wu[1] = p->fu, wv[0] = 1 - p->fv, wv[1] = p->fv;
+}
 
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_splat *s;
 	struct prep *p;
-	bool *ok;           /* p[k] is a deposit (finite, some energy) */
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
-	long ti0, ti1, tj0, tj1; /* per chunk: the tiles its preps reach */
 };
 
 /* Step 1 for chunk k of the splats (a parallel_for item). */
@@ -677,29 +685,21 @@ static void prep_work(void *ctx, long k, int worker)
 	const struct illum_map *m = D->m;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
-	J->ti0 = J->tj0 = LONG_MAX, J->ti1 = J->tj1 = LONG_MIN;
 	for (long q = lo; q < hi; q++) {
 		const struct illum_splat *sp = &D->s[q];
 		struct prep *p = &D->p[q];
-		D->ok[q] = false;
+		double e[3];
+		p->i = INT32_MIN;
 		if (!isfinite(sp->u) || !isfinite(sp->v)) {
 			J->dropped++;
 			continue;
 		}
-		if (!energy_clean(sp->e, p->e))
+		if (!energy_clean(sp->e, e))
 			continue;
 		long iu[2], iv[2];
-		double fu, fv;
-		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &fu);
-		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &fv);
-		p->wu[0] = 1 - fu, p->wu[1] = fu, p->wv[0] = 1 - fv, p->wv[1] = fv;
-		for (int a = 0; a < 2; a++) {
-			p->i[a] = (int32_t)iu[a], p->j[a] = (int32_t)iv[a];
-			long ti = floordiv(iu[a]), tj = floordiv(iv[a]);
-			J->ti0 = ti < J->ti0 ? ti : J->ti0, J->ti1 = ti > J->ti1 ? ti : J->ti1;
-			J->tj0 = tj < J->tj0 ? tj : J->tj0, J->tj1 = tj > J->tj1 ? tj : J->tj1;
-		}
-		D->ok[q] = true;
+		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &p->fu);
+		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &p->fv);
+		p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
 	}
 }
 
@@ -711,24 +711,26 @@ static void prep_tiles(struct deposit_job *D, long nchunks)
 	for (long k = 0; k < nchunks; k++)
 		m->dropped += D[k].dropped;
 	for (long q = 0; q < D->n; q++)
-		n += D->ok[q];
+		n += D->p[q].i != INT32_MIN;
 	long stride = n / WIN_SAMPLE + 1;
 	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1)), *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
 	for (long q = 0, c = 0; q < D->n; q++)
-		if (D->ok[q] && c++ % stride == 0)
-			ti[ns] = (int32_t)floordiv(D->p[q].i[0]), tj[ns++] = (int32_t)floordiv(D->p[q].j[0]);
+		if (D->p[q].i != INT32_MIN && c++ % stride == 0)
+			ti[ns] = (int32_t)floordiv(D->p[q].i), tj[ns++] = (int32_t)floordiv(D->p[q].j);
 	win_fit(m, ti, tj, ns, n);
 	free(ti), free(tj);
 	long ti0 = LONG_MAX, tj0 = LONG_MAX, ti1 = LONG_MIN, tj1 = LONG_MIN; /* marked in the window */
 	for (long q = 0; q < D->n; q++) {
-		if (!D->ok[q])
+		if (D->p[q].i == INT32_MIN)
 			continue;
-		const struct prep *p = &D->p[q];
+		long iu[2], iv[2];
+		double wu[2], wv[2];
+		prep_nodes(m, &D->p[q], iu, iv, wu, wv);
 		for (int b = 0; b < 2; b++)
 			for (int a = 0; a < 2; a++) {
-				if (!(p->wu[a] * p->wv[b] > 0))
+				if (!(wu[a] * wv[b] > 0))
 					continue;
-				long i = floordiv(p->i[a]), j = floordiv(p->j[b]);
+				long i = floordiv(iu[a]), j = floordiv(iv[b]);
 				int32_t *w = win_slot(m, i, j);
 				if (w) { /* mark it wanted (-1); created below in row-major order */
 					if (!*w) {
@@ -756,20 +758,22 @@ static void accumulate_work(void *ctx, long k, int worker)
 	struct deposit_job *D = ctx;
 	struct illum_map *m = D->m;
 	for (long q = 0; q < D->n; q++) {
-		if (!D->ok[q])
+		if (D->p[q].i == INT32_MIN)
 			continue;
-		const struct prep *p = &D->p[q];
+		long iu[2], iv[2];
+		double wu[2], wv[2], e[3];
+		prep_nodes(m, &D->p[q], iu, iv, wu, wv);
+		energy_clean(D->s[q].e, e);
 		for (int b = 0; b < 2; b++) {
-			if (D->nb > 1 && band_of(p->j[b], D->nb) != (int)k)
+			if (D->nb > 1 && band_of(iv[b], D->nb) != (int)k)
 				continue;
 			for (int a = 0; a < 2; a++) {
-				double w = p->wu[a] * p->wv[b];
+				double w = wu[a] * wv[b];
 				if (!(w > 0))
 					continue;
-				long ti = floordiv(p->i[a]), tj = floordiv(p->j[b]);
+				long ti = floordiv(iu[a]), tj = floordiv(iv[b]);
 				struct tile *t = m->tiles[tile_find(m, (int32_t)ti, (int32_t)tj)];
-				acc_add(&t->n[(p->j[b] - tj * ILLUM_TILE) * ILLUM_TILE + (p->i[a] - ti * ILLUM_TILE)], w, p->e,
-				        m->inv_unit);
+				acc_add(&t->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, m->inv_unit);
 			}
 		}
 	}
@@ -790,13 +794,12 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 		nb = 1;
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK;
 	struct deposit_job *D = mem_alloc(sizeof *D * (size_t)nchunks);
-	D[0] = (struct deposit_job){m, s, mem_alloc(sizeof *D->p * (size_t)n), mem_alloc(sizeof *D->ok * (size_t)n), n,
-	                            PREP_CHUNK, nb, 0, 0, 0, 0, 0};
+	D[0] = (struct deposit_job){m, s, mem_alloc(sizeof *D->p * (size_t)n), n, PREP_CHUNK, nb, 0};
 	parallel_for(nchunks, nb, prep_work, D);
 	prep_tiles(D, nchunks);
 	parallel_for(nb, nb, accumulate_work, D);
 	m->finished = false;
-	free(D->p), free(D->ok), free(D);
+	free(D->p), free(D);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)
