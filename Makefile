@@ -31,7 +31,7 @@ else ifdef SANITIZE
   LDSAN = -fsanitize=address,undefined,float-cast-overflow
 endif
 
-PKGS     = OpenEXR OpenColorIO libpng
+PKGS     = OpenEXR OpenColorIO libpng freetype2
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
@@ -57,7 +57,7 @@ else
   Q = @
 endif
 
-.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus gallery
+.PHONY: all clean check check-tsan test unit deps deps-fuzz fuzz fuzz-build install demo bench bench-accuracy lint povray-compat povray-corpus povray-photons gallery
 all: arvo
 
 arvo: $(BUILD)/arvo
@@ -132,7 +132,8 @@ fuzz: deps-fuzz all
 # deps: install what arvo needs, only when something is missing.
 DEB_PKGS = build-essential pkg-config libopenexr-dev libimath-dev libopencolorio-dev \
            opencolorio-tools openimageio-tools openexr libpng-dev gnuplot-nox mandoc \
-           povray povray-includes povray-examples hyperfine libembree-dev parallel time
+           povray povray-includes povray-examples hyperfine libembree-dev parallel time \
+           libfreetype-dev
 deps:
 	@missing=$$(for p in $(DEB_PKGS); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
 	   grep -q '^install ok installed' || echo $$p; done); \
@@ -183,6 +184,8 @@ povray-compat: all
 	sh tests/povray-compat/compat.sh
 povray-corpus: all
 	TIMEOUT=40 sh tests/povray-compat/compat.sh --corpus
+povray-photons: all
+	sh tests/povray-compat/photons.sh
 
 lint:
 	mandoc -Tlint -W warning man/arvo.1 man/arvo-scn.5

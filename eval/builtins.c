@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "internal.h"
+#include "../tracer/noise.h"
+#include "../tracer/shape.h"
 
 /* ==== constants =========================================================== */
 
@@ -234,6 +236,16 @@ static struct value f_vrotate(struct call *c)
 {
 	struct xform r = xf_rotate(V(c, 1));
 	return val_vec3(xf_vector(&r, V(c, 0)));
+}
+
+/* vturbulence(lambda, omega, octaves, p): POV-Ray's turbulence vector. */
+static struct value f_vturbulence(struct call *c)
+{
+	double oct = F(c, 2);
+	if (!(oct >= 1 && oct <= 64))
+		domain(c, 2, "octaves must be 1 to 64");
+	struct turb_params t = {(int)oct, F(c, 1), F(c, 0)};
+	return val_vec3(noise_dturb(V(c, 3), &t));
 }
 
 static struct value f_vaxis_rotate(struct call *c)
@@ -469,6 +481,23 @@ struct builtin {
 	struct value (*fn)(struct call *);
 };
 
+/* min_extent(O), max_extent(O): the corners of an object's bounding box
+ * (its solid's, as POV-Ray's bounding); an unbounded axis gives +-1e10. */
+static struct value extent(struct call *c, int hi)
+{
+	if (c->a[0].kind != V_OBJECT)
+		eval_fail(c->E, c->n->kids[0]->loc, "%s needs an object", hi ? "max_extent" : "min_extent");
+	struct bbox b = shape_solid_bounds(c->a[0].p.obj);
+	struct vec3 p = hi ? b.hi : b.lo;
+	double q[3] = {p.x, p.y, p.z};
+	for (int i = 0; i < 3; i++)
+		if (!isfinite(q[i]))
+			q[i] = q[i] < 0 ? -1e10 : 1e10;
+	return val_vec3(v3(q[0], q[1], q[2]));
+}
+static struct value f_min_extent(struct call *c) { return extent(c, 0); }
+static struct value f_max_extent(struct call *c) { return extent(c, 1); }
+
 static const struct builtin table[] = {
 	{"abs", 1, 1, f_abs}, {"acos", 1, 1, f_acos}, {"acosh", 1, 1, f_acosh},
 	{"asc", 1, 1, f_asc}, {"asin", 1, 1, f_asin}, {"asinh", 1, 1, f_asinh},
@@ -478,7 +507,8 @@ static const struct builtin table[] = {
 	{"dimension_size", 2, 2, f_dimension_size}, {"dimensions", 1, 1, f_dimensions},
 	{"div", 2, 2, f_div}, {"exp", 1, 1, f_exp}, {"floor", 1, 1, f_floor},
 	{"int", 1, 1, f_int}, {"ln", 1, 1, f_ln}, {"log", 1, 1, f_log},
-	{"max", 2, 16, f_max}, {"min", 2, 16, f_min}, {"mod", 2, 2, f_mod},
+	{"max", 2, 16, f_max}, {"max_extent", 1, 1, f_max_extent}, {"min", 2, 16, f_min},
+	{"min_extent", 1, 1, f_min_extent}, {"mod", 2, 2, f_mod},
 	{"pow", 2, 2, f_pow}, {"radians", 1, 1, f_radians}, {"rand", 1, 1, f_rand},
 	{"seed", 1, 1, f_seed}, {"select", 3, 4, f_select}, {"sin", 1, 1, f_sin},
 	{"sinh", 1, 1, f_sinh}, {"sqrt", 1, 1, f_sqrt}, {"str", 3, 3, f_str},
@@ -486,7 +516,7 @@ static const struct builtin table[] = {
 	{"strupr", 1, 1, f_strupr}, {"substr", 3, 3, f_substr}, {"tan", 1, 1, f_tan},
 	{"tanh", 1, 1, f_tanh}, {"val", 1, 1, f_val}, {"vaxis_rotate", 3, 3, f_vaxis_rotate},
 	{"vcross", 2, 2, f_vcross}, {"vdot", 2, 2, f_vdot}, {"vlength", 1, 1, f_vlength},
-	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vstr", 5, 5, f_vstr},
+	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vturbulence", 4, 4, f_vturbulence}, {"vstr", 5, 5, f_vstr},
 };
 
 /* Every built-in name (the functions above and the constants below) in one

@@ -159,6 +159,7 @@ static struct value binary(struct eval *E, const struct node *n)
 		case TK_LT: return val_float(x < y);
 		case TK_LE: return val_float(x <= y);
 		case TK_GT: return val_float(x > y);
+		case TK_CARET: return val_float(pow(x, y)); /* in a function's pigment { } */
 		default: return val_float(x >= y);
 		}
 	}
@@ -386,6 +387,12 @@ static void call_macro(struct eval *E, const struct node *def, const struct node
 		eval_fail(E, call->loc, "macro recursion too deep (more than %d nested calls)", MAX_MACRO_DEPTH);
 	if (++E->calls > E->opt->max_calls)
 		eval_fail(E, call->loc, "macro call limit (%ld) exceeded; raise it with --max-calls", E->opt->max_calls);
+	if (!def->b && def->lazy) { /* a body that only parses as POV-Ray's tokens would, if at all */
+		struct node *b = parse_macro_body(def, E->diag, &E->arena);
+		if (!b)
+			eval_fail(E, call->loc, "macro '%s' cannot be run: its body has the syntax error above", def->str);
+		((struct node *)def)->b = b;
+	}
 	struct value args[64];
 	if (call->nkids > 64)
 		eval_fail(E, call->loc, "too many macro arguments (at most 64)");
@@ -504,6 +511,9 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 		const struct node *def = env_macro(E, n->str);
 		if (def)
 			return macro_value(E, def, n);
+		const struct value *fv = env_lookup(E, n->str);
+		if (fv && fv->kind == V_FUNCTION)
+			return function_call(E, n, fv->p.fn);
 		struct value r;
 		if (builtin_call(E, n, &r))
 			return r;
@@ -520,6 +530,15 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	}
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
+	case N_FUNC: return function_value(E, n);
+	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
+		struct sink s;
+		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+		eval_item(E, n->a, &s);
+		if (s.nresults == 0)
+			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+		return s.result;
+	}
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)
@@ -696,7 +715,8 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	free(real);
 	c->file = srcfile_add(shown, text, size);
 	int errors = E->diag->errors;
-	c->ast = parse_file(c->file, E->diag, &E->arena);
+	c->ast = parse_file_quiet(c->file, E->diag, &E->arena,
+	                          E->opt->pov_include_dir && strcmp(dir, E->opt->pov_include_dir) == 0);
 	if (E->diag->errors > errors)
 		longjmp(*E->fail, 1);
 	c->dir = dir_of(E, srcfile_get(c->file)->name);
@@ -778,8 +798,13 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 	case N_VERSION: {
 		double v = eval_float(E, n->a);
 		E->scene->version = v;
-		if (E->include_depth == 0 && v < 4.0)
+		if (E->include_depth == 0 && v < 4.0) {
 			E->scene->legacy_lights = true;
+			/* a POV-Ray scene: arvo's library then reads POV-Ray's files
+			 * of the same names after itself (docs/design.md §2) */
+			if (E->opt->pov_include_dir)
+				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
+		}
 		return;
 	}
 	case N_MESSAGE: exec_message(E, n); return;
@@ -804,6 +829,8 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 			diag_warning(E->diag, n->loc, "'%s' is not supported in 'normal' yet; the normal is ignored", n->str);
 		return;
 	}
+	if (s->kind == SK_OBJECT && n->kind == N_VEC && object_long_vector(E, s, n))
+		return;
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
 }
@@ -896,8 +923,6 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 		if (diag->errors == 0) {
 			scope_push(E, scope_new(E), srcloc_none());
 			E->dir_stack[0] = dir_of(E, path);
-			if (opt->pov_include_dir) /* arvo's library reads POV-Ray's files after itself */
-				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
 			for (int i = 0; i < opt->ndefines; i++)
 				declare_define(E, opt->defines[i]);
 			struct sink s;

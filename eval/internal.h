@@ -27,7 +27,8 @@ enum sink_kind {
 	SK_SCENE, SK_OBJECT, SK_TEXTURE, SK_PIGMENT, SK_FINISH, SK_INTERIOR,
 	SK_MATERIAL, SK_CAMERA, SK_LIGHT, SK_TRANSFORM, SK_COLOUR_MAP, SK_ENTRY,
 	SK_GLOBAL, SK_PHOTONS, SK_ILLUM, SK_ILLUM_MAP, SK_REFLECTION, SK_IMAGE_MAP,
-	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE
+	SK_BACKGROUND, SK_DEFAULT, SK_SKY, SK_NORMAL, SK_FOG, SK_VALUE, SK_WARP,
+	SK_LIST      /* a mesh2 list: vertex_vectors { n, <…>, … } and the like */
 };
 
 #define SINK_MAX_PARAMS 8
@@ -40,16 +41,21 @@ struct sink {
 	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
 	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
 	int nparams;
+	struct outline_build *ob;  /* SK_OBJECT: text/prism/polygon/lathe/sor's lists (outlines.c) */
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
+	double *list;              /* SK_OBJECT: a long coefficient vector <a, b, …> (poly) */
+	int nlist;                 /* its length */
+	struct srcloc list_loc;    /* where it was written */
 };
 
 struct eval {
 	struct diag *diag;
 	const struct eval_options *opt;
+	bool warned_crand;         /* finish { crand } warned about once */
 	struct arena arena;        /* ASTs, strings, arrays: lives until eval ends */
 	struct scene *scene;       /* what is being built (its arena holds the model) */
 	struct scope *scopes[MAX_SCOPES]; /* dynamic scope stack; [0] is global */
@@ -76,7 +82,10 @@ struct eval {
 	struct texture *default_shared; /* scene copy of default_tex (NULL after #default) */
 	const struct finish *last_finish; /* the last finish { } made, shared when the next is the same */
 	int warned_normal;         /* 'normal' ignored warning given */
+	struct pattern **pats;     /* every pattern made writable (noise_generator patched at the end) */
+	int npats, cappats;
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
+	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
@@ -102,6 +111,8 @@ char *eval_strdup(struct eval *E, const char *s, int len);
 /* ---- paths.c ---- */
 /* Finds a file a scene names, only in the directories a scene may read. */
 char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir);
+/* The same, but NULL (and no error) when it is not found or not allowed. */
+char *eval_try_file(struct eval *E, const char *name, struct srcloc loc);
 
 /* Counts one object or light made at loc against --max-objects. */
 void eval_count_object(struct eval *E, struct srcloc loc);
@@ -126,6 +137,14 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out);
 /* Calls built-in function `name`; false when there is no such function. */
 bool builtin_call(struct eval *E, const struct node *call, struct value *out);
 bool builtin_is_name(const char *name);
+
+/* ---- function.c: function { } ---- */
+/* Compiles a function { } node into a V_FUNCTION value. */
+struct value function_value(struct eval *E, const struct node *n);
+/* F(args) in an expression: a float, or a pigment function's colour. */
+struct value function_call(struct eval *E, const struct node *call, const struct fn *f);
+/* The function of v (V_FUNCTION), or a failure at loc when it cannot be used. */
+const struct fn *function_usable(struct eval *E, const struct value *v, struct srcloc loc);
 
 /* ---- objects.c: dispatch, and the helpers the builders share ---- */
 void sink_init(struct sink *s, enum sink_kind kind, enum tok kw, struct srcloc loc, void *target);
@@ -155,19 +174,45 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 void finish_block(struct eval *E, const struct node *n, const struct finish **f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
+/* A fresh texture: top (and the layers under it) layered over bottom. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top);
 
 #define SC(E) ((E)->scene)
 #define NEW(E, type) ARENA_NEW(&SC(E)->arena, type)
 
 /* ---- geometry.c: objects ---- */
+/* Moves object o (its texture and children too) by X. */
+void object_transform(struct eval *E, struct object *o, const struct xform *X);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* A vector of more than 5 components in an object that takes one (poly's
+ * coefficients): stored in the sink; false when n is not one. */
+bool object_long_vector(struct eval *E, struct sink *s, const struct node *n);
+/* The items of a mesh2 list (SK_LIST). */
+void list_keyword(struct eval *E, struct sink *s, const struct node *n);
+void list_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */
 void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
                const struct object *parent);
+
+/* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
+/* Takes a positional value or a leading keyword (linear_spline, conic_sweep,
+ * ttf …) of those primitives; false when o is not one of them or n is not
+ * such a keyword. */
+bool outline_value(struct eval *E, struct sink *s, struct object *o, const struct value *v, struct srcloc loc);
+bool outline_keyword(struct eval *E, struct sink *s, struct object *o, const struct node *n);
+void geom_text(struct eval *E, struct sink *s, struct object *o);
+void geom_prism(struct eval *E, struct sink *s, struct object *o);
+void geom_polygon(struct eval *E, struct sink *s, struct object *o);
+void geom_lathe(struct eval *E, struct sink *s, struct object *o);
+void geom_sor(struct eval *E, struct sink *s, struct object *o);
+/* The glyph outlines of text in the TrueType font at path (font.c). */
+struct extrusion *font_text(struct eval *E, const char *path, const char *name, struct srcloc floc,
+                            const char *text, int len, struct srcloc tloc, double thickness,
+                            struct vec3 offset);
 
 /* ---- textures.c: pigments, colour maps, finishes, interiors, textures ---- */
 struct colour_map *colour_map_block(struct eval *E, const struct node *blk);
@@ -177,15 +222,38 @@ void image_set(struct eval *E, struct pattern *p, struct srcloc loc, const char 
 void image_map_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_keyword(struct eval *E, struct sink *s, const struct node *n);
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+/* p becomes the pattern of the function v (pigment and normal). */
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc);
 void reflection_keyword(struct eval *E, struct sink *s, const struct node *n);
 void finish_keyword(struct eval *E, struct sink *s, const struct node *n);
 void interior_keyword(struct eval *E, struct sink *s, const struct node *n);
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* Puts texture top (and the layers under it) on top of t, as a layer. */
+void texture_layer(struct eval *E, struct texture *t, const struct texture *top);
 /* normal { }: a fresh perturbation, or NULL when it uses what arvo lacks
  * (warned once: the scene renders with the plain normal). */
 struct tnormal *normal_block(struct eval *E, const struct node *blk);
 void normal_keyword(struct eval *E, struct sink *s, const struct node *n);
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
+
+/* ---- patterns.c: noise patterns, turbulence, warps, pigment maps ---- */
+/* A pattern keyword of pigment s->target (bozo, turbulence, warp,
+ * pigment_map …); false when n is not one. */
+bool pattern_keyword(struct eval *E, struct sink *s, const struct node *n);
+void warp_keyword(struct eval *E, struct sink *s, const struct node *n);
+/* A pigment given in place of a colour of checker, hexagon or brick. */
+void pattern_sub_pigment(struct eval *E, struct sink *s, const struct pigment *sub, struct srcloc loc);
+/* texture_map { } of texture t (its pigment holds the pattern), and
+ * normal_map { } of normal t. */
+void texture_map_block(struct eval *E, struct texture *t, const struct node *n);
+void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n);
+/* tiles { textures tile2 textures } of texture t: a checker of the two. */
+void tiles_block(struct eval *E, struct texture *t, const struct node *n);
+/* A keyword that shapes a pattern (checker, bozo, turbulence, warp …). */
+bool is_pattern_kw(enum tok k);
+/* Patterns without their own noise_generator take global_settings', and
+ * every pattern its number_of_waves. */
+void patterns_finish(struct eval *E);
 
 /* ---- settings.c: lights, camera, global settings ---- */
 void photons_keyword(struct eval *E, struct sink *s, const struct node *n); /* object, light or global */
@@ -197,6 +265,7 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n);
 void global_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_keyword(struct eval *E, struct sink *s, const struct node *n);
 void illum_map_keyword(struct eval *E, struct sink *s, const struct node *n);
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);
 void sky_keyword(struct eval *E, struct sink *s, const struct node *n); /* sky_sphere { } */
 void fog_keyword(struct eval *E, struct sink *s, const struct node *n);
 void fog_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

@@ -154,6 +154,20 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
+	if (t->below) { /* and the layers under it */
+		struct texture *b = texture_copy(E, t->below);
+		texture_transform(E, b, X);
+		t->below = b;
+	}
+	if (t->map) { /* a texture_map's textures move with it */
+		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap);
+		for (int i = 0; i < t->nmap; i++) {
+			struct texture *c = texture_copy(E, t->map[i].tex);
+			texture_transform(E, c, X);
+			m[i] = (struct tex_entry){t->map[i].pos, c};
+		}
+		t->map = m;
+	}
 	if (t->normal) {
 		struct tnormal *nr = NEW(E, struct tnormal);
 		*nr = *t->normal;
@@ -191,6 +205,14 @@ void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void
 	eval_items(E, blk, out);
 }
 
+/* POV-Ray's layered texture: top over bottom, as a fresh texture. */
+struct texture *texture_layered(struct eval *E, const struct texture *bottom, const struct texture *top)
+{
+	struct texture *t = texture_copy(E, bottom);
+	texture_layer(E, t, top);
+	return t;
+}
+
 struct value eval_block(struct eval *E, const struct node *blk)
 {
 	struct value v = {.kind = V_NONE};
@@ -210,6 +232,8 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.p.tex = texture_copy(E, NULL);
 		v.p.tex->loc = blk->loc;
 		run_block(E, blk, SK_TEXTURE, v.p.tex, &s);
+		if (blk->c) /* texture { A } texture { B }: B layered over A */
+			v.p.tex = texture_layered(E, v.p.tex, eval_block(E, blk->c).p.tex);
 		return v;
 	case TK_PIGMENT:
 		v.kind = V_PIGMENT;
@@ -268,6 +292,20 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.kind = V_COLOUR_MAP;
 		v.p.cmap = colour_map_block(E, blk);
 		return v;
+	case TK_SKY_SPHERE: { /* #declare S = sky_sphere { … } (skies.inc): built aside */
+		struct scene *sc = SC(E);
+		struct pigment *sky0 = sc->sky;
+		int n0 = sc->nsky;
+		const struct xform *xf0 = sc->sky_xf;
+		sc->sky = NULL, sc->nsky = 0, sc->sky_xf = NULL;
+		run_block(E, blk, SK_SKY, sc, &s);
+		struct sky_value *sv = NEW(E, struct sky_value);
+		*sv = (struct sky_value){sc->sky, sc->nsky, sc->sky_xf};
+		sc->sky = sky0, sc->nsky = n0, sc->sky_xf = xf0;
+		v.kind = V_SKY;
+		v.p.sky = sv;
+		return v;
+	}
 	default:
 		eval_fail(E, blk->loc, "%s cannot be used as a value", tok_name(blk->op));
 	}
@@ -287,7 +325,23 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_LIGHT_SOURCE: scene_add_light(sc, eval_block(E, n).p.light); return;
+	case TK_LIGHT_SOURCE: {
+		struct light *l = eval_block(E, n).p.light;
+		scene_add_light(sc, l);
+		if (l->looks_like) { /* the object, moved to the light, casts no shadow */
+			struct object *o = NEW(E, struct object);
+			*o = *l->looks_like;
+			struct xform X = xf_translate(l->pos);
+			object_transform(E, o, &X);
+			o->flags |= OF_NO_SHADOW;
+			if (!E->default_shared)
+				E->default_shared = texture_copy(E, &E->default_tex);
+			propagate(o, E->default_shared, NULL, 0, NULL);
+			scene_add_object(sc, o);
+			eval_count_object(E, n->loc);
+		}
+		return;
+	}
 	case TK_CAMERA:
 		sc->camera = *eval_block(E, n).p.cam;
 		sc->has_camera = true;
@@ -376,7 +430,9 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_SKY: sky_keyword(E, s, n); return;
 	case SK_NORMAL: normal_keyword(E, s, n); return;
 	case SK_FOG: fog_keyword(E, s, n); return;
+	case SK_WARP: warp_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
+	case SK_LIST: list_keyword(E, s, n); return;
 	case SK_TRANSFORM:
 		if (n->op == TK_INVERSE) {
 			*(struct xform *)s->target = xf_inverse(*(struct xform *)s->target);
@@ -427,7 +483,9 @@ void sink_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 	case SK_PIGMENT: pigment_value(E, s, v, loc); return;
 	case SK_NORMAL: normal_value(E, s, v, loc); return;
 	case SK_FOG: fog_value(E, s, v, loc); return;
+	case SK_SKY: sky_value(E, s, v, loc); return;
 	case SK_LIGHT: light_value(E, s, v, loc); return;
+	case SK_LIST: list_value(E, s, v, loc); return;
 	case SK_ENTRY: case SK_REFLECTION: case SK_BACKGROUND:
 		if (s->nparams >= SINK_MAX_PARAMS)
 			eval_fail(E, loc, "too many values here");
@@ -474,4 +532,5 @@ void objects_finish(struct eval *E)
 	struct scene *sc = SC(E);
 	if (!sc->has_camera)
 		sc->camera = scene_default_camera();
+	patterns_finish(E);
 }

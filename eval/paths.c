@@ -108,12 +108,11 @@ static int readable(struct eval *E, const char *path)
  * in errors. A name that would lead outside the roots from every directory
  * searched is refused (exit 65); one that is found nowhere sets E->missing
  * (exit 66). */
-char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
+static char *find_file(struct eval *E, const char *name, struct srcloc loc, const char **found_dir,
+                       int *refused_out, int *tried_out)
 {
 	const char *dirs[68];
 	int nd = 0;
-	if (name[0] == '\0')
-		eval_fail(E, loc, "%s name is empty", what);
 	dirs[nd++] = E->dir_stack[E->include_depth];
 	char libreal[PATH_MAX] = "", self[PATH_MAX] = "";
 	if (name[0] != '/') {
@@ -148,6 +147,25 @@ char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const 
 			*found_dir = name[0] == '/' ? "/" : dirs[i];
 		return mem_strdup(real);
 	}
+	*refused_out = refused;
+	*tried_out = tried;
+	return NULL;
+}
+
+char *eval_try_file(struct eval *E, const char *name, struct srcloc loc)
+{
+	int refused, tried;
+	return name[0] ? find_file(E, name, loc, NULL, &refused, &tried) : NULL;
+}
+
+char *eval_find_file(struct eval *E, const char *name, struct srcloc loc, const char *what, const char **found_dir)
+{
+	int refused, tried;
+	if (name[0] == '\0')
+		eval_fail(E, loc, "%s name is empty", what);
+	char *real = find_file(E, name, loc, found_dir, &refused, &tried);
+	if (real)
+		return real;
 	if (refused > 0 && refused == tried)
 		eval_fail(E, loc, "%s '%s' is outside the directories this scene may read (its own, -I "
 		          "directories and the library); --allow-read DIR grants more", what, name);

@@ -73,6 +73,12 @@ void light_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_LOOKS_LIKE: { /* looks_like { object }: an object { } of its items */
+		struct node on = *n;
+		on.op = TK_OBJECT;
+		l->looks_like = object_block(E, &on).p.obj;
+		return;
+	}
 	case TK_SPOTLIGHT: l->kind = LIGHT_SPOT; return;
 	case TK_PARALLEL: l->kind = LIGHT_PARALLEL; l->point_at = v3(0, 0, 0); return;
 	case TK_RADIUS: l->radius = arg_float(E, n); return;
@@ -182,6 +188,19 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 	switch (n->op) {
 	case TK_PERSPECTIVE: c->kind = CAM_PERSPECTIVE; return;
 	case TK_ORTHOGRAPHIC: c->kind = CAM_ORTHOGRAPHIC; return;
+	case TK_FISHEYE: c->kind = CAM_FISHEYE; return;
+	case TK_ULTRA_WIDE_ANGLE: c->kind = CAM_ULTRA_WIDE; return;
+	case TK_PANORAMIC: c->kind = CAM_PANORAMIC; return;
+	case TK_OMNIMAX: c->kind = CAM_OMNIMAX; return;
+	case TK_SPHERICAL: c->kind = CAM_SPHERICAL; return;
+	case TK_CYLINDER: {
+		if (n->kind == N_BLOCK)
+			misplaced(E, s, n);
+		int k = arg_int(E, n, 1, 4);
+		c->kind = k == 1 ? CAM_CYL1 : k == 2 ? CAM_CYL2 : k == 3 ? CAM_CYL3 : CAM_CYL4;
+		return;
+	}
+	case TK_MESH_CAMERA: eval_fail(E, n->loc, "'mesh_camera' is not supported");
 	case TK_LOCATION: c->location = arg_vec3(E, n); return;
 	case TK_DIRECTION: c->direction = arg_vec3(E, n); return;
 	case TK_UP: c->up = arg_vec3(E, n); return;
@@ -193,6 +212,15 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 		s->pending |= CAM_LOOK_AT;
 		return;
 	case TK_ANGLE: {
+		struct node first;
+		if (c->kind == CAM_SPHERICAL && n->nkids == 2) { /* angle H, V */
+			c->v_angle = eval_float(E, n->kids[1]);
+			if (!(c->v_angle > 0 && c->v_angle <= 360))
+				eval_fail(E, n->kids[1]->loc, "spherical camera angles must be above 0 and at most 360, found %g", c->v_angle);
+			first = *n;
+			first.nkids = 1;
+			n = &first;
+		}
 		double a = arg_float(E, n);
 		if (a <= 0 || (c->kind == CAM_PERSPECTIVE && a >= 180))
 			eval_fail(E, n->kids[0]->loc, "camera angle must be between 0 and 180 degrees, found %g", a);
@@ -217,6 +245,8 @@ void global_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_MAX_TRACE_LEVEL: g->max_trace_level = arg_int(E, n, 1, 256); return;
 	case TK_ADC_BAILOUT: g->adc_bailout = arg_float(E, n); return;
 	case TK_AMBIENT_LIGHT: g->ambient_light = arg_colour(E, n); return;
+	case TK_NOISE_GENERATOR: g->noise_generator = arg_int(E, n, 1, 3); return;
+	case TK_NUMBER_OF_WAVES: g->number_of_waves = arg_int(E, n, 1, 256); return;
 	case TK_PHOTONS:
 		g->illum.given = true;
 		sink_init(&sub, SK_PHOTONS, TK_GLOBAL_SETTINGS, n->loc, &g->illum);
@@ -298,6 +328,24 @@ void sky_keyword(struct eval *E, struct sink *s, const struct node *n)
 		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
 	p[sc->nsky++] = *v.p.pig;
 	sc->sky = p;
+}
+
+/* sky_sphere { S … }: a declared sky_sphere's pigments and transform, then
+ * what follows. */
+void sky_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
+{
+	struct scene *sc = s->target;
+	if (v->kind != V_SKY)
+		eval_fail(E, loc, "expected a sky_sphere or a pigment { } in sky_sphere, found %s", val_type_name(v));
+	const struct sky_value *sv = v->p.sky;
+	struct pigment *p = ARENA_ARRAY(&sc->arena, struct pigment, sc->nsky + sv->n);
+	if (sc->nsky)
+		memcpy(p, sc->sky, sizeof *p * (size_t)sc->nsky);
+	memcpy(p + sc->nsky, sv->pig, sizeof *p * (size_t)sv->n);
+	sc->sky = p;
+	sc->nsky += sv->n;
+	if (sv->xf)
+		sc->sky_xf = xform_then(E, sc->sky_xf, sv->xf);
 }
 
 /* fog { [fog_type 1|2] distance d colour c [fog_offset h fog_alt a up v] } */

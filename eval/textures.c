@@ -16,25 +16,38 @@ struct colour_map *colour_map_block(struct eval *E, const struct node *blk)
 	return m;
 }
 
+static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic);
+
 /* [position colour] of a colour_map. */
 void colour_map_entry(struct eval *E, struct colour_map *m, const struct node *n)
 {
 	struct sink s;
 	sink_init(&s, SK_ENTRY, TK_COLOR_MAP, n->loc, NULL);
 	eval_items(E, n, &s);
+	if (s.nparams == 4) { /* POV-Ray's old [from, to colour_from colour_to] */
+		colour_map_push(E, m, n, &s, 0, 2);
+		colour_map_push(E, m, n, &s, 1, 3);
+		return;
+	}
 	if (s.nparams != 2)
-		eval_fail(E, n->loc, "a colour_map entry is [position colour], found %d value%s", s.nparams, s.nparams == 1 ? "" : "s");
-	double pos = val_want_float(E, &s.params[0], s.ploc[0]);
-	if (pos < 0 || pos > 1)
-		eval_fail(E, s.ploc[0], "colour_map position must be 0 to 1, found %g", pos);
-	if (m->n > 0 && pos < m->e[m->n - 1].pos)
-		eval_fail(E, s.ploc[0], "colour_map positions must not decrease (%g after %g)", pos, m->e[m->n - 1].pos);
+		eval_fail(E, n->loc, "a colour_map entry is [position colour] or [from, to colour colour], found %d value%s",
+		          s.nparams, s.nparams == 1 ? "" : "s");
+	colour_map_push(E, m, n, &s, 0, 1);
+}
+
+/* Appends the entry (params[ip], params[ic]) of the sink to the map. */
+static void colour_map_push(struct eval *E, struct colour_map *m, const struct node *n, struct sink *sk, int ip, int ic)
+{
+	/* any position, in any order, as POV-Ray takes them (its own woods.inc
+	 * has 1.001 and a step back); the search finds the first entry at or
+	 * above the value */
+	double pos = val_want_float(E, &sk->params[ip], sk->ploc[ip]);
 	if (m->n >= 256)
 		eval_fail(E, n->loc, "colour_map has more than 256 entries");
 	struct map_entry *e = ARENA_ARRAY(&SC(E)->arena, struct map_entry, m->n + 1);
 	if (m->n)
 		memcpy(e, m->e, sizeof *e * (size_t)m->n);
-	e[m->n++] = (struct map_entry){pos, val_want_colour(E, &s.params[1], s.ploc[1])};
+	e[m->n++] = (struct map_entry){pos, val_want_colour(E, &sk->params[ic], sk->ploc[ic])};
 	m->e = e;
 }
 
@@ -78,6 +91,15 @@ struct pattern *pat_w(struct eval *E, struct pigment *p)
 	struct pattern *c = NEW(E, struct pattern);
 	*c = *pig_pattern(p);
 	p->pat = c;
+	if (E->npats == E->cappats) {
+		int cap = E->cappats ? E->cappats * 2 : 64;
+		struct pattern **g = ARENA_ARRAY(&E->arena, struct pattern *, cap);
+		if (E->npats)
+			memcpy(g, E->pats, sizeof *g * (size_t)E->npats);
+		E->pats = g;
+		E->cappats = cap;
+	}
+	E->pats[E->npats++] = c;
 	return c;
 }
 
@@ -109,6 +131,14 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		pat_w(E, p)->pattern = n->op == TK_RADIAL ? PAT_RADIAL : n->op == TK_ONION ? PAT_ONION
 		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
 		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
+		return;
+	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's component */
+		if (p->kind != PIG_SOLID)
+			misplaced(E, s, n);
+		if (n->op == TK_FILTER)
+			p->c[0].f = arg_float(E, n);
+		else
+			p->c[0].t = arg_float(E, n);
 		return;
 	case TK_FREQUENCY: pat_w(E, p)->frequency = arg_float(E, n); return;
 	case TK_PHASE: pat_w(E, p)->phase = arg_float(E, n); return;
@@ -152,15 +182,47 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 			eval_fail(E, n->loc, "image_map needs a file: image_map { png \"file.png\" }");
 		return;
 	}
-	default: misplaced(E, s, n);
+	case TK_PIGMENT:
+		if (p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK) {
+			struct pigment *sub = NEW(E, struct pigment);
+			struct sink ss;
+			*sub = scene_default_texture().pigment;
+			run_block(E, n, SK_PIGMENT, sub, &ss);
+			s->modified = 0;
+			pattern_sub_pigment(E, s, sub, n->loc);
+			return;
+		}
+		misplaced(E, s, n);
+	default:
+		if (!pattern_keyword(E, s, n))
+			misplaced(E, s, n);
 	}
+}
+
+void function_pattern(struct eval *E, struct pigment *p, const struct value *v, struct srcloc loc)
+{
+	const struct fn *f = function_usable(E, v, loc);
+	p->kind = PIG_PATTERN;
+	struct pattern *pt = pat_w(E, p);
+	pt->pattern = PAT_FUNCTION;
+	pt->fn = f;
 }
 
 void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct pigment *p = s->target;
+	bool block = p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK;
+	if (v->kind == V_PIGMENT && block && !s->modified) {
+		pattern_sub_pigment(E, s, v->p.pig, loc);
+		return;
+	}
 	if (v->kind == V_PIGMENT && s->nparams == 0 && !s->modified) {
 		*p = *v->p.pig;
+		s->modified = 1;
+		return;
+	}
+	if (v->kind == V_FUNCTION) { /* pigment { function { … } colour_map { … } } */
+		function_pattern(E, p, v, loc);
 		s->modified = 1;
 		return;
 	}
@@ -181,6 +243,13 @@ void pigment_value(struct eval *E, struct sink *s, const struct value *v, struct
 			p->c[0] = c;
 		else
 			pat_w(E, p)->more[s->nparams - 1] = c;
+		if (pig_pattern(p)->pmap) { /* after a pigment: this one a plain colour too */
+			struct pigment *solid = NEW(E, struct pigment);
+			*solid = scene_default_texture().pigment;
+			solid->c[0] = c;
+			pattern_sub_pigment(E, s, solid, loc);
+			return;
+		}
 		s->nparams++;
 		return;
 	}
@@ -214,6 +283,12 @@ void finish_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case TK_ROUGHNESS: f->roughness = arg_positive(E, n); return;
 	case TK_PHONG: f->phong = arg_float(E, n); return;
 	case TK_PHONG_SIZE: f->phong_size = arg_float(E, n); return;
+	case TK_CRAND: /* POV-Ray's grain: noise arvo does not add */
+		arg_float(E, n);
+		if (!E->warned_crand)
+			diag_warning(E->diag, n->loc, "'crand' is not supported; ignored (here and in every finish)");
+		E->warned_crand = true;
+		return;
 	case TK_METALLIC: arg_bool(E, n); return;
 	case TK_CONSERVE_ENERGY: f->conserve_energy = arg_bool(E, n); return;
 	case TK_EMISSION: f->emission = arg_colour(E, n); return;
@@ -252,6 +327,31 @@ void interior_keyword(struct eval *E, struct sink *s, const struct node *n)
 	}
 }
 
+void texture_layer(struct eval *E, struct texture *t, const struct texture *top)
+{
+	struct texture *below = texture_copy(E, t);
+	const struct texture *bottom = top;
+	int depth = 0;
+	while (bottom->below && depth++ < 64) /* top may be layered itself */
+		bottom = bottom->below;
+	if (depth >= 64)
+		eval_fail(E, E->stmt, "more than 64 texture layers");
+	if (bottom == top) {
+		*t = *top;
+		t->below = below;
+		return;
+	}
+	/* copy top's chain, its last layer resting on below */
+	struct texture *k = t;
+	*t = *top;
+	while (k->below) {
+		struct texture *next = texture_copy(E, k->below);
+		k->below = next;
+		k = next;
+	}
+	k->below = below;
+}
+
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	struct texture *t = s->target;
@@ -260,6 +360,37 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 	s->modified = 1;
 	if (transform_of(E, n, &X)) {
 		texture_transform(E, t, &X);
+		return;
+	}
+	if (n->op == TK_TEXTURE_MAP) {
+		texture_map_block(E, t, n);
+		return;
+	}
+	if (n->op == TK_TILES) {
+		tiles_block(E, t, n);
+		return;
+	}
+	if (n->op == TK_TEXTURE) {
+		const struct texture *k = eval_block(E, n).p.tex;
+		enum pigment_kind pk = t->pigment.kind;
+		if (pk == PIG_CHECKER || pk == PIG_HEXAGON || pk == PIG_BRICK) { /* checker texture { } texture { } */
+			int most = pk == PIG_HEXAGON ? 3 : 2;
+			if (t->nmap >= most)
+				eval_fail(E, n->loc, "%s takes %d textures, found more", pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
+			struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
+			if (t->nmap)
+				memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
+			m[t->nmap] = (struct tex_entry){t->nmap, k};
+			t->map = m;
+			t->nmap++;
+			return;
+		}
+		texture_layer(E, t, k); /* a layer on top of what t is so far */
+		return;
+	}
+	if (is_pattern_kw(n->op)) { /* texture { gradient x texture_map { … } } */
+		sink_init(&sub, SK_PIGMENT, TK_TEXTURE, s->loc, &t->pigment);
+		pigment_keyword(E, &sub, n);
 		return;
 	}
 	if (n->op == TK_NORMAL)
@@ -307,11 +438,18 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
-	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: misplaced(E, s, n);
-	case TK_TURBULENCE: case TK_OCTAVES: case TK_OMEGA: case TK_LAMBDA:
-		s->pending = 1; /* normal_block ignores this normal */
-		if (!E->warned_normal++)
-			diag_warning(E->diag, n->loc, "%s is not supported in 'normal' yet; the normal is ignored", tok_name(n->op));
+	case TK_COLOR_MAP: case TK_COLOUR_MAP: case TK_IMAGE_MAP: case TK_PIGMENT_MAP: misplaced(E, s, n);
+	case TK_BUMP_SIZE: t->amount = arg_float(E, n); return;
+	case TK_NORMAL_MAP: normal_map_block(E, t, n); return;
+	case TK_SPIRAL1: case TK_SPIRAL2:
+		if (n->nkids == 2) { /* spiral1 arms, bump size */
+			struct node one = *n;
+			one.nkids = 1;
+			t->amount = eval_float(E, n->kids[1]);
+			pigment_keyword(E, &sub, &one);
+			return;
+		}
+		pigment_keyword(E, &sub, n);
 		return;
 	default: pigment_keyword(E, &sub, n);
 	}
@@ -320,6 +458,10 @@ void normal_keyword(struct eval *E, struct sink *s, const struct node *n)
 void normal_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc)
 {
 	struct tnormal *t = s->target;
+	if (v->kind == V_FUNCTION) { /* normal { function { … } [amount] } */
+		function_pattern(E, &t->pat, v, loc);
+		return;
+	}
 	if (v->kind == V_SKIPPED) { /* a declared normal first */
 		if (v->p.nrm)
 			*t = *v->p.nrm;

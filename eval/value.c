@@ -29,6 +29,7 @@ static const char *const kind_names[V_KIND_COUNT] = {
 	"nothing", "a float", "a vector", "a colour", "a string", "an array",
 	"an object", "a light", "a camera", "a texture", "a pigment", "a finish",
 	"an interior", "a material", "a transform", "a colour map", "a normal",
+	"a function", "a sky_sphere",
 };
 
 const char *val_kind_name(enum val_kind k) { return kind_names[k]; }

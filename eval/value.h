@@ -13,6 +13,8 @@ enum val_kind {
 	V_FLOAT, V_VECTOR, V_COLOUR, V_STRING, V_ARRAY,
 	V_OBJECT, V_LIGHT, V_CAMERA, V_TEXTURE, V_PIGMENT, V_FINISH, V_INTERIOR,
 	V_MATERIAL, V_TRANSFORM, V_COLOUR_MAP, V_SKIPPED,
+	V_FUNCTION,  /* function { … } (tracer/fn.h) */
+	V_SKY,       /* a declared sky_sphere { … } */
 	V_KIND_COUNT
 };
 
@@ -35,6 +37,13 @@ struct colour_map {
 	int n;
 };
 
+/* A declared sky_sphere: its pigments (bottom first) and transform. */
+struct sky_value {
+	struct pigment *pig;
+	int n;
+	const struct xform *xf;
+};
+
 struct value {
 	enum val_kind kind;
 	int n;       /* V_VECTOR: components (2..5); V_STRING: length */
@@ -53,6 +62,8 @@ struct value {
 		struct xform *xf;
 		struct colour_map *cmap;
 		struct tnormal *nrm; /* V_SKIPPED (a normal): NULL when ignored */
+		struct sky_value *sky;
+		const struct fn *fn; /* V_FUNCTION */
 	} p;
 };
 

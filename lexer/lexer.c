@@ -293,6 +293,7 @@ static enum tok scan_punct(const char *p, const char *end, int *len)
 	case '!': return TK_BANG;
 	case '&': return TK_AMP;
 	case '|': return TK_PIPE;
+	case '^': return TK_CARET;
 	case '?': return TK_QUESTION;
 	case ':': return TK_COLON;
 	default: return TK_ERROR;

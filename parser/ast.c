@@ -6,7 +6,7 @@
 
 static const char *const kind_names[] = {
 	"num", "str", "ident", "vector", "unary", "binary", "cond", "call", "member",
-	"index", "colour", "array", "init", "block", "mod", "word", "entry",
+	"index", "colour", "array", "init", "function", "dirvalue", "block", "mod", "word", "entry",
 	"skipped", "declare", "undef", "include", "if", "ifdef", "while", "for",
 	"switch", "case", "break", "macro", "version", "message", "default", "list",
 };
@@ -61,9 +61,12 @@ static void dump_head(FILE *out, const struct node *n)
 	case N_IDENT: case N_CALL: case N_MEMBER: case N_UNDEF: case N_MACRO: case N_FOR:
 		fprintf(out, " %s", n->str);
 		break;
+	case N_BLOCK:
+		fprintf(out, " %s", n->str ? n->str : tok_name(n->op));
+		break;
 	case N_WORD: fprintf(out, " %s %s", tok_name(n->op), n->str); break;
 	case N_DECLARE: fprintf(out, " %s %s", tok_name(n->op), n->str); break;
-	case N_UNARY: case N_BINARY: case N_COLOUR: case N_BLOCK: case N_MOD:
+	case N_UNARY: case N_BINARY: case N_COLOUR: case N_MOD:
 	case N_SKIPPED: case N_IFDEF: case N_CASE: case N_MESSAGE:
 		fprintf(out, " %s", tok_name(n->op));
 		break;
@@ -83,7 +86,7 @@ static void dump(FILE *out, const struct node *n, int depth, const char *label)
 	}
 	dump_head(out, n);
 	/* header children (indices, loop bounds, parameters) come first */
-	int kids_first = n->kind == N_DECLARE || n->kind == N_FOR || n->kind == N_MACRO ||
+	int kids_first = n->kind == N_DECLARE || n->kind == N_FOR || n->kind == N_MACRO || n->kind == N_FUNC ||
 	                 n->kind == N_CASE || n->kind == N_ARRAY;
 	for (int i = 0; kids_first && i < n->nkids; i++)
 		dump(out, n->kids[i], depth + 1, NULL);
@@ -92,7 +95,7 @@ static void dump(FILE *out, const struct node *n, int depth, const char *label)
 	if (n->b && n->kind != N_DECLARE)
 		dump(out, n->b, depth + 1, n->kind == N_IF || n->kind == N_IFDEF ? "then" : NULL);
 	if (n->c)
-		dump(out, n->c, depth + 1, "else");
+		dump(out, n->c, depth + 1, n->kind == N_BLOCK ? "layer" : "else");
 	for (int i = 0; !kids_first && i < n->nkids; i++)
 		dump(out, n->kids[i], depth + 1, NULL);
 }

@@ -30,6 +30,10 @@ enum node_kind {
 	N_COLOUR,  /* op: rgb/rgbf/…/color keyword, a: operand */
 	N_ARRAY,   /* kids: dimensions, a: initialiser (N_INIT) or NULL */
 	N_INIT,    /* { kids } array initialiser */
+	N_FUNC,    /* function: kids: parameters (N_IDENT; none: x y z), a: body (an expression,
+	            * N_BLOCK pigment, or N_BLOCK pigment with str "pattern") */
+	N_DIRVALUE, /* a: #if/#ifdef/#ifndef/#switch inside an expression, whose chosen
+	            * branch yields the value: (#if (A) 1 #else 2 #end) */
 	/* block items */
 	N_BLOCK,   /* op: keyword, kids: items inside { } */
 	N_MOD,     /* op: keyword, kids: its arguments (0, 1 or more) */
@@ -54,6 +58,8 @@ enum node_kind {
 	N_LIST,    /* kids: items (a file, a branch, a body) */
 };
 
+struct lazy_body;
+
 struct node {
 	enum node_kind kind;
 	struct srcloc loc;  /* where the construct starts */
@@ -64,6 +70,9 @@ struct node {
 	struct node *a, *b, *c; /* fixed children, per kind */
 	struct node **kids; /* variable children (arena) */
 	int nkids;
+	const struct lazy_body *lazy; /* N_MACRO whose body did not parse: parsed
+	                               * when called (parse_macro_body), as POV-Ray
+	                               * reads a macro's tokens only then */
 };
 
 struct node *ast_new(struct arena *a, enum node_kind kind, struct srcloc loc);

@@ -15,6 +15,13 @@
 
 #define MAX_DEPTH 200 /* nesting guard for blocks and expressions */
 
+/* A macro body kept as tokens (parse_macro): the lexer and parser state at
+ * its first token. */
+struct lazy_body {
+	struct lexer lx;
+	struct token tok, prev;
+};
+
 struct parser {
 	struct lexer lx;     /* the file's lexer */
 	struct token tok;    /* current token */
@@ -26,6 +33,14 @@ struct parser {
 	long ntok;           /* tokens consumed: synchronize() checks progress */
 	int no_gt;           /* inside <…>: '>' closes the vector */
 	int in_normal;       /* inside normal { }: unsupported words are left to the evaluator */
+	int in_func;         /* inside function { }: '^' is a power; unsupported words in its
+	                      * pattern { } are left to the evaluator (a macro may never run it) */
+	int in_texture;      /* inside texture { }: textures in a row are a pattern's (checker
+	                      * texture { A } texture { B }), not layers */
+	int quiet_macros;    /* no warning for a macro read only when called (POV-Ray's own files) */
+	int first_set;       /* a macro body's quiet trial (parse_macro): its first error */
+	struct srcloc first_loc;
+	char first_msg[256];
 };
 
 static struct node *parse_expr(struct parser *p);
@@ -81,6 +96,10 @@ static void error_at(struct parser *p, struct srcloc loc, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(msg, sizeof msg, fmt, ap);
 	va_end(ap);
+	if (!p->first_set) {
+		p->first_set = 1, p->first_loc = loc;
+		memcpy(p->first_msg, msg, sizeof msg);
+	}
 	diag_error(p->diag, loc, "%s", msg);
 }
 
@@ -99,8 +118,7 @@ static void expect_close(struct parser *p, enum tok close, enum tok open, struct
 	char msg[200];
 	snprintf(msg, sizeof msg, "%s expected (to close %s at %d:%d), found %s", tok_name(close),
 	         tok_name(open), at.line, at.col, found(p));
-	p->panic = 1;
-	diag_error(p->diag, p->tok.loc, "%s", msg);
+	error_at(p, p->tok.loc, "%s", msg);
 }
 
 static int expect(struct parser *p, enum tok k)
@@ -161,6 +179,7 @@ static int starts_expr(const struct parser *p)
 /* ==== expressions ========================================================= */
 
 static struct node *parse_keyword_item(struct parser *p);
+static struct node *parse_directive(struct parser *p);
 
 /* A value where a block may stand too: array initialisers, macro arguments,
  * #declare right-hand sides (sphere { … }, texture { … }, transform { … }). */
@@ -209,7 +228,16 @@ static void parse_args(struct parser *p, struct node *call)
 	expect_close(p, TK_RPAREN, TK_LPAREN, open);
 }
 
-/* vector := '<' expr {',' expr} '>' */
+/* Does the current token start a further value without a comma before it?
+ * POV-Ray takes `<1 0 0>` and `area_light <4 0 0> <0 0 4> 10 10`: a
+ * number, a name or a parenthesis cannot continue the value before it. */
+static int next_value(const struct parser *p)
+{
+	enum tok k = p->tok.kind;
+	return !p->panic && (k == TK_NUMBER || k == TK_IDENT || k == TK_LPAREN);
+}
+
+/* vector := '<' expr {[','] expr} '>' */
 static struct node *parse_vector(struct parser *p)
 {
 	struct node *v = node(p, N_VEC, p->tok.loc);
@@ -218,7 +246,7 @@ static struct node *parse_vector(struct parser *p)
 	p->no_gt = 1;
 	do
 		ast_push(p->arena, v, parse_expr(p));
-	while (accept(p, TK_COMMA));
+	while ((accept(p, TK_COMMA) && !check(p, TK_GT)) || next_value(p)); /* <1,2,3,> too */
 	p->no_gt = saved;
 	expect_close(p, TK_GT, TK_LT, v->loc);
 	return v;
@@ -233,7 +261,8 @@ static struct node *parse_init(struct parser *p)
 		return n;
 	while (!check(p, TK_RBRACE) && !check(p, TK_EOF)) {
 		ast_push(p->arena, n, check(p, TK_LBRACE) ? parse_init(p) : parse_value(p));
-		if (!accept(p, TK_COMMA) || p->panic)
+		/* POV-Ray reads {"a" "b"} as {"a", "b"} */
+		if ((!accept(p, TK_COMMA) && !check(p, TK_STRING)) || p->panic)
 			break;
 	}
 	leave(p);
@@ -297,6 +326,67 @@ static struct node *parse_postfix(struct parser *p, struct node *e)
 	}
 }
 
+static struct node *parse_block_body(struct parser *p, struct node *blk);
+
+/* function := 'function' ['(' [ident {',' ident}] ')'] '{' body '}'
+ * body := 'pigment' block | 'pattern' block | expr   (in expr, a '^' b is a power) */
+static struct node *parse_function(struct parser *p)
+{
+	struct node *n = node(p, N_FUNC, p->tok.loc);
+	advance(p);
+	if (check(p, TK_LPAREN)) {
+		struct srcloc open = p->tok.loc;
+		advance(p);
+		if (!check(p, TK_RPAREN)) {
+			do {
+				if (!check(p, TK_IDENT)) {
+					expected(p, "a parameter name");
+					return n;
+				}
+				struct node *id = node(p, N_IDENT, p->tok.loc);
+				id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+				id->len = p->tok.len;
+				ast_push(p->arena, n, id);
+				advance(p);
+			} while (accept(p, TK_COMMA));
+		}
+		expect_close(p, TK_RPAREN, TK_LPAREN, open);
+	}
+	struct srcloc open = p->tok.loc;
+	if (!check(p, TK_LBRACE)) {
+		expected(p, "'{' after 'function'");
+		return n;
+	}
+	if (!enter(p))
+		return n;
+	advance(p);
+	int saved = p->no_gt;
+	p->no_gt = 0;
+	p->in_func++;
+	if (check(p, TK_PIGMENT) || check(p, TK_TRANSFORM)) {
+		n->a = parse_keyword_item(p);
+	} else if (check(p, TK_IDENT) && p->tok.len == 7 && memcmp(p->tok.text, "pattern", 7) == 0) {
+		struct node *b = node(p, N_BLOCK, p->tok.loc);
+		b->op = TK_PIGMENT;
+		b->str = "pattern";
+		advance(p);
+		n->a = parse_block_body(p, b);
+	} else {
+		n->a = parse_expr(p);
+	}
+	p->in_func--;
+	p->no_gt = saved;
+	leave(p);
+	if (p->panic) { /* skip the rest of the body, so its '}' closes nothing else */
+		for (int depth = 0; !check(p, TK_EOF) && !(depth == 0 && check(p, TK_RBRACE)); advance(p))
+			depth += check(p, TK_LBRACE) - check(p, TK_RBRACE);
+		accept(p, TK_RBRACE);
+		return n;
+	}
+	expect_close(p, TK_RBRACE, TK_LBRACE, open);
+	return n;
+}
+
 static bool colour_component(enum tok k)
 {
 	return k == TK_RED || k == TK_GREEN || k == TK_BLUE || k == TK_FILTER || k == TK_TRANSMIT;
@@ -334,10 +424,14 @@ static struct node *parse_primary(struct parser *p)
 		expect_close(p, TK_RPAREN, TK_LPAREN, t.loc);
 	} else if (t.kind == TK_LT) {
 		n = parse_vector(p);
-	} else if (tok_shape(t.kind) == SH_PREFIX) {
+	} else if (tok_shape(t.kind) == SH_PREFIX || t.kind == TK_RED || t.kind == TK_GREEN || t.kind == TK_BLUE) {
+		/* a bare `red 0.75 green 0.75 blue 0.85` (POV-Ray's oldest pigment
+		 * syntax) is `color red 0.75 …` */
+		int bare = tok_shape(t.kind) != SH_PREFIX;
 		n = node(p, N_COLOUR, t.loc);
-		n->op = t.kind;
-		advance(p);
+		n->op = bare ? TK_COLOR : t.kind;
+		if (!bare)
+			advance(p);
 		if ((t.kind == TK_COLOR || t.kind == TK_COLOUR) && tok_shape(p->tok.kind) == SH_PREFIX) {
 			if (!enter(p)) /* "color color … rgb": bounded like any nesting */
 				return n;
@@ -345,7 +439,7 @@ static struct node *parse_primary(struct parser *p)
 			leave(p);
 			return r;
 		}
-		if (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind))
+		if (!bare && (!(t.kind == TK_COLOR || t.kind == TK_COLOUR) || !colour_component(p->tok.kind)))
 			n->a = parse_expr(p); /* "color red 1 …" has none */
 		/* POV-Ray's trailing components: rgb 1 filter 0.5, color red 1 green 0.5 */
 		while (colour_component(p->tok.kind) && !p->panic) {
@@ -356,12 +450,16 @@ static struct node *parse_primary(struct parser *p)
 			ast_push(p->arena, n, c);
 		}
 		return n;
+	} else if (t.kind == TK_DIR_IF || t.kind == TK_DIR_IFDEF || t.kind == TK_DIR_IFNDEF || t.kind == TK_DIR_SWITCH) {
+		/* POV-Ray's directives work between any tokens; arvo takes a
+		 * conditional where a value stands: its branch yields the value */
+		n = node(p, N_DIRVALUE, t.loc);
+		n->a = parse_directive(p);
+		return n;
 	} else if (t.kind == TK_ARRAY) {
 		return parse_array(p);
 	} else if (t.kind == TK_FUNCTION) {
-		error_at(p, t.loc, "user-defined functions are not supported");
-		advance(p);
-		return node(p, N_NUM, t.loc);
+		return parse_function(p);
 	} else {
 		expected(p, "an expression");
 		return node(p, N_NUM, t.loc);
@@ -382,7 +480,19 @@ static struct node *parse_unary(struct parser *p)
 		leave(p);
 		return n;
 	}
-	return parse_primary(p);
+	struct node *e = parse_primary(p);
+	if (p->in_func && check(p, TK_CARET)) { /* a ^ b, right to left, above unary minus */
+		struct node *n = node(p, N_BINARY, p->tok.loc);
+		n->op = TK_CARET;
+		advance(p);
+		n->a = e;
+		if (!enter(p))
+			return n;
+		n->b = parse_unary(p);
+		leave(p);
+		return n;
+	}
+	return e;
 }
 
 /* binary := unary {op binary}   (precedence climbing, left associative) */
@@ -393,6 +503,10 @@ static struct node *parse_binary(struct parser *p, int min_prec)
 	for (;;) {
 		int prec = binprec(p, p->tok.kind);
 		if (prec == 0 || prec < min_prec || p->panic)
+			break;
+		/* `box { <0,0,0> <1,1,1> }`: a '<' right after a vector starts the
+		 * next vector (POV-Ray compares floats only) */
+		if (p->tok.kind == TK_LT && left && left->kind == N_VEC)
 			break;
 		if (p->depth >= MAX_DEPTH) {
 			error_at(p, p->tok.loc, "expression too long (more than %d operators and levels of nesting)", MAX_DEPTH);
@@ -500,6 +614,12 @@ static struct node *parse_keyword_item(struct parser *p)
 	}
 	switch (sh) {
 	case SH_BLOCK:
+		if (t.kind == TK_CLIPPED_BY && !check(p, TK_LBRACE))
+			return n; /* bounded_by { clipped_by }: a word */
+		if (t.kind == TK_CYLINDER && !check(p, TK_LBRACE)) {
+			ast_push(p->arena, n, parse_expr(p)); /* the camera's cylinder N */
+			return n;
+		}
 		n->kind = N_BLOCK;
 		if (t.kind == TK_NORMAL) {
 			p->in_normal++;
@@ -507,7 +627,16 @@ static struct node *parse_keyword_item(struct parser *p)
 			p->in_normal--;
 			return n;
 		}
-		return parse_block_body(p, n);
+		p->in_texture += t.kind == TK_TEXTURE;
+		parse_block_body(p, n);
+		p->in_texture -= t.kind == TK_TEXTURE;
+		/* POV-Ray's layered texture: `texture { A } texture { B }` in a row
+		 * is one texture, B over A; c links the next layer up */
+		if (t.kind == TK_TEXTURE && check(p, TK_TEXTURE) && !p->in_texture && !p->panic && enter(p)) {
+			n->c = parse_keyword_item(p);
+			leave(p);
+		}
+		return n;
 	case SH_BLOCK_OR_EXPR:
 		if (check(p, TK_LBRACE)) {
 			n->kind = N_BLOCK;
@@ -519,7 +648,8 @@ static struct node *parse_keyword_item(struct parser *p)
 	case SH_LIST:
 		do
 			ast_push(p->arena, n, parse_expr(p));
-		while (accept(p, TK_COMMA) && !p->panic);
+		while ((accept(p, TK_COMMA) && !p->panic) ||
+		       (t.kind == TK_AREA_LIGHT && (next_value(p) || check(p, TK_LT))));
 		return n;
 	case SH_OPTEXPR:
 		if (starts_expr(p))
@@ -762,9 +892,74 @@ static struct node *parse_macro(struct parser *p, struct token d)
 		recover_header(p);
 	else
 		expect_close(p, TK_RPAREN, TK_LPAREN, open);
-	n->b = parse_body(p);
+	if (p->panic) {
+		n->b = parse_body(p);
+		expect_end(p, d.kind, d.loc);
+		return n;
+	}
+	/* POV-Ray reads a macro's tokens only when it is called, so its
+	 * directives may split blocks (`#if (M) merge { #else union { #end`),
+	 * which arvo's tree cannot hold. The body is tried quietly first: if
+	 * it parses it is parsed again for real (its warnings then appear);
+	 * if not it is skipped to its #end and parsed at its first call. */
+	struct lexer lx0 = p->lx;
+	struct token tok0 = p->tok, prev0 = p->prev;
+	int depth0 = p->depth;
+	long ntok0 = p->ntok;
+	struct diag *real = p->diag, quiet;
+	diag_init(&quiet, NULL);
+	p->diag = p->lx.diag = &quiet;
+	int first0 = p->first_set;
+	p->first_set = 0;
+	parse_body(p);
+	expect_end(p, d.kind, d.loc);
+	int ok = quiet.errors == 0;
+	p->lx = lx0, p->tok = tok0, p->prev = prev0, p->depth = depth0, p->ntok = ntok0, p->panic = 0;
+	p->diag = real;
+	struct srcloc wloc = p->first_set ? p->first_loc : d.loc;
+	char wmsg[256];
+	snprintf(wmsg, sizeof wmsg, "%s", p->first_set ? p->first_msg : "a lexical error");
+	p->first_set = first0;
+	if (ok) {
+		n->b = parse_body(p);
+		expect_end(p, d.kind, d.loc);
+		return n;
+	}
+	struct lazy_body *lb = ARENA_NEW(p->arena, struct lazy_body);
+	lb->lx = lx0, lb->tok = tok0, lb->prev = prev0;
+	n->lazy = lb;
+	p->lx.diag = &quiet;
+	for (int level = 0; !check(p, TK_EOF); advance(p)) {
+		enum tok k = p->tok.kind;
+		if (k == TK_DIR_IF || k == TK_DIR_IFDEF || k == TK_DIR_IFNDEF || k == TK_DIR_WHILE ||
+		    k == TK_DIR_FOR || k == TK_DIR_SWITCH || k == TK_DIR_MACRO)
+			level++;
+		else if (k == TK_DIR_END && level-- == 0)
+			break;
+	}
+	p->lx.diag = real;
+	p->panic = 0;
+	if (check(p, TK_DIR_END) && !p->quiet_macros) /* else the missing #end is the error */
+		diag_warning(real, wloc, "macro '%s' is read only when called, as in POV-Ray: as written it does not parse (%s)",
+		             n->str, wmsg);
 	expect_end(p, d.kind, d.loc);
 	return n;
+}
+
+struct node *parse_macro_body(const struct node *def, struct diag *diag, struct arena *arena)
+{
+	struct parser p;
+	memset(&p, 0, sizeof p);
+	p.arena = arena;
+	p.diag = diag;
+	p.lx = def->lazy->lx;
+	p.lx.diag = diag;
+	p.tok = def->lazy->tok;
+	p.prev = def->lazy->prev;
+	int before = diag->errors;
+	struct node *body = parse_body(&p);
+	expect_end(&p, TK_DIR_MACRO, def->loc);
+	return diag->errors > before ? NULL : body;
 }
 
 /* directive := declare | if | ifdef | while | for | switch | macro
@@ -833,6 +1028,12 @@ static struct node *parse_directive_body(struct parser *p, struct token d)
 		return parse_block_body(p, n);
 	case TK_DIR_BREAK:
 		return node(p, N_BREAK, d.loc);
+	case TK_DIR_FOPEN: case TK_DIR_FCLOSE: case TK_DIR_READ: case TK_DIR_WRITE:
+		/* an error where it is parsed, so a macro that is never called
+		 * (strings.inc's Parse_String) may hold one */
+		error_at(p, d.loc, "%s is not supported: a scene cannot open, read or write files or run commands",
+		         tok_name(d.kind));
+		return NULL;
 	default:
 		error_at(p, d.loc, "%s without a matching opening directive", tok_name(d.kind));
 		return NULL;
@@ -850,8 +1051,9 @@ static struct node *word_block(struct parser *p, struct node *id)
 		return parse_block_body(p, n);
 	}
 	skip_braces(p);
-	if (p->in_normal && tok_is_pov_word(id->str))
-		return id; /* normal { slope_map { } }: the evaluator ignores the normal */
+	if ((p->in_normal || p->in_func) && tok_is_pov_word(id->str))
+		return id; /* normal { slope_map { } }: the evaluator ignores the normal;
+		            * function { pattern { warp { } } }: an error if it is used */
 	if (strcmp(id->str, "radiosity") == 0)
 		diag_warning(p->diag, id->loc, "'radiosity' is not supported; ignored (the scene renders with its ambient light)");
 	else if (tok_is_pov_word(id->str))
@@ -919,8 +1121,14 @@ static void parse_items(struct parser *p, struct node *list)
 /* file := items EOF */
 struct node *parse_file(int file, struct diag *diag, struct arena *arena)
 {
+	return parse_file_quiet(file, diag, arena, 0);
+}
+
+struct node *parse_file_quiet(int file, struct diag *diag, struct arena *arena, int quiet_macros)
+{
 	struct parser p;
 	memset(&p, 0, sizeof p);
+	p.quiet_macros = quiet_macros;
 	p.arena = arena;
 	p.diag = diag;
 	lex_init(&p.lx, file, diag, arena);

@@ -28,6 +28,8 @@ struct cam {
 	double aperture;       /* lens diameter (0: pinhole) */
 	double focal;          /* distance of the focal plane along fwd */
 	int blur_samples;      /* POV blur_samples (minimum samples per pixel) */
+	double angle, v_angle; /* fisheye, ultra_wide_angle, cylinder, spherical: radians */
+	double len_right, len_up; /* |right| and |up| before they were normalised */
 };
 
 /* Prepares c from the scene's resolved camera. */
@@ -35,7 +37,9 @@ void cam_setup(struct cam *c, const struct camera *sc);
 /* Does the camera have depth of field? */
 bool cam_has_dof(const struct cam *c);
 /* The primary ray through film point (sx, sy); (l1, l2) ∈ [0,1)² pick the
- * lens point (ignored for a pinhole). The direction is not normalised. */
+ * lens point (ignored for a pinhole). The direction is not normalised; it
+ * is zero where the camera shoots no ray (outside a fisheye's circle), and
+ * such a sample is black and uncovered, as in POV-Ray. */
 struct ray cam_ray(const struct cam *c, double sx, double sy, double l1, double l2);
 
 /* The camera as matrices for row vectors (p' = p·M, translation in the last

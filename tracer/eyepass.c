@@ -312,17 +312,19 @@ static struct vec3 caustic_at(const struct eye_ctx *ctx, const struct hit *h)
 	return E;
 }
 
-static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, int depth,
-                         double weight, unsigned skip, struct aov *aov)
+/* The radiance leaving hit h along -d under texture tex (not a map). An
+ * upper layer of a layered texture reflects and refracts nothing: what its
+ * filter and transmit let through is the layer below (shade_map). */
+static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct texture *tex, struct vec3 d,
+                             int depth, double weight, unsigned skip, struct aov *aov, bool upper)
 {
 	const struct scene *s = pa->ctx->scene;
-	struct surf sf = {h, mat_texture(h->obj), {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
+	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
-	bool back = v_dot(sf.nf, sf.v) < 0; /* decided by the true normal */
-	if (sf.tex->normal)
-		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
-	if (back)
+	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
+	if (sf.tex->normal) /* as POV-Ray: the normal facing the eye is perturbed */
+		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
 		sf.opacity = fmin(1, fmax(0, sf.opacity));
@@ -338,7 +340,7 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = specular(pa, &sf, v_norm(d), depth, weight, skip);
+	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
@@ -351,6 +353,67 @@ static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, in
 		aov->spec = v_add(H, spec);
 	}
 	return v_add(v_add(emis, diffuse), v_add(H, spec));
+}
+
+/* a·wa + b·wb for every layer of two AOV records (the normal renormalised). */
+static void aov_blend(struct aov *a, const struct aov *b, double wa, double wb)
+{
+	a->direct = v_add(v_scale(a->direct, wa), v_scale(b->direct, wb));
+	a->albedo = v_add(v_scale(a->albedo, wa), v_scale(b->albedo, wb));
+	a->n = v_norm(v_add(v_scale(a->n, wa), v_scale(b->n, wb)));
+	a->caustic = v_add(v_scale(a->caustic, wa), v_scale(b->caustic, wb));
+	a->emis = v_add(v_scale(a->emis, wa), v_scale(b->emis, wb));
+	a->diffuse = v_add(v_scale(a->diffuse, wa), v_scale(b->diffuse, wb));
+	a->spec = v_add(v_scale(a->spec, wa), v_scale(b->spec, wb));
+}
+
+/* The radiance leaving hit h under texture t: a texture_map blends the
+ * light of its two textures at h, each shaded in full, as POV-Ray does. */
+static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
+                             int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
+{
+	if (t->below && level <= 16) { /* layered: this layer, then what shows through it */
+		struct colour pc = mat_pigment(pa->ctx->mats, &t->pigment, h->p);
+		struct vec3 through = v_add(v_scale(col3(pc), pc.f), v3(pc.t, pc.t, pc.t));
+		struct texture self = *t; /* the layer alone */
+		self.below = NULL;
+		struct vec3 out = shade_map(pa, h, &self, d, depth, weight, skip, aov, level + 1, true);
+		if (v_maxc(through) <= 0)
+			return out;
+		struct aov under;
+		if (aov)
+			under = *aov;
+		struct vec3 b = shade_map(pa, h, t->below, d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
+		                          level + 1, false);
+		if (aov)
+			aov_blend(aov, &under, 1, v_maxc(through));
+		return v_add(out, v_mul(through, b));
+	}
+	if (!t->map || level > 16)
+		return shade_tex(pa, h, t, d, depth, weight, skip, aov, upper);
+	const struct texture *k[2];
+	double w[2];
+	struct aov a[2];
+	int n = mat_texture_pick(pa->ctx->mats, t, h->p, k, w);
+	struct vec3 out = v3(0, 0, 0);
+	for (int i = 0; i < n; i++) {
+		if (aov)
+			a[i] = *aov;
+		struct vec3 c = shade_map(pa, h, k[i], d, depth, weight * w[i], skip, aov ? &a[i] : NULL, level + 1, upper);
+		out = v_madd(out, c, w[i]);
+	}
+	if (aov) {
+		*aov = a[0];
+		if (n == 2)
+			aov_blend(aov, &a[1], w[0], w[1]);
+	}
+	return out;
+}
+
+static struct vec3 shade(struct path *pa, const struct hit *h, struct vec3 d, int depth,
+                         double weight, unsigned skip, struct aov *aov)
+{
+	return shade_map(pa, h, mat_texture(h->obj), d, depth, weight, skip, aov, 0, false);
 }
 
 /* POV-Ray's sky_sphere along unit d: the pigments at d in the sky's
@@ -488,7 +551,8 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 		double l1 = smp_next(&pa.rng), l2 = smp_next(&pa.rng);
 		struct ray r = cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 		struct aov aov = {.z = INFINITY};
-		sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
+		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
+			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
 		E = v_add(E, aov.direct);
 		C = v_add(C, aov.caustic);
 		S = v_add(S, aov_specular(&aov));

@@ -29,7 +29,17 @@ void mat_cache_free(struct mat_cache *c);
 const struct texture *mat_texture(const struct object *o);
 const struct interior *mat_interior(const struct object *o);
 
-/* The pigment's colour (with filter and transmit) at world point p. */
+/* A texture_map texture t at world point p: the one or two textures of
+ * its map there (out) and their weights (w), which sum to 1; returns how
+ * many. The textures may be texture maps themselves. */
+int mat_texture_pick(const struct mat_cache *c, const struct texture *t, struct vec3 p,
+                     const struct texture *out[2], double w[2]);
+/* The texture that weighs most at p, down through nested texture maps
+ * (t itself when it has no map): what the light pass sees there. */
+const struct texture *mat_texture_leaf(const struct mat_cache *c, const struct texture *t, struct vec3 p);
+
+/* The pigment's colour (with filter and transmit) at world point p (c NULL:
+ * image maps are magenta). */
 struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, struct vec3 p);
 
 #endif

@@ -7,6 +7,10 @@
 
 #include <math.h>
 
+#include "material.h"
+#include "noise.h"
+#include "fn.h"
+
 /* 1 − v for v in [0,1], 0 beyond, 1 below 0 (POV-Ray's CLIP_DENSITY). */
 static double clip_density(double v) { return v < 0 ? 1 : v > 1 ? 0 : 1 - v; }
 
@@ -32,6 +36,18 @@ static double leopard_raw(struct vec3 q)
 	return s * s;
 }
 
+/* A function's value at q, reduced modulo 1 above 1 as POV-Ray's function
+ * pattern does (the wave step wraps negative values); 0 where the function
+ * is not finite. */
+static double function_raw(const struct fn *f, struct vec3 q)
+{
+	double a[FN_MAX_PARAMS] = {q.x, q.y, q.z};
+	double v = fn_eval(f, a);
+	if (!isfinite(v))
+		return 0;
+	return v > 1 ? fmod(v, 1) : v;
+}
+
 static double raw(const struct pigment *pg, struct vec3 q)
 {
 	if (pg->kind == PIG_GRADIENT)
@@ -46,31 +62,34 @@ static double raw(const struct pigment *pg, struct vec3 q)
 	case PAT_BOXED: return clip_density(fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z))));
 	case PAT_PLANAR: return clip_density(fabs(q.y));
 	case PAT_LEOPARD: return leopard_raw(q);
-	default: return 0;
+	case PAT_PIGMENT: /* in a normal: the grey of the pigment (without image maps) */
+		return pig_pattern(pg)->sub ? pattern_grey(mat_pigment(NULL, pig_pattern(pg)->sub, q)) : 0;
+	case PAT_AVERAGE: return 0;
+	case PAT_FUNCTION: return function_raw(pig_pattern(pg)->fn, q);
+	default: return pattern_noise_raw(pig_pattern(pg), q);
 	}
 }
 
-/* The cycloidal wave of POV-Ray: sin of a full turn. */
-static double cycloidal(double v) { return sin(v * 2 * M_PI); }
+double pattern_wave(const struct pigment *pg, double v)
+{
+	const struct pattern *pt = pig_pattern(pg);
+	if (pt->frequency != 0)
+		v = fmod(v * pt->frequency + pt->phase, 1.00001);
+	if (v < 0)
+		v -= floor(v);
+	switch (pt->wave) {
+	case WAVE_TRIANGLE: return noise_triangle(v);
+	case WAVE_SINE: return (1 + noise_cycloidal(v)) * 0.5;
+	case WAVE_SCALLOP: return fabs(noise_cycloidal(v * 0.5));
+	case WAVE_CUBIC: return v * v * (3 - 2 * v);
+	case WAVE_POLY: return pow(v, pt->exponent);
+	default: return v;
+	}
+}
 
 double pattern_value(const struct pigment *pg, struct vec3 q)
 {
-	double v = raw(pg, q);
-	if (pig_pattern(pg)->frequency != 0)
-		v = fmod(v * pig_pattern(pg)->frequency + pig_pattern(pg)->phase, 1.00001);
-	if (v < 0)
-		v -= floor(v);
-	switch (pig_pattern(pg)->wave) {
-	case WAVE_TRIANGLE: {
-		double t = v - floor(v);
-		return t < 0.5 ? 2 * t : 2 - 2 * t;
-	}
-	case WAVE_SINE: return (1 + cycloidal(v)) * 0.5;
-	case WAVE_SCALLOP: return fabs(cycloidal(v * 0.5));
-	case WAVE_CUBIC: return v * v * (3 - 2 * v);
-	case WAVE_POLY: return pow(v, pig_pattern(pg)->exponent);
-	default: return v;
-	}
+	return pattern_wave(pg, raw(pg, q));
 }
 
 /* POV-Ray's hexagon: the x-z plane tiled by hexagons of unit side, three
@@ -143,6 +162,61 @@ int pattern_block(const struct pigment *pg, struct vec3 q)
 	}
 }
 
+double pattern_grey(struct colour c) { return 0.297 * c.r + 0.589 * c.g + 0.114 * c.b; }
+
+/* A world normal into the frame of X (the transpose of its linear part). */
+static struct vec3 xf_inv_normal(const struct xform *X, struct vec3 n)
+{
+	const double (*m)[4] = X->m;
+	return v3(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z, m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
+	          m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
+}
+
+/* The unit normal n into the pattern's space: through its transform, then
+ * the transforms among its warps (turbulence leaves normals alone). */
+static struct vec3 normal_in(const struct pigment *pg, struct vec3 n)
+{
+	n = v_norm(xf_inv_normal(pg->xf ? pg->xf : &xf_ident, n));
+	const struct pattern *pt = pig_pattern(pg);
+	for (int i = 0; i < pt->nwarps; i++)
+		if (pt->warps[i].kind == WARP_XF)
+			n = xf_inv_normal(pt->warps[i].xf, n);
+	return v_norm(n);
+}
+
+/* The pattern-space normal n back to the world, the reverse of normal_in. */
+static struct vec3 normal_out(const struct pigment *pg, struct vec3 n)
+{
+	const struct pattern *pt = pig_pattern(pg);
+	n = v_norm(n);
+	for (int i = pt->nwarps - 1; i >= 0; i--)
+		if (pt->warps[i].kind == WARP_XF)
+			n = xf_normal(pt->warps[i].xf, n);
+	return v_norm(xf_normal(pg->xf ? pg->xf : &xf_ident, n));
+}
+
+/* An entry of a normal_map at pattern-space point q (none: n unchanged). */
+static struct vec3 entry_normal(const struct tnormal *e, struct vec3 q, struct vec3 n)
+{
+	return e ? pattern_perturb(e, q, n) : n;
+}
+
+/* normal_map at value v: the entries around v perturb the pattern-space
+ * normal n at q (their own transforms relative to the map's), blended. */
+static struct vec3 normal_map(const struct tnormal *t, double v, struct vec3 q, struct vec3 n)
+{
+	const struct nrm_entry *m = t->map;
+	int k = t->nmap, i = 0;
+	if (v >= m[k - 1].pos)
+		return entry_normal(m[k - 1].n, q, n);
+	while (v > m[i].pos)
+		i++;
+	if (i == 0 || v == m[i].pos)
+		return entry_normal(m[i].n, q, n);
+	double w = (v - m[i - 1].pos) / (m[i].pos - m[i - 1].pos);
+	return v_add(v_scale(entry_normal(m[i - 1].n, q, n), 1 - w), v_scale(entry_normal(m[i].n, q, n), w));
+}
+
 struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 n)
 {
 	/* POV-Ray's tetrahedron, its spacing 0.02 and its gain −5 per unit of
@@ -152,15 +226,22 @@ struct vec3 pattern_perturb(const struct tnormal *t, struct vec3 p, struct vec3 
 		{0.942809041, -0.333333333, 0}, {-0.471404521, -0.333333333, 0.816496581},
 		{-0.471404521, -0.333333333, -0.816496581}, {0, 1, 0}};
 	const double delta = 0.02;
-	const struct xform *X = t->pat.xf ? t->pat.xf : &xf_ident;
-	/* the normal into pattern space (the transpose of the linear part) */
-	const double (*m)[4] = X->m;
-	struct vec3 np = v_norm(v3(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
-	                           m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
-	                           m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z));
-	struct vec3 q = xf_inv_point(X, p);
-	double gain = -5 * t->amount;
-	for (int i = 0; i < 4; i++)
-		np = v_madd(np, corner[i], gain * pattern_value(&t->pat, v_madd(q, corner[i], delta)));
-	return v_norm(xf_normal(X, np));
+	struct vec3 np = normal_in(&t->pat, n), q = pattern_point(&t->pat, p);
+	if (t->map && t->nmap > 0 && t->pat.kind == PIG_PATTERN && pig_pattern(&t->pat)->pattern == PAT_AVERAGE) {
+		struct vec3 sum = v3(0, 0, 0); /* average: the entries' normals by weight */
+		double total = 0;
+		for (int i = 0; i < t->nmap; i++) {
+			sum = v_madd(sum, entry_normal(t->map[i].n, q, np), t->map[i].pos);
+			total += t->map[i].pos;
+		}
+		return normal_out(&t->pat, total != 0 ? v_scale(sum, 1 / total) : np);
+	}
+	if (t->map && t->nmap > 0) /* normal_map: the two entries' normals blended */
+		return normal_out(&t->pat, normal_map(t, pattern_value(&t->pat, q), q, np));
+	if (!pattern_normal_direct(t, q, &np)) {
+		double gain = -5 * t->amount;
+		for (int i = 0; i < 4; i++)
+			np = v_madd(np, corner[i], gain * pattern_value(&t->pat, v_madd(q, corner[i], delta)));
+	}
+	return normal_out(&t->pat, np);
 }

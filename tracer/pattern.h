@@ -6,9 +6,24 @@
 
 #include "scene.h"
 
-/* The value of a continuous pattern (gradient, PIG_PATTERN) at q, after
- * frequency, phase and the wave: in [0,1], for the colour_map. */
+/* The pattern-space point of world point p: the pigment's transform, then
+ * its turbulence and warps in order (tracer/noisepat.c). */
+struct vec3 pattern_point(const struct pigment *pg, struct vec3 p);
+/* The value of a continuous pattern (gradient, PIG_PATTERN) at the
+ * pattern-space point q, after frequency, phase and the wave: in [0,1],
+ * for the colour_map. */
 double pattern_value(const struct pigment *pg, struct vec3 q);
+/* Frequency, phase and the wave applied to a raw value v. */
+double pattern_wave(const struct pigment *pg, double v);
+/* The raw value of a noise pattern (bozo … spiral2) at q (tracer/noisepat.c). */
+double pattern_noise_raw(const struct pattern *pt, struct vec3 q);
+/* For the patterns POV-Ray perturbs normals with directly (bumps, dents,
+ * ripples, waves, wrinkles, quilted): adds the perturbation at
+ * pattern-space point q to the pattern-space normal *n; false for the
+ * others, which tilt by their slope (tracer/noisepat.c). */
+bool pattern_normal_direct(const struct tnormal *t, struct vec3 q, struct vec3 *n);
+/* POV-Ray's greyscale of a colour (pigment_pattern). */
+double pattern_grey(struct colour c);
 /* Which colour (0, 1, 2) of a block pattern (checker, hexagon, brick) q is in. */
 int pattern_block(const struct pigment *pg, struct vec3 q);
 /* The unit normal n at world point p perturbed as POV-Ray's normal { }

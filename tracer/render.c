@@ -20,6 +20,7 @@
 #include "light/lightpass.h"
 #include "material.h"
 #include "sampler.h"
+#include "shape.h"
 
 #define TILE 16 /* tile edge in pixels */
 #define NPLANES 27
@@ -119,6 +120,26 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
  * shooting as many rays as the three channel passes; it deposits points
  * (a shaft's corners would part ways). With a tolerance each pass is
  * progressive (lp_run). Returns the number of results. */
+/* POV-Ray's photons { spacing S }: POV-Ray shoots a target's photons S
+ * apart where they reach it, about pi r^2 / (S s)^2 of them for a target
+ * of bounding radius r and spacing multiplier s; the light pass shoots as
+ * many rays per light (at least 10^4, at most 10^7). 0 without spacing. */
+static long photon_rays(const struct scene *s)
+{
+	double S = s->gs.illum.spacing, n = 0;
+	if (!(S > 0))
+		return 0;
+	for (int i = 0; i < s->nobjects; i++) {
+		const struct object *o = s->objects[i];
+		if (!o->has_photons || !o->photons.target || !shape_bounded(o))
+			continue;
+		struct bbox bb = shape_bounds(o);
+		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)), sp = S * o->photons.spacing;
+		n += M_PI * r * r / (sp * sp);
+	}
+	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 0;
+}
+
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
                       const struct render_opts *o, int threads, struct progress *prog, struct lp_result *out[3],
                       struct render_stats *st, struct diag *dg)
@@ -129,9 +150,11 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 	if (s->legacy_lights && !s->gs.illum.given && o->rays == 0)
 		return 0;
 	struct lp_opts lo = {
-		/* --rays, else illumination { rays }, else POV-Ray's photons { count }, else 1e6 */
+		/* --rays, else illumination { rays }, else POV-Ray's photons { count },
+		 * else its photons { spacing }, else 1e6 */
 		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays
-		      : s->gs.illum.count > 0 ? s->gs.illum.count : 1000000,
+		      : s->gs.illum.count > 0 ? s->gs.illum.count
+		      : photon_rays(s) > 0 ? photon_rays(s) : 1000000,
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1, .progress = prog,
@@ -186,7 +209,11 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 			st->e_cut += ls.cut[k];
 			st->e_held += ls.deposited[k];
 		}
-		if (ls.nomap && c == 0) {
+		struct uv_range ur;
+		if (ls.nomap && c == 0 && !shape_uv_range(ls.nomap, &ur)) {
+			diag_warning(dg, ls.nomap->loc, "an %s has no (u,v) map: the caustic on it is not drawn",
+			             scene_object_kind_name(ls.nomap->kind));
+		} else if (ls.nomap && c == 0) {
 			diag_warning(dg, ls.nomap->loc, "this %s's illumination map would have too many nodes; "
 			             "it gets no caustic (give illum_map a coarser cell or resolution)",
 			             scene_object_kind_name(ls.nomap->kind));

@@ -17,6 +17,8 @@ void scene_init(struct scene *s)
 	s->gs.max_trace_level = 5;
 	s->gs.adc_bailout = 1.0 / 255;
 	s->gs.ambient_light = c_rgb(1, 1, 1);
+	s->gs.noise_generator = 2;
+	s->gs.number_of_waves = 10;
 	s->gs.illum.method = ILLUM_SHAFT; /* light shafts: smooth caustics, no point noise */
 	s->gs.illum.passes = PASSES_RGB;
 }
@@ -29,6 +31,7 @@ static const struct finish default_finish = {
 
 static const struct pattern default_pattern = {
 	.axis = {0, 1, 0}, .frequency = 1, .exponent = 1, .brick_size = {8, 3, 4.5}, .mortar = 0.5,
+	.agate_turb = 1, .metric = 2, .form = {-1, 1, 0}, .control0 = 1, .control1 = 1,
 };
 
 const struct pattern *pig_pattern(const struct pigment *p)
@@ -151,10 +154,64 @@ static void dump_xform(FILE *o, const struct xform *x, int d)
 	fputc('\n', o);
 }
 
+static void dump_pigment(FILE *o, const struct pigment *p, int d);
+
+/* A pattern's warps (in the order they act), noise settings and pigments. */
+static void dump_pattern_extras(FILE *o, const struct pigment *p, int d)
+{
+	const struct pattern *pt = pig_pattern(p);
+	for (int i = 0; i < pt->nwarps; i++) {
+		const struct warp *w = &pt->warps[i];
+		indent(o, d);
+		switch (w->kind) {
+		case WARP_TURB:
+			fprintf(o, "%s ", w->classic ? "turbulence" : "warp turbulence"), pv(o, w->turb);
+			fprintf(o, " octaves %d omega %.6g lambda %.6g\n", w->octaves, w->omega, w->lambda);
+			break;
+		case WARP_REPEAT:
+			fprintf(o, "warp repeat axis %d width %.6g offset ", w->axis, w->width), pv(o, w->offset);
+			fputs(" flip ", o), pv(o, w->flip), fputc('\n', o);
+			break;
+		case WARP_BLACK_HOLE:
+			fputs("warp black_hole ", o), pv(o, w->center);
+			fprintf(o, " radius %.6g falloff %.6g strength %.6g%s\n", w->radius, w->falloff, w->strength,
+			        w->inverse ? " inverse" : "");
+			break;
+		case WARP_XF:
+			fputs("warp transform\n", o);
+			dump_xform(o, w->xf, d + 1);
+			break;
+		}
+	}
+	if (p->kind == PIG_PATTERN && pt->pattern >= PAT_BOZO && pt->pattern < PAT_PIGMENT) {
+		indent(o, d);
+		fprintf(o, "noise_generator %d", pt->noise_gen);
+		if (pt->pattern == PAT_CRACKLE)
+			fprintf(o, " metric %.6g offset %.6g solid %d form ", pt->metric, pt->offset, pt->solid), pv(o, pt->form);
+		if (pt->pattern == PAT_AGATE)
+			fprintf(o, " agate_turb %.6g", pt->agate_turb);
+		if (pt->pattern == PAT_QUILTED)
+			fprintf(o, " control0 %.6g control1 %.6g", pt->control0, pt->control1);
+		if (pt->pattern == PAT_SPIRAL1 || pt->pattern == PAT_SPIRAL2)
+			fprintf(o, " arms %d", pt->arms);
+		fputc('\n', o);
+	}
+	if (pt->sub)
+		dump_pigment(o, pt->sub, d);
+	for (int i = 0; i < pt->npmap; i++) {
+		indent(o, d);
+		fprintf(o, "[%.6g\n", pt->pmap[i].pos);
+		dump_pigment(o, pt->pmap[i].pig, d + 1);
+	}
+}
+
 static void dump_pigment(FILE *o, const struct pigment *p, int d)
 {
 	static const char *const kinds[] = {"solid", "checker", "gradient", "image_map", "pattern", "hexagon", "brick"};
-	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard"};
+	static const char *const pats[] = {"radial", "onion", "spherical", "cylindrical", "boxed", "planar", "leopard",
+		"bozo", "spotted", "bumps", "dents", "granite", "marble", "wood", "agate", "wrinkles", "ripples", "waves",
+		"crackle", "quilted", "spiral1", "spiral2", "cells", "mandel", "pigment_pattern", "average", "function"};
+	_Static_assert(sizeof pats / sizeof *pats == PAT_KIND_COUNT, "a name for every pattern kind");
 	static const char *const waves[] = {"ramp", "triangle", "sine", "scallop", "cubic", "poly"};
 	indent(o, d);
 	fprintf(o, "pigment %s ", kinds[p->kind]);
@@ -181,6 +238,20 @@ static void dump_pigment(FILE *o, const struct pigment *p, int d)
 		fputs("]\n", o);
 	}
 	dump_xform(o, p->xf ? p->xf : &xf_ident, d + 1);
+	dump_pattern_extras(o, p, d + 1);
+}
+
+static void dump_normal(FILE *o, const struct tnormal *t, int d)
+{
+	indent(o, d);
+	fprintf(o, "normal amount %.6g\n", t->amount);
+	dump_pigment(o, &t->pat, d + 1);
+	for (int i = 0; i < t->nmap; i++) {
+		indent(o, d + 1);
+		fprintf(o, "[%.6g\n", t->map[i].pos);
+		if (t->map[i].n)
+			dump_normal(o, t->map[i].n, d + 2);
+	}
 }
 
 static void dump_finish(FILE *o, const struct finish *f, int d)
@@ -232,10 +303,15 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
 		dump_finish(o, ob->tex->finish, d + 2);
-		if (ob->tex->normal) {
+		if (ob->tex->normal)
+			dump_normal(o, ob->tex->normal, d + 2);
+		for (int i = 0; i < ob->tex->nmap; i++) {
 			indent(o, d + 2);
-			fprintf(o, "normal amount %.6g\n", ob->tex->normal->amount);
-			dump_pigment(o, &ob->tex->normal->pat, d + 3);
+			fprintf(o, "[%.6g texture\n", ob->tex->map[i].pos);
+			dump_pigment(o, &ob->tex->map[i].tex->pigment, d + 3);
+			dump_finish(o, ob->tex->map[i].tex->finish, d + 3);
+			if (ob->tex->map[i].tex->normal)
+				dump_normal(o, ob->tex->map[i].tex->normal, d + 3);
 		}
 	}
 	if (ob->interior) {
@@ -320,7 +396,10 @@ void scene_dump(FILE *o, const struct scene *s)
 		fputc(' ', o);
 		pc(o, f->c);
 	}
-	fprintf(o, "\ncamera %s @%d:%d\n  location ", c->kind == CAM_ORTHOGRAPHIC ? "orthographic" : "perspective",
+	static const char *const kinds[] = {"perspective", "orthographic", "fisheye", "ultra_wide_angle", "panoramic",
+	                                    "cylinder 1", "cylinder 2", "cylinder 3", "cylinder 4", "spherical",
+	                                    "omnimax"};
+	fprintf(o, "\ncamera %s @%d:%d\n  location ", kinds[c->kind],
 	        c->loc.line, c->loc.col);
 	pv(o, c->location);
 	fputs(" direction ", o);

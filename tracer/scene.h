@@ -28,7 +28,41 @@ enum pigment_kind {
 /* POV-Ray's continuous patterns (tracer/pattern.c). */
 enum pattern_kind {
 	PAT_RADIAL, PAT_ONION, PAT_SPHERICAL, PAT_CYLINDRICAL, PAT_BOXED, PAT_PLANAR,
-	PAT_LEOPARD, PAT_KIND_COUNT
+	PAT_LEOPARD,
+	/* the noise patterns (tracer/noise.h) and their kin */
+	PAT_BOZO, PAT_SPOTTED, PAT_BUMPS, PAT_DENTS, PAT_GRANITE, PAT_MARBLE, PAT_WOOD,
+	PAT_AGATE, PAT_WRINKLES, PAT_RIPPLES, PAT_WAVES, PAT_CRACKLE, PAT_QUILTED,
+	PAT_SPIRAL1, PAT_SPIRAL2, PAT_CELLS, PAT_MANDEL,
+	PAT_PIGMENT,  /* pigment_pattern: the grey of a pigment */
+	PAT_AVERAGE,  /* average: the weighted mean of the map's entries */
+	PAT_FUNCTION, /* function { … }: a user-defined function (tracer/fn.h) */
+	PAT_KIND_COUNT
+};
+
+/* A warp { } or a pattern's own turbulence, in the order they act. */
+enum warp_kind { WARP_TURB, WARP_REPEAT, WARP_BLACK_HOLE, WARP_XF };
+
+struct warp {
+	enum warp_kind kind;
+	bool classic;             /* WARP_TURB: the pattern's own turbulence keyword */
+	struct vec3 turb;         /* WARP_TURB: displacement per axis */
+	int octaves;              /* WARP_TURB: default 6 */
+	double omega, lambda;     /* WARP_TURB: defaults 0.5, 2 */
+	int axis;                 /* WARP_REPEAT: 0 x, 1 y, 2 z */
+	double width;             /* WARP_REPEAT: the repeat distance */
+	struct vec3 offset, flip; /* WARP_REPEAT: per repeat; flip factors (1 or -1) */
+	struct vec3 center;       /* WARP_BLACK_HOLE */
+	double radius, strength, falloff; /* WARP_BLACK_HOLE: falloff default 2 */
+	bool inverse;             /* WARP_BLACK_HOLE: pushes instead of pulling */
+	const struct xform *xf;   /* WARP_XF: a transform written before later warps */
+};
+
+struct pigment;
+
+/* One entry of a pigment_map (or average): the pigment at position pos. */
+struct pig_entry {
+	double pos;                  /* position in the pattern (weight for average) */
+	const struct pigment *pig;   /* the pigment there */
 };
 
 /* The wave a pattern's value goes through before the colour_map. */
@@ -58,6 +92,21 @@ struct pattern {
 	int interpolate;          /* image_map interpolate (0 none, 2 bilinear) */
 	bool once;                /* image_map once */
 	struct colour more[2];    /* checker's and brick's second colour, hexagon's second and third */
+	int noise_gen;            /* noise_generator 1-3 (0: global_settings') */
+	const struct warp *warps; /* turbulence and warp { }, in the order they act */
+	int nwarps;
+	double agate_turb;        /* agate: default 1 */
+	double metric, offset;    /* crackle: defaults 2, 0 */
+	struct vec3 form;         /* crackle: default <-1, 1, 0> */
+	bool solid;               /* crackle solid */
+	double control0, control1; /* quilted: defaults 1, 1 */
+	int arms;                 /* spiral1, spiral2: number of arms; mandel: iterations */
+	int exponent_i;           /* mandel: exponent 2 (default), 3 or 4 */
+	int nwaves;               /* ripples, waves: global_settings' number_of_waves (0: 10) */
+	const struct pigment *sub; /* pigment_pattern's pigment */
+	const struct pig_entry *pmap; /* pigment_map (or the block patterns' pigments) */
+	int npmap;
+	const struct fn *fn;      /* PAT_FUNCTION: the function of x, y, z */
 };
 
 struct pigment {
@@ -101,19 +150,45 @@ struct interior {
 
 /* normal { pattern [amount] … }: POV-Ray's perturbation of the shading
  * normal by the slope of a pattern (tracer/pattern.h). */
+struct tnormal;
+
+/* One entry of a normal_map: the normal at position pos. */
+struct nrm_entry {
+	double pos;               /* position in the pattern, ascending */
+	const struct tnormal *n;  /* the normal there */
+};
+
 struct tnormal {
 	struct pigment pat; /* the pattern, its wave and its transform */
 	double amount;      /* bump size (POV default 0.5) */
+	const struct nrm_entry *map; /* normal_map (NULL: none) */
+	int nmap;
+};
+
+struct texture;
+
+/* One entry of a texture_map: the texture at position pos. */
+struct tex_entry {
+	double pos;                 /* position in the pattern, ascending */
+	const struct texture *tex;  /* the texture there */
 };
 
 struct texture {
-	struct pigment pigment;
+	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
 	const struct tnormal *normal; /* NULL: none */
 	const struct finish *finish; /* shared: never NULL, never written through */
 	struct srcloc loc; /* where the texture was written */
+	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
+	int nmap;
+	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
 };
 
 /* ---- objects ------------------------------------------------------------ */
+
+struct extrusion;
+struct flat_outline;
+struct revolution;
+struct sor_shape;
 
 /* The kinds, from objects.def: every primitive, then every CSG kind. */
 enum object_kind {
@@ -152,6 +227,74 @@ struct photon_spec {
 	bool pass_through; /* pass_through */
 };
 
+/* A polynomial surface F(x,y,z) = Σ a·xⁱyʲzᵏ = 0 (poly, quartic, cubic,
+ * quadric), inside where F < 0; only its non-zero terms. */
+struct poly_term {
+	double a;      /* coefficient */
+	int e[3];      /* exponents of x, y, z */
+};
+struct polynomial {
+	int order;     /* total degree, 2..7 */
+	int nterms;
+	struct poly_term *t;
+};
+
+/* A blob: components adding s·(1 − d²/r²)² within r of a centre (sphere) or
+ * a segment (cylinder), the surface where the sum is threshold. */
+struct blob_comp {
+	bool cylinder;            /* else a sphere */
+	struct vec3 a, b;         /* centre; or the segment's ends */
+	double r, s;              /* radius, strength (may be negative) */
+	const struct xform *xf;   /* component frame → blob frame; NULL: identity */
+};
+struct blob {
+	double threshold;
+	int n;
+	struct blob_comp *c;
+	struct vec3 centre;       /* of the components' bounds: the (u,v) centre */
+};
+
+/* A triangle mesh (mesh, mesh2, smooth_triangle): triangles index the
+ * vertex and normal arrays; a bounding volume hierarchy over them is built
+ * by mesh_finish (tracer/shape.h). */
+struct mesh_tri {
+	int v[3];                 /* vertex indices */
+	int n[3];                 /* normal indices, or -1 (flat) */
+};
+struct mesh_node {
+	struct bbox b;
+	int first, count;         /* leaf: triangles order[first … first+count−1]; count 0: inner,
+	                           * children at first and first+1 */
+};
+struct mesh {
+	int nv, nn, nt;
+	struct vec3 *vert, *norm;
+	struct mesh_tri *tri;
+	struct mesh_node *node;   /* node[0] is the root */
+	int nnode;
+	int *order;               /* triangle indices in leaf order */
+	int side;                 /* the (u,v) atlas is side × side cells */
+	bool has_inside;          /* inside_vector given: the mesh is a solid */
+	struct vec3 inside_dir;   /* inside_vector */
+	bool clipped;             /* height_field water_level: no surface below clip_y */
+	double clip_y;
+	int hf_w, hf_h;           /* height_field: the grid (0: not one) */
+	bool hf_smooth;           /* height_field smooth: vertex normals at the end */
+};
+
+/* isosurface { function { … } contained_by { box | sphere } … }: the
+ * surface f = threshold inside the container; inside is f < threshold
+ * (tracer/shapes/isosurface.c). Kept apart: objects stay small. */
+struct isosurface {
+	const struct fn *fn;       /* f(x, y, z) in the object frame */
+	bool sphere;               /* container: sphere (c, r) or box (lo, hi) */
+	struct vec3 lo, hi, c;
+	double r;
+	double threshold;          /* default 0 */
+	double max_gradient;       /* Lipschitz bound of f (default 1.1) */
+	double accuracy;           /* root tolerance, object units (default 0.001) */
+};
+
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
@@ -164,6 +307,15 @@ struct object {
 		struct { struct vec3 a, b; double ra, rb; } cone;  /* radius ra at a, rb at b */
 		struct { double major, minor; } torus;             /* about y, centred at origin */
 		struct { struct vec3 p[3]; } triangle;
+		struct { const struct polynomial *p; } poly;
+		struct { double e, n; } superellipsoid;            /* east-west, north-south exponents */
+		struct { const struct blob *b; } blob;
+		struct { const struct mesh *m; } mesh;
+		struct { const struct extrusion *e; } prism, text; /* tracer/shapes/outline.h */
+		struct { const struct flat_outline *f; } polygon;
+		struct { const struct revolution *r; } lathe;
+		struct { const struct sor_shape *s; } sor;
+		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
 	} g;
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
@@ -202,9 +354,14 @@ struct light {
 	bool shadowless;            /* casts no shadows, lights everything */
 	bool photons_refraction;    /* photons { refraction on } (default on) */
 	bool photons_reflection;    /* photons { reflection on } (default on) */
+	struct object *looks_like;  /* looks_like: drawn at the light, casting no shadow (NULL: none) */
 };
 
-enum camera_kind { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
+/* POV-Ray's camera types (tracer/camera.c has their projections). */
+enum camera_kind {
+	CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC, CAM_FISHEYE, CAM_ULTRA_WIDE, CAM_PANORAMIC,
+	CAM_CYL1, CAM_CYL2, CAM_CYL3, CAM_CYL4, CAM_SPHERICAL, CAM_OMNIMAX
+};
 
 /* The camera after POV-Ray's rules were applied: location, and the
  * direction/up/right frame that spans the image (right's length is the image
@@ -213,7 +370,9 @@ struct camera {
 	enum camera_kind kind;
 	struct srcloc loc;
 	struct vec3 location, direction, up, right, sky, look_at;
-	double angle;          /* horizontal field of view in degrees (0: from vectors) */
+	double angle;          /* horizontal field of view in degrees (0: from vectors;
+	                        * POV-Ray's 90 for fisheye, ultra_wide_angle, cylinder) */
+	double v_angle;        /* spherical: vertical field of view (0: half of angle) */
 	double aperture;       /* depth of field (0: pinhole) */
 	struct vec3 focal_point;
 	int blur_samples;
@@ -242,6 +401,8 @@ struct global_settings {
 	int max_trace_level;       /* default 5 */
 	double adc_bailout;        /* default 1/255 */
 	struct colour ambient_light; /* default 1 */
+	int noise_generator;       /* default 2 (POV-Ray's range-corrected noise) */
+	int number_of_waves;       /* ripples and waves: sources (default 10) */
 	struct illum_settings illum;
 };
 

@@ -121,7 +121,7 @@ bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
 {
 	const struct prim_ops *ps = ops(o);
 	struct vec3 lp, lu, lv;
-	if (!ps || !ps->uv_point(o, u, v, &lp, &lu, &lv))
+	if (!ps || !ps->uv_point || !ps->uv_point(o, u, v, &lp, &lu, &lv))
 		return false;
 	if (p)
 		*p = xf_point(obj_xf(o), lp);
@@ -135,7 +135,7 @@ bool shape_uv_point(const struct object *o, double u, double v, struct vec3 *p,
 bool shape_uv_range(const struct object *o, struct uv_range *out)
 {
 	const struct prim_ops *p = ops(o);
-	if (!p)
+	if (!p || !p->uv_range) /* a surface without a parametrisation (isosurface) */
 		return false;
 	*out = p->uv_range(o);
 	return true;
@@ -144,7 +144,7 @@ bool shape_uv_range(const struct object *o, struct uv_range *out)
 double shape_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	const struct prim_ops *p = ops(o);
-	if (!p || !(u1 > u0) || !(v1 > v0))
+	if (!p || !p->cell_area || !(u1 > u0) || !(v1 > v0))
 		return 0;
 	return p->cell_area(o, u0, u1, v0, v1);
 }
@@ -241,4 +241,62 @@ double shape_integrate_area(const struct object *o, double u0, double u1, double
 	if (!(u1 > u0) || !(v1 > v0))
 		return 0;
 	return adapt(o, u0, u1, v0, v1, 0);
+}
+
+/* ==== radial parametrisation of implicit surfaces ======================== */
+
+/* The direction of (u,v) and its partials. */
+static struct vec3 radial_dir(double u, double v, struct vec3 *wu, struct vec3 *wv)
+{
+	double ph = 2 * M_PI * u, th = M_PI * v, sp = sin(ph), cp = cos(ph), st = sin(th), ct = cos(th);
+	*wu = v3(-2 * M_PI * st * sp, 0, -2 * M_PI * st * cp);
+	*wv = v3(M_PI * ct * cp, M_PI * st, -M_PI * ct * sp);
+	return v3(st * cp, -ct, -st * sp);
+}
+
+/* The partials of T = c + ρ(u,v)·w(u,v) on the surface with normal n:
+ * ∂ρ/∂u = −ρ (n·∂w/∂u)/(n·w) keeps T on the surface. */
+static bool radial_partials(struct vec3 n, double rho, struct vec3 w, struct vec3 wu,
+                            struct vec3 wv, struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	double nw = v_dot(n, w);
+	if (!(fabs(nw) > 1e-9 * v_len(n)))
+		return false;
+	struct vec3 tu = v_scale(wu, rho), tv = v_scale(wv, rho);
+	if (dpdu)
+		*dpdu = v_madd(tu, w, -v_dot(n, tu) / nw);
+	if (dpdv)
+		*dpdv = v_madd(tv, w, -v_dot(n, tv) / nw);
+	return true;
+}
+
+void prim_radial_hit(struct vec3 c, struct local_hit *lh)
+{
+	struct vec3 q = v_sub(lh->p, c), wu, wv;
+	double rho = v_len(q);
+	lh->u = prim_turns(-q.z, q.x);
+	lh->v = atan2(sqrt(q.x * q.x + q.z * q.z), -q.y) / M_PI;
+	struct vec3 w = radial_dir(lh->u, lh->v, &wu, &wv);
+	if (!(rho > 0) || !radial_partials(lh->n, rho, w, wu, wv, &lh->dpdu, &lh->dpdv)) {
+		/* at c itself, or seen edge-on from c: the sphere's partials */
+		lh->dpdu = v_scale(wu, rho);
+		lh->dpdv = v_scale(wv, rho);
+	}
+}
+
+bool prim_radial_point(const struct object *o, struct vec3 c,
+                       bool (*intersect)(const struct object *, const struct ray *, double,
+                                         double, struct local_hit *),
+                       double u, double v, struct vec3 *p, struct vec3 *dpdu, struct vec3 *dpdv)
+{
+	struct vec3 wu, wv, w = radial_dir(u, v, &wu, &wv);
+	struct ray r = {c, w};
+	struct local_hit lh;
+	if (!intersect(o, &r, 0, INFINITY, &lh))
+		return false;
+	if (!radial_partials(lh.n, lh.t, w, wu, wv, dpdu, dpdv))
+		return false;
+	if (p)
+		*p = lh.p;
+	return true;
 }

@@ -76,6 +76,12 @@ double shape_cell_area(const struct object *o, double u0, double u1, double v0, 
 /* Total world surface area (INFINITY for the plane, 0 for CSG nodes). */
 double shape_area(const struct object *o);
 
+/* ---- meshes (shapes/mesh.c) ---------------------------------------------- */
+
+/* Builds m's hierarchy in the arena and its (u,v) atlas; false when a
+ * triangle's indices are out of range (*bad: which) or it has no triangle. */
+bool mesh_finish(struct mesh *m, struct arena *a, int *bad);
+
 /* ---- CSG (csg.c): called by the shape_ entry points for CSG kinds -------- */
 
 bool csg_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,

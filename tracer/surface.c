@@ -63,7 +63,7 @@ bool surf_straight(const struct scene *s, const struct object *o)
 void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
                   struct surf_in *si)
 {
-	const struct texture *t = mat_texture(h->obj);
+	const struct texture *t = mat_texture_leaf(mc, mat_texture(h->obj), h->p);
 	si->h = h;
 	si->f = t->finish;
 	si->pc = mat_pigment(mc, &t->pigment, h->p);

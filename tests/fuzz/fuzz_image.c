@@ -67,7 +67,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	if (size >= 24 && memcmp(data, "\x89PNG", 4) == 0 && be32(data + 16) * be32(data + 20) > ((uint64_t)1 << 24))
 		return 0;
 	const char *path = fuzz_file("fuzz.img", data, size);
-	struct img_opts opts = {NULL, NULL, 1}; /* raw: the readers, not OCIO */
+	struct img_opts opts = {NULL, NULL, 1, 0}; /* raw: the readers, not OCIO */
 	struct img im;
 	struct diag quiet;
 	diag_init(&quiet, NULL);

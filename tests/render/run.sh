@@ -106,6 +106,20 @@ rm -f "$tmp/g.maps"
 [ $? -eq 73 ] && [ ! -e "$tmp/x.exr" ]
 check "--save-maps into a missing directory: exit 73" $?
 
+# ---- outline primitives: pixel coverage against exact areas ----
+# outlines.scn shows each shape self-lit from straight above in a 4×4
+# orthographic view; at 160×160 the mean of R is its area / 16, to within
+# the pixels its curved edges cut (at most 1/2 of a pixel's 1/25600 each).
+for c in "1 0.1875 0 prism-ring" "2 0.19634954 0.0005 lathe-disc" "3 0.1875 0 polygon-ring" \
+	"4 0.19634954 0.0005 sor-disc" "5 0.25 0 conic-prism-top"; do
+	set -- $c
+	"$ARVO" -q --width 160 --height 160 -D Shape=$1 -o "$tmp/cov.exr" "$T/outlines.scn" > "$tmp/log" 2>&1
+	got=$(avg "$tmp/cov.exr")
+	echo "mean $got, expected $2" >> "$tmp/log"
+	awk -v a="$got" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= t + 1e-6) }'
+	check "coverage of a $4 (shape $1) is its exact area: $2 of the view" $?
+done
+
 # ---- the OCIO path ----
 cfg=stdlib-scenes/ocio/config.ocio
 oiiotool --pattern constant:color=0.18,0.18,0.18 4x4 3 -d float -o "$tmp/in.exr" > /dev/null 2>&1
@@ -172,4 +186,26 @@ fi
 	awk '/Stats Min:/ { lo = $3 } /Stats Max:/ { hi = $3 } /Stats Avg:/ { m = $3 }
 	     END { printf "caustic min %s max %s mean %s\n", lo, hi, m; exit !(m > 3 && lo > 0.8 * m && hi < 1.25 * m) }' "$tmp/st" >> "$tmp/log"
 check "the caustic disc of one of two lenses is even: no seam between the light pass's aims" $?
+# ---- POV-Ray's lights (no fall-off) and the light pass ----
+# Light through a pane (centre 9.45 below the light) lands on the floor 10
+# below it: under POV-Ray's lights the light pass gives its target I·d²,
+# so the floor under the pane gets (9.45/10)² = 0.893 of the direct light
+# the bare floor gets (without the gain: 0.009).
+"$ARVO" -q --width 20 --height 20 -o "$tmp/lc1.exr" "$T/legacy_caustic.scn" > "$tmp/log" 2>&1 &&
+	"$ARVO" -q --width 20 --height 20 -D Pane=0 -o "$tmp/lc0.exr" "$T/legacy_caustic.scn" >> "$tmp/log" 2>&1 &&
+	a=$(avg "$tmp/lc1.exr") && b=$(avg "$tmp/lc0.exr") &&
+	echo "under the pane $a, bare floor $b" >> "$tmp/log" &&
+	awk -v a="$a" -v b="$b" 'BEGIN { r = a / b; want = (9.45 / 10) ^ 2; exit !(r > 0.97 * want && r < 1.03 * want) }'
+check "legacy lights: the caustic under a pane matches the direct light, scaled by (d_pane/d_floor)^2 within 3 %" $?
+# photons { spacing 0.01 } on a unit glass sphere: pi*3/0.01^2 = 94248 rays
+"$ARVO" --stats --method point --width 8 --height 8 -o "$tmp/ps.exr" "$T/photon_spacing.scn" > "$tmp/st" 2>&1
+awk '/light pass .*light rays/ { r = $6; sub(/^\(/, "", r) } END { print "light rays " r; exit !(r > 0.99 * 94248 && r < 1.01 * 94248) }' "$tmp/st" > "$tmp/log"
+check "photons { spacing 0.01 } on a unit sphere shoots pi*3/spacing^2 light rays, within 1 %" $?
+# layered textures and a declared sky_sphere: left half (0.5, 0, 0.5), right half the sky (0, 1, 0)
+"$ARVO" -q --width 4 --height 4 -o "$tmp/ly.exr" "$T/layered.scn" > "$tmp/log" 2>&1 &&
+	oiiotool "$tmp/ly.exr" --ch R,G,B --cut 2x4+0+0 --printstats 2>> "$tmp/log" | grep "Stats Avg" > "$tmp/l" &&
+	oiiotool "$tmp/ly.exr" --ch R,G,B --cut 2x4+2+0 --printstats 2>> "$tmp/log" | grep "Stats Avg" >> "$tmp/l" &&
+	cat "$tmp/l" >> "$tmp/log" &&
+	awk 'NR == 1 { ok = $3 == 0.5 && $4 == 0 && $5 == 0.5 } NR == 2 { ok = ok && $3 == 0 && $4 == 1 && $5 == 0 } END { exit !ok }' "$tmp/l"
+check "a layered texture composites its layers through transmit; a declared sky_sphere is used by name" $?
 echo "1..$n"

@@ -94,7 +94,7 @@ static void t_blocks(void)
  * slope: gradient x with bump size 0.75 on a floor gives (−0.1, 1, 0). */
 static void t_perturb(void)
 {
-	struct tnormal t = {scene_default_texture().pigment, 0.75};
+	struct tnormal t = {.pat = scene_default_texture().pigment, .amount = 0.75};
 	t.pat.kind = PIG_GRADIENT;
 	own(&t.pat)->axis = v3(1, 0, 0);
 	struct vec3 n = pattern_perturb(&t, v3(0.4, 0, 0.3), v3(0, 1, 0));

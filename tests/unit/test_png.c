@@ -190,7 +190,7 @@ static void t_load_png_rgb(void)
 		CHECK_NEAR(im.px[5], 0.5775804, 1e-4);
 	}
 	img_free(&im);
-	struct img_opts raw = {NULL, NULL, 1};
+	struct img_opts raw = {NULL, NULL, 1, 0};
 	CHECK(MSG(img_load(in_dir("tex.png"), &raw, &im, TDG, srcloc_none(), NULL)) == NULL);
 	if (im.px)
 		CHECK_NEAR(im.px[0], 128.0 / 255.0, 1e-6);
@@ -282,7 +282,7 @@ static void t_load_errors(void)
 	CHECK(err != NULL && im.px == NULL);
 	if (err)
 		printf("# expected error: %s\n", err);
-	struct img_opts o = {NULL, "No Such Space", 0};
+	struct img_opts o = {NULL, "No Such Space", 0, 0};
 	CHECK(MSG(img_load(in_dir("tex.png"), &o, &im, TDG, srcloc_none(), NULL)) != NULL && im.px == NULL);
 	CHECK(MSG(img_load(in_dir("old.png"), NULL, &im, TDG, srcloc_none(), NULL)) != NULL);
 }

@@ -6,7 +6,10 @@
  *   - sphere_inside: the radiance is ρ·I/(π·r²) everywhere;
  *   - mirror_a/b: a mirror shows exactly the reflected scene;
  *   - slab_a/b: a clear glass slab shifts the image by t·(tanθ - tanθt);
- *   - flags: no_image objects still cast shadows, no_shadow ones do not. */
+ *   - flags: no_image objects still cast shadows, no_shadow ones do not;
+ *   - fn_pattern: a function pattern shows the function's value;
+ *   - iso_sphere_a/b: the isosurface of x² + y² + z² = 1 renders as the
+ *     sphere does, its caustic included. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -187,6 +190,54 @@ static void t_flags(void)
 	fb_free(fb);
 }
 
+/* pigment { function { … } } on a self-lit plane: each pixel is the
+ * function at the pixel's centre, 0.4·(x+1) + 0.15·y². */
+static void t_function_pattern(void)
+{
+	const int w = 16, h = 12;
+	struct framebuffer *fb = render_file("fn_pattern", w, h, 1, 2);
+	CHECK(fb != NULL);
+	if (!fb)
+		return;
+	double *want = malloc(sizeof *want * (size_t)(w * h));
+	for (int y = 0; y < h; y++)
+		for (int x = 0; x < w; x++) {
+			double X = (x + 0.5) / w * 2 - 1, Y = 1 - (y + 0.5) / h * 2;
+			want[y * w + x] = 0.4 * (X + 1) + 0.15 * Y * Y;
+		}
+	float *p = fb_find(fb, "G");
+	CHECK(p && worst(p, want, w * h) < 1e-4);
+	free(want);
+	fb_free(fb);
+}
+
+/* The unit sphere as a sphere and as an isosurface, lit directly and by
+ * the caustic of a glass sphere above it: the same image and caustic. */
+static void t_isosurface_sphere(void)
+{
+	const int w = 48, h = 36;
+	struct framebuffer *a = render_file("iso_sphere_a", w, h, 1, 2), *b = render_file("iso_sphere_b", w, h, 1, 2);
+	CHECK(a && b);
+	if (a && b) {
+		const char *names[4] = {"R", "G", "B", "caustic.R"};
+		double peak = 0;
+		for (int c = 0; c < 4; c++) {
+			const float *pa = fb_find(a, names[c]), *pb = fb_find(b, names[c]);
+			CHECK(pa && pb);
+			for (int i = 0; pa && pb && i < w * h; i++) {
+				CHECK_NEAR(pb[i], pa[i], 1e-4 * (1 + fabs(pa[i])));
+				if (c == 3)
+					peak = fmax(peak, pa[i]);
+			}
+		}
+		CHECK(peak > 1); /* there is a caustic to compare */
+	}
+	if (a)
+		fb_free(a);
+	if (b)
+		fb_free(b);
+}
+
 int main(void)
 {
 	RUN(t_plane_direct);
@@ -194,5 +245,7 @@ int main(void)
 	RUN(t_mirror);
 	RUN(t_slab);
 	RUN(t_flags);
+	RUN(t_function_pattern);
+	RUN(t_isosurface_sphere);
 	return test_done();
 }

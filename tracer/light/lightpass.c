@@ -53,6 +53,8 @@ struct target {
 	struct vec3 origin;/* parallel: the disc's centre, upstream of the scene */
 	double radius;     /* parallel: the disc's radius */
 	long side;         /* rays per side of the stratified grid (side² rays) */
+	double gain;       /* the light's intensity factor for this target: 1, or
+	                    * under legacy lights d²·fade(d) (docs/design.md §3) */
 };
 
 /* One work item: rays [first, first+count) of target k of light l. */
@@ -679,7 +681,7 @@ static void run_shafts(struct worker *w, const struct item *it)
 	struct shaft_ctx S = {l, J->targets[it->light], it->target, {0, 0, 0}, 0};
 	const struct target *t = &S.tg[S.k];
 	long n = t->side, side = t->side;
-	double scale = t->omega / (double)(n * n);
+	double scale = t->gain * t->omega / (double)(n * n);
 	S.e0[0] = l->colour.r * scale, S.e0[1] = l->colour.g * scale, S.e0[2] = l->colour.b * scale;
 	if (J->o->channel >= 0)
 		for (int c = 0; c < 3; c++)
@@ -750,7 +752,7 @@ static void run_item(struct worker *w, const struct item *it)
 	const struct target *tg = J->targets[it->light];
 	const struct target *t = &tg[it->target];
 	long n = t->side * t->side;
-	double scale = t->omega / (double)n;
+	double scale = t->gain * t->omega / (double)n;
 	double e0[3] = {l->colour.r * scale, l->colour.g * scale, l->colour.b * scale};
 	if (J->o->channel >= 0)
 		for (int c = 0; c < 3; c++)
@@ -1147,6 +1149,26 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 
 /* ==== driver ============================================================= */
 
+/* POV-Ray's lights (legacy model) do not fall off with distance: the eye
+ * pass takes irradiance I·cosθ (times the fade) at any distance, and
+ * POV-Ray's photons are given the energy that reproduces it at the target.
+ * So for a point or spot light the light pass, which spreads flux
+ * physically (I·cosθ/d²), shoots at a target with I·d²·fade(d), d the
+ * distance to the target's centre: its caustics then match the direct
+ * light there. Physical lights, parallel lights and unbounded targets: 1. */
+static double legacy_gain(const struct scene *s, const struct light *l, struct bbox bb)
+{
+	if (!s->legacy_lights || l->kind == LIGHT_PARALLEL || !bbox_finite(bb))
+		return 1;
+	double d = v_len(v_sub(v_scale(v_add(bb.lo, bb.hi), 0.5), l->pos));
+	double g = d * d;
+	if (l->fade_distance > 0) {
+		double fp = l->fade_power > 0 ? l->fade_power : 1;
+		g *= 2 / (1 + pow(d / l->fade_distance, fp));
+	}
+	return fmax(g, 1e-12);
+}
+
 /* Cones and ray counts for every light; returns the number of work items. */
 static long plan(struct job *J)
 {
@@ -1172,6 +1194,7 @@ static long plan(struct job *J)
 				if (!J->clipped)
 					J->clipped = s->objects[i];
 			}
+			tg[nt].gain = legacy_gain(s, l, bb);
 			total += tg[nt++].omega;
 		}
 		J->targets[li] = tg;

@@ -47,10 +47,17 @@ static void read_data(png_structp png, png_bytep data, size_t len)
 		png_error(png, feof(fp) ? "the file ends early (truncated)" : "read error");
 }
 
-/* Sets up transforms so every PNG decodes to RGB or RGBA, 8 or 16 bits. */
-static void set_transforms(png_structp png, png_infop info)
+/* Sets up transforms so every PNG decodes to RGB or RGBA, 8 or 16 bits;
+ * with indices, a palette image to one 8-bit index a pixel. */
+static void set_transforms(png_structp png, png_infop info, int indices)
 {
 	int ct = png_get_color_type(png, info);
+	if (ct == PNG_COLOR_TYPE_PALETTE && indices) {
+		png_set_packing(png);
+		png_set_interlace_handling(png);
+		png_read_update_info(png, info);
+		return;
+	}
 	if (ct == PNG_COLOR_TYPE_PALETTE)
 		png_set_palette_to_rgb(png);
 	if (ct == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
@@ -63,10 +70,18 @@ static void set_transforms(png_structp png, png_infop info)
 	png_read_update_info(png, info);
 }
 
-/* Converts the decoded samples into im->px (values in [0,1], still encoded). */
+/* Converts the decoded samples into im->px (values in [0,1], still encoded);
+ * one index a pixel becomes three equal channels. */
 static void samples_to_float(const struct png_rd *r, int depth, struct img *im)
 {
 	size_t n = (size_t)im->w * (size_t)im->h * (size_t)im->nch;
+	if (im->indexed) {
+		im->nch = 3;
+		im->px = mem_alloc(n * 3 * sizeof(float));
+		for (size_t i = 0; i < n; i++)
+			im->px[3 * i] = im->px[3 * i + 1] = im->px[3 * i + 2] = (float)r->data[i] / 255.0f;
+		return;
+	}
 	im->px = mem_alloc(n * sizeof(float));
 	for (size_t i = 0; i < n; i++)
 		im->px[i] = depth == 16
@@ -75,7 +90,7 @@ static void samples_to_float(const struct png_rd *r, int depth, struct img *im)
 }
 
 /* Decodes the PNG on fp into im. Returns 0, or -1 with r->msg set. */
-static int read_png(FILE *fp, struct png_rd *r, struct img *im)
+static int read_png(FILE *fp, struct png_rd *r, struct img *im, int indices)
 {
 	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, on_error, on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -97,8 +112,10 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 	png_set_benign_errors(png, 0);
 	png_set_read_fn(png, fp, read_data);
 	png_read_info(png, info);
-	set_transforms(png, info);
+	im->indexed = indices && png_get_color_type(png, info) == PNG_COLOR_TYPE_PALETTE;
+	set_transforms(png, info, indices);
 	int depth = png_get_bit_depth(png, info);
+	im->depth = depth;
 	im->w = (int)png_get_image_width(png, info);
 	im->h = (int)png_get_image_height(png, info);
 	im->nch = png_get_channels(png, info);
@@ -118,7 +135,7 @@ static int read_png(FILE *fp, struct png_rd *r, struct img *im)
 
 /* Loads a PNG file into im (encoded values; no colour conversion yet).
  * Returns 0, or -1 with the reason in why. */
-static int load_png(const char *path, struct img *im, char *why, size_t n)
+static int load_png(const char *path, struct img *im, int indices, char *why, size_t n)
 {
 	FILE *fp = fopen(path, "rb");
 	if (!fp) {
@@ -126,7 +143,7 @@ static int load_png(const char *path, struct img *im, char *why, size_t n)
 		return -1;
 	}
 	struct png_rd r = {.msg = ""};
-	int rc = read_png(fp, &r, im);
+	int rc = read_png(fp, &r, im, indices);
 	fclose(fp);
 	free(r.rows);
 	free(r.data);
@@ -218,7 +235,7 @@ static size_t read_magic(const char *path, unsigned char *buf, size_t n)
 int img_load(const char *path, const struct img_opts *opts, struct img *out, struct diag *dg, struct srcloc at,
              const char *name)
 {
-	static const struct img_opts defaults = {NULL, NULL, 0};
+	static const struct img_opts defaults = {NULL, NULL, 0, 0};
 	const struct img_opts *o = opts ? opts : &defaults;
 	unsigned char m[8];
 	char why[400] = "";
@@ -229,7 +246,7 @@ int img_load(const char *path, const struct img_opts *opts, struct img *out, str
 	int is_exr = k >= 4 && m[0] == 0x76 && m[1] == 0x2f && m[2] == 0x31 && m[3] == 0x01;
 	int err = 0;
 	if (is_png)
-		err = load_png(path, out, why, sizeof why);
+		err = load_png(path, out, o->indices, why, sizeof why);
 	else if (is_exr)
 		err = load_exr(path, out, why, sizeof why);
 	else
@@ -238,7 +255,7 @@ int img_load(const char *path, const struct img_opts *opts, struct img *out, str
 	if (err)
 		err = diag_fail(dg, FAIL_INPUT, at, "cannot read image file '%s': %s", name ? name : path, why);
 	const char *src = o->colorspace ? o->colorspace : is_png ? IMG_TEXTURE_SPACE : NULL;
-	if (!err && !o->raw && src)
+	if (!err && !o->raw && !out->indexed && src)
 		err = to_linear(out, o->ocio_config, src, dg, at);
 	if (err)
 		img_free(out);

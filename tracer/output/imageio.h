@@ -9,6 +9,8 @@
 #ifndef ARVO_IMAGEIO_H
 #define ARVO_IMAGEIO_H
 
+#include <stdbool.h>
+
 #include "../../common/diag.h"
 
 #define IMG_TEXTURE_SPACE "sRGB - Texture" /* what 8/16-bit PNGs are taken to be */
@@ -17,12 +19,16 @@ struct img {
 	int w, h;  /* size in pixels */
 	int nch;   /* 3 (RGB) or 4 (RGBA, straight alpha) */
 	float *px; /* w*h*nch floats, row-major, top row first */
+	int depth; /* PNG: 8 or 16 bits per sample as decoded; EXR: 32 */
+	bool indexed; /* the samples are a palette PNG's indices (img_opts.indices) */
 };
 
 struct img_opts {
 	const char *ocio_config; /* explicit config path, or NULL ($OCIO, then shipped) */
 	const char *colorspace;  /* source space override; NULL: IMG_TEXTURE_SPACE for PNG, none for EXR */
 	int raw;                 /* 1: no colour conversion at all (data maps: bump, normal) */
+	int indices;             /* 1: a palette PNG gives its indices, index/255 in R, G and B
+	                          * (height_field); implies raw for such a file */
 };
 
 /* Loads path (format from its magic bytes) into *out; opts may be NULL.

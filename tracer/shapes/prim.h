@@ -32,7 +32,9 @@ struct prim_ops {
 	bool (*inside)(const struct object *o, struct vec3 p);
 	/* Object-frame bounds; ±INFINITY when unbounded. */
 	struct bbox (*bounds)(const struct object *o);
-	/* T(u,v) and its partials (any of the outputs may be NULL). */
+	/* T(u,v) and its partials (any of the outputs may be NULL). NULL, with
+	 * uv_range and cell_area, for a surface without a parametrisation
+	 * (the isosurface): it gets no illumination map. */
 	bool (*uv_point)(const struct object *o, double u, double v, struct vec3 *p,
 	                 struct vec3 *dpdu, struct vec3 *dpdv);
 	/* The (u,v) domain. */
@@ -61,6 +63,23 @@ double shape_integrate_area(const struct object *o, double u0, double u1, double
  * (or z when w is near x) made perpendicular to w. */
 void shape_basis(struct vec3 w, struct vec3 *e1, struct vec3 *e2);
 
+/* ---- the radial parametrisation of implicit surfaces (shape.c) ----------
+ * Surfaces with no natural (u,v) (poly, blob, superellipsoid) are indexed
+ * by the direction from a centre c, with the sphere's angles (φ = 2πu about
+ * y from +x towards −z, θ = πv from −y): T(u,v) is the FIRST surface point
+ * along the ray from c in that direction (docs/parametrisations.md,
+ * "Implicit surfaces"). */
+
+/* Fills lh->u, v, dpdu, dpdv for a hit at lh->p with normal lh->n. */
+void prim_radial_hit(struct vec3 c, struct local_hit *lh);
+/* T(u,v) and its partials, by intersecting the ray from c (through
+ * intersect, in the object frame); false when that ray meets nothing or
+ * grazes the surface. */
+bool prim_radial_point(const struct object *o, struct vec3 c,
+                       bool (*intersect)(const struct object *, const struct ray *, double,
+                                         double, struct local_hit *),
+                       double u, double v, struct vec3 *p, struct vec3 *dpdu, struct vec3 *dpdv);
+
 /* Real roots of a·t² + b·t + c = 0 (a ≠ 0), t0 ≤ t1, without cancellation.
  * disc is b² − 4ac, passed in so callers may compute it more accurately. */
 static inline bool prim_quadratic(double a, double b, double c, double disc, double *t0,
@@ -73,6 +92,27 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
 	*t0 = fmin(r0, r1);
 	*t1 = fmax(r0, r1);
 	return true;
+}
+
+/* Area of {u0≤u≤u1, v0≤v≤v1, u+v≤1} for a rectangle already inside the
+ * positive quadrant: the rectangle minus the corner cut off by u + v = 1. */
+static inline double prim_tri_clipped_area(double u0, double u1, double v0, double v1)
+{
+	double full = (u1 - u0) * (v1 - v0);
+	double over = u1 + v1 - 1; /* how far the top-right corner is past the line */
+	if (over <= 0)
+		return full;
+	if (u0 + v0 >= 1)
+		return 0;
+	/* the cut corner is a right triangle of leg "over", minus what sticks
+	 * out past the rectangle's left and bottom edges */
+	double cut = 0.5 * over * over;
+	double lx = over - (u1 - u0), ly = over - (v1 - v0);
+	if (lx > 0)
+		cut -= 0.5 * lx * lx;
+	if (ly > 0)
+		cut -= 0.5 * ly * ly;
+	return full - cut;
 }
 
 /* Length of the overlap of [a0,a1] and [b0,b1] (0 when disjoint). */

@@ -83,27 +83,6 @@ static struct uv_range tr_uv_range(const struct object *o)
 	return (struct uv_range){0, 1, 0, 1, true, false, false};
 }
 
-/* Area of {u0≤u≤u1, v0≤v≤v1, u+v≤1} for a rectangle already inside the
- * positive quadrant: the rectangle minus the corner cut off by u + v = 1. */
-static double clipped_area(double u0, double u1, double v0, double v1)
-{
-	double full = (u1 - u0) * (v1 - v0);
-	double over = u1 + v1 - 1; /* how far the top-right corner is past the line */
-	if (over <= 0)
-		return full;
-	if (u0 + v0 >= 1)
-		return 0;
-	/* the cut corner is a right triangle of leg "over", minus what sticks
-	 * out past the rectangle's left and bottom edges */
-	double cut = 0.5 * over * over;
-	double lx = over - (u1 - u0), ly = over - (v1 - v0);
-	if (lx > 0)
-		cut -= 0.5 * lx * lx;
-	if (ly > 0)
-		cut -= 0.5 * ly * ly;
-	return full - cut;
-}
-
 static double tr_cell_area(const struct object *o, double u0, double u1, double v0, double v1)
 {
 	u0 = fmax(u0, 0);
@@ -114,7 +93,7 @@ static double tr_cell_area(const struct object *o, double u0, double u1, double 
 		return 0;
 	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
 	double jac = v_len(v_cross(xf_vector(obj_xf(o), e1), xf_vector(obj_xf(o), e2)));
-	return clipped_area(u0, u1, v0, v1) * jac;
+	return prim_tri_clipped_area(u0, u1, v0, v1) * jac;
 }
 
 static void tr_dump(const struct object *o, FILE *out)

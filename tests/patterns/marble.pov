@@ -1,0 +1,6 @@
+// marble, its default map and turbulence after a scale
+#version 3.7;
+global_settings { assumed_gamma 1 }
+camera { orthographic location <0,0,-10> look_at <0,0,0> right 4*x up 3*y }
+light_source { <-5,5,-10>, rgb 1 }
+plane { z, 0 texture { pigment { marble scale 0.5 turbulence 0.6 } finish { ambient 1 diffuse 0 } } }

@@ -1,0 +1,6 @@
+// warp { black_hole falloff strength }
+#version 3.7;
+global_settings { assumed_gamma 1 }
+camera { orthographic location <0,0,-10> look_at <0,0,0> right 4*x up 3*y }
+light_source { <-5,5,-10>, rgb 1 }
+plane { z, 0 texture { pigment { checker rgb 0, rgb 1 scale 0.3 warp { black_hole <0.5,0,0>, 1 falloff 3 strength 1.5 } } finish { ambient 1 diffuse 0 } } }

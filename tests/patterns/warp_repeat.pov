@@ -1,0 +1,6 @@
+// warp { repeat offset flip }
+#version 3.7;
+global_settings { assumed_gamma 1 }
+camera { orthographic location <0,0,-10> look_at <0,0,0> right 4*x up 3*y }
+light_source { <-5,5,-10>, rgb 1 }
+plane { z, 0 texture { pigment { gradient x scale 0.5 warp { repeat x*0.7 offset <0,0.3,0> flip x } color_map { [0 rgb 0] [1 rgb 1] } } finish { ambient 1 diffuse 0 } } }
