@@ -2,9 +2,11 @@
 /* illum.c: sparse, tiled illumination maps (see illum.h for the conventions).
  *
  * Storage: nodes live in ILLUM_TILE² tiles allocated on first deposit and found
- * through an open-addressing hash table keyed by tile coordinates. The same
- * table serves bounded domains and the unbounded plane, so memory grows with
- * the number of tiles light reached, never with the surface. */
+ * through the window (an array of tile indices over the rectangle where most
+ * deposits land, win_fit) or, outside it, an open-addressing hash table keyed
+ * by tile coordinates. Both serve bounded domains and the unbounded plane, so
+ * memory grows with the number of tiles light reached, never with the
+ * surface (docs/design.md §4). */
 #include "illum.h"
 
 #include <limits.h>
@@ -547,10 +549,16 @@ static double energy_max(const double e[3])
 
 static void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
 {
+	struct fx f = {0, 0};
+	float q = 0;
 	for (int c = 0; c < 3; c++) {
-		double x = w * e[c];
-		fx_add(&n->e[c], fx_from(x * inv_unit));
-		n->sq[c] += (float)(x * x);
+		if (c == 0 || e[c] != e[c - 1]) { /* white light: the same numbers thrice */
+			double x = w * e[c];
+			f = fx_from(x * inv_unit);
+			q = (float)(x * x);
+		}
+		fx_add(&n->e[c], f);
+		n->sq[c] += q;
 	}
 	n->count += n->count < UINT32_MAX;
 }
