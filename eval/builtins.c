@@ -496,6 +496,36 @@ static struct value extent(struct call *c, int hi)
 	return val_vec3(v3(q[0], q[1], q[2]));
 }
 static struct value f_min_extent(struct call *c) { return extent(c, 0); }
+
+/* inside(O, P): 1 when the point is inside the object's solid. */
+static struct value f_inside(struct call *c)
+{
+	if (c->a[0].kind != V_OBJECT)
+		eval_fail(c->E, c->n->kids[0]->loc, "inside() needs an object");
+	return val_float(shape_inside(c->a[0].p.obj, V(c, 1)));
+}
+
+/* trace(O, A, D [, N]): where the ray from A along D first meets the
+ * object, and in the variable N the unit normal there, facing the ray's
+ * origin; both <0, 0, 0> when it misses (POV-Ray's). */
+static struct value f_trace(struct call *c)
+{
+	if (c->a[0].kind != V_OBJECT)
+		eval_fail(c->E, c->n->kids[0]->loc, "trace() needs an object");
+	struct vec3 o = V(c, 1), d = V(c, 2), p = v3(0, 0, 0), nrm = v3(0, 0, 0);
+	struct hit h;
+	if (v_len(d) > 0 && shape_intersect(c->a[0].p.obj, &(struct ray){o, d}, 1e-9, INFINITY, &h)) {
+		p = h.p;
+		nrm = v_dot(h.n, d) > 0 ? v_neg(h.n) : h.n;
+	}
+	if (c->argc == 4) {
+		struct value *slot = env_lookup(c->E, c->n->kids[3]->str);
+		if (!slot)
+			slot = env_declare(c->E, c->n->kids[3]->str, false);
+		*slot = val_vec3(nrm);
+	}
+	return val_vec3(p);
+}
 static struct value f_max_extent(struct call *c) { return extent(c, 1); }
 
 static const struct builtin table[] = {
@@ -508,7 +538,7 @@ static const struct builtin table[] = {
 	{"div", 2, 2, f_div}, {"exp", 1, 1, f_exp}, {"floor", 1, 1, f_floor},
 	{"int", 1, 1, f_int}, {"ln", 1, 1, f_ln}, {"log", 1, 1, f_log},
 	{"max", 2, 16, f_max}, {"max_extent", 1, 1, f_max_extent}, {"min", 2, 16, f_min},
-	{"min_extent", 1, 1, f_min_extent}, {"mod", 2, 2, f_mod},
+	{"min_extent", 1, 1, f_min_extent}, {"inside", 2, 2, f_inside}, {"trace", 3, 4, f_trace}, {"mod", 2, 2, f_mod},
 	{"pow", 2, 2, f_pow}, {"radians", 1, 1, f_radians}, {"rand", 1, 1, f_rand},
 	{"seed", 1, 1, f_seed}, {"select", 3, 4, f_select}, {"sin", 1, 1, f_sin},
 	{"sinh", 1, 1, f_sinh}, {"sqrt", 1, 1, f_sqrt}, {"str", 3, 3, f_str},
@@ -605,6 +635,11 @@ bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 	for (int i = 0; i < n->nkids; i++) {
 		if (!n->kids[i])
 			eval_fail(E, n->loc, "argument %d of %s() is empty", i + 1, b->name);
+		if (b->fn == f_trace && i == 3) { /* trace's normal: a variable it sets */
+			if (n->kids[3]->kind != N_IDENT)
+				eval_fail(E, n->kids[3]->loc, "trace()'s fourth argument is a variable to set to the normal");
+			continue;
+		}
 		c.a[i] = eval_expr(E, n->kids[i]);
 	}
 	*out = b->fn(&c);

@@ -145,8 +145,13 @@ static void camera_look_at(struct eval *E, struct camera *c, struct vec3 at, str
 		eval_fail(E, loc, "camera location and look_at must differ");
 	d = v_norm(d);
 	struct vec3 r = v_cross(c->sky, d);
-	if (v_len(r) < 1e-12)
-		eval_fail(E, loc, "camera looks along its sky vector; set sky to something else");
+	if (v_len(r) < 1e-12) { /* as POV-Ray: keep the right vector given (or the default) */
+		diag_warning(E->diag, loc, "camera looks along its sky vector; the right vector is kept (set sky to choose 'up')");
+		r = v_sub(c->right, v_scale(d, v_dot(c->right, d)));
+		if (v_len(r) < 1e-12)
+			eval_fail(E, loc, "camera looks along its sky vector and its right vector; set sky to something else");
+		hand = 1;
+	}
 	r = v_norm(r);
 	c->up = v_scale(v_norm(v_cross(d, r)), ul);
 	c->direction = v_scale(d, dl);
@@ -186,6 +191,9 @@ void camera_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	switch (n->op) {
+	case TK_NORMAL: /* POV-Ray's camera ray perturbation */
+		diag_warning(E->diag, n->loc, "'normal' in a camera is not supported; ignored");
+		return;
 	case TK_PERSPECTIVE: c->kind = CAM_PERSPECTIVE; return;
 	case TK_ORTHOGRAPHIC: c->kind = CAM_ORTHOGRAPHIC; return;
 	case TK_FISHEYE: c->kind = CAM_FISHEYE; return;

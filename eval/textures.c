@@ -132,6 +132,9 @@ void pigment_keyword(struct eval *E, struct sink *s, const struct node *n)
 		           : n->op == TK_SPHERICAL ? PAT_SPHERICAL : n->op == TK_CYLINDRICAL ? PAT_CYLINDRICAL
 		           : n->op == TK_BOXED ? PAT_BOXED : n->op == TK_PLANAR ? PAT_PLANAR : PAT_LEOPARD;
 		return;
+	case TK_QUICK_COLOR: case TK_QUICK_COLOUR: /* POV-Ray's preview colour (quality below 6): not used */
+		arg_colour(E, n);
+		return;
 	case TK_FILTER: case TK_TRANSMIT: /* pigment { White filter 0.5 }: the colour's component */
 		if (p->kind != PIG_SOLID)
 			misplaced(E, s, n);

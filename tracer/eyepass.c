@@ -434,8 +434,9 @@ static struct vec3 sky(const struct eye_ctx *ctx, struct vec3 d)
 }
 
 /* POV-Ray's fog over a ray segment from o along unit d of length len
- * (a miss: far away): the share e^(-len·density/distance) of c passes,
- * never less than the fog's transmit; the fog's colour fills the rest. A
+ * (a miss: far away): the share k = e^(-len·density/distance) of c passes,
+ * never less than the fog's transmit, tinted by the fog's filter; the fog's
+ * colour fills 1 - k. A
  * ground fog's density is 1 below fog_offset and 1/(1 + (h/fog_alt)²) at
  * height h above it, averaged exactly along the segment. */
 static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double len, struct vec3 c)
@@ -455,8 +456,11 @@ static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double
 	}
 	double k = fmax(exp(-len * density / f->distance), f->c.t);
 	struct vec3 fc = col3(f->c);
-	struct vec3 mix = v_add(v_scale(fc, 1 - f->c.f), v_scale(v_mul(fc, c), f->c.f));
-	return v_add(v_scale(c, k), v_scale(mix, 1 - k));
+	/* as POV-Ray: what passes is also filtered by the fog's colour
+	 * (1 - filter + filter·colour); the fog's colour fills the rest */
+	double fl = f->c.f;
+	struct vec3 pass = v_add(v3(1 - fl, 1 - fl, 1 - fl), v_scale(fc, fl));
+	return v_add(v_scale(v_mul(pass, c), k), v_scale(fc, 1 - k));
 }
 
 /* The radiance arriving along r: the background on a miss, else the shaded

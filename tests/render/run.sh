@@ -201,11 +201,21 @@ check "legacy lights: the caustic under a pane matches the direct light, scaled 
 "$ARVO" --stats --method point --width 8 --height 8 -o "$tmp/ps.exr" "$T/photon_spacing.scn" > "$tmp/st" 2>&1
 awk '/light pass .*light rays/ { r = $6; sub(/^\(/, "", r) } END { print "light rays " r; exit !(r > 0.99 * 94248 && r < 1.01 * 94248) }' "$tmp/st" > "$tmp/log"
 check "photons { spacing 0.01 } on a unit sphere shoots pi*3/spacing^2 light rays, within 1 %" $?
-# layered textures and a declared sky_sphere: left half (0.5, 0, 0.5), right half the sky (0, 1, 0)
+# layered textures and a declared sky_sphere: each layer is shaded with its
+# own finish (POV-Ray's): half the blue layer under ambient 1 over half the
+# red one under the default ambient 0.1, so the left half is (0.05, 0, 0.5);
+# the right half is the sky (0, 1, 0)
 "$ARVO" -q --width 4 --height 4 -o "$tmp/ly.exr" "$T/layered.scn" > "$tmp/log" 2>&1 &&
 	oiiotool "$tmp/ly.exr" --ch R,G,B --cut 2x4+0+0 --printstats 2>> "$tmp/log" | grep "Stats Avg" > "$tmp/l" &&
 	oiiotool "$tmp/ly.exr" --ch R,G,B --cut 2x4+2+0 --printstats 2>> "$tmp/log" | grep "Stats Avg" >> "$tmp/l" &&
 	cat "$tmp/l" >> "$tmp/log" &&
-	awk 'NR == 1 { ok = $3 == 0.5 && $4 == 0 && $5 == 0.5 } NR == 2 { ok = ok && $3 == 0 && $4 == 1 && $5 == 0 } END { exit !ok }' "$tmp/l"
-check "a layered texture composites its layers through transmit; a declared sky_sphere is used by name" $?
+	awk 'NR == 1 { ok = $3 > 0.0499 && $3 < 0.0501 && $4 == 0 && $5 == 0.5 } NR == 2 { ok = ok && $3 == 0 && $4 == 1 && $5 == 0 } END { exit !ok }' "$tmp/l"
+check "a layered texture shades each layer with its finish, through the top one's transmit; a declared sky_sphere is used by name" $?
+# fog with filter (POV-Ray's formula): <0.3472, 0.5104, 0.6736> to 1e-3
+"$ARVO" -q --width 4 --height 4 -o "$tmp/fog.exr" "$T/fog_filter.scn" > "$tmp/log" 2>&1 &&
+	oiiotool "$tmp/fog.exr" --ch R,G,B --printstats 2>> "$tmp/log" | grep "Stats Avg" > "$tmp/f" &&
+	cat "$tmp/f" >> "$tmp/log" &&
+	awk 'function near(a, b) { return a > b - 1e-3 && a < b + 1e-3 }
+	     { ok = near($3, 0.3472) && near($4, 0.5104) && near($5, 0.6736) } END { exit !ok }' "$tmp/f"
+check "fog with filter: what passes is tinted by the fog colour, as POV-Ray's, to 1e-3" $?
 echo "1..$n"
