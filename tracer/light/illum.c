@@ -649,17 +649,17 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 }
 
 /* ---- batched point deposits (illum_deposit_all) ----
- * Three steps, none of which hashes or allocates per deposit once the
- * window holds the deposits' tiles:
+ * Four steps, none of which hashes per deposit once the window holds the
+ * deposits' tiles:
  *   1. every splat is split onto its nodes (axis_split) once, in parallel
  *      chunks: a `prep` each;
- *   2. one thread widens the window to the preps' tiles and creates the
- *      missing tiles, in row-major tile order when the window holds them
- *      (tiles near in the map are near in memory), else in splat order;
+ *   2. one thread places the window over a sample of the preps' tiles;
  *   3. the accumulators are added band by band, one thread per band of
- *      tile rows (band_of), each band's deposits in splat order: a node
- *      receives the same additions in the same order for any thread count,
- *      so even its float Σw² is bit-identical. */
+ *      tile rows (band_of), each band's deposits in splat order, making the
+ *      tiles it needs from its own arena: a node receives the same
+ *      additions in the same order for any thread count, so even its float
+ *      Σw² is bit-identical;
+ *   4. the bands' new tiles join the map's list (pointers only). */
 struct prep {
 	int32_t i, j;       /* the lower nodes of the split (axis_split's i0), INT32_MIN: no deposit */
 	double fu, fv;      /* the weights of the upper ones */
@@ -683,6 +683,10 @@ struct deposit_job {
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
+	struct arena pool;  /* per band: the tiles it made in the window */
+	struct tile **made; /* per band: those tiles, in order */
+	long nmade, cap;
+	struct illum_map *part; /* per band: tiles it made outside the window */
 };
 
 /* Step 1 for chunk k of the splats (a parallel_for item). */
@@ -711,8 +715,8 @@ static void prep_work(void *ctx, long k, int worker)
 	}
 }
 
-/* Step 2: every tile a deposit will touch exists. */
-static void prep_tiles(struct deposit_job *D, long nchunks)
+/* Step 2: the window, placed where most deposits land. */
+static void prep_window(struct deposit_job *D, long nchunks)
 {
 	struct illum_map *m = D->m;
 	long n = 0, ns = 0;
@@ -727,43 +731,45 @@ static void prep_tiles(struct deposit_job *D, long nchunks)
 			ti[ns] = (int32_t)floordiv(D->p[q].i), tj[ns++] = (int32_t)floordiv(D->p[q].j);
 	win_fit(m, ti, tj, ns, n);
 	free(ti), free(tj);
-	long ti0 = LONG_MAX, tj0 = LONG_MAX, ti1 = LONG_MIN, tj1 = LONG_MIN; /* marked in the window */
-	for (long q = 0; q < D->n; q++) {
-		if (D->p[q].i == INT32_MIN)
-			continue;
-		long iu[2], iv[2];
-		double wu[2], wv[2];
-		prep_nodes(m, &D->p[q], iu, iv, wu, wv);
-		for (int b = 0; b < 2; b++)
-			for (int a = 0; a < 2; a++) {
-				if (!(wu[a] * wv[b] > 0))
-					continue;
-				long i = floordiv(iu[a]), j = floordiv(iv[b]);
-				int32_t *w = win_slot(m, i, j);
-				if (w) { /* mark it wanted (-1); created below in row-major order */
-					if (!*w) {
-						*w = -1;
-						ti0 = i < ti0 ? i : ti0, ti1 = i > ti1 ? i : ti1;
-						tj0 = j < tj0 ? j : tj0, tj1 = j > tj1 ? j : tj1;
-					}
-				} else if (tile_find(m, (int32_t)i, (int32_t)j) < 0) {
-					tile_add(m, (int32_t)i, (int32_t)j);
-				}
-			}
-	}
-	for (long b = tj0; b <= tj1; b++)
-		for (long a = ti0; a <= ti1; a++)
-			if (*win_slot(m, a, b) == -1) {
-				*win_slot(m, a, b) = 0;
-				tile_add(m, (int32_t)a, (int32_t)b);
-			}
 }
 
-/* Step 3 for band k of nb (a parallel_for item). */
+/* The tile (ti,tj) for band job B, made when missing: in the window, from
+ * the band's own arena (the window entry, which only this band touches,
+ * holds −1 − its place in B->made until step 4); outside it, in the band's
+ * partial map. Tiles the map had are found read-only. */
+static struct tile *band_tile(struct deposit_job *B, struct illum_map *m, long ti, long tj)
+{
+	int32_t *w = win_slot(m, ti, tj);
+	if (w) {
+		if (*w > 0)
+			return m->tiles[*w - 1];
+		if (*w < 0)
+			return B->made[-*w - 1];
+		if (B->nmade == B->cap)
+			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)(B->cap = B->cap ? 2 * B->cap : 256));
+		struct tile *t = ARENA_NEW(&B->pool, struct tile);
+		t->ti = (int32_t)ti, t->tj = (int32_t)tj;
+		B->made[B->nmade++] = t;
+		*w = (int32_t)(-B->nmade);
+		return t;
+	}
+	long k = tile_find(m, (int32_t)ti, (int32_t)tj);
+	if (k >= 0)
+		return m->tiles[k];
+	if (!B->part)
+		B->part = illum_new_like(m);
+	long at = tile_find(B->part, (int32_t)ti, (int32_t)tj);
+	if (at < 0)
+		at = tile_add(B->part, (int32_t)ti, (int32_t)tj);
+	return B->part->tiles[at];
+}
+
+/* Step 3 for band k of nb (a parallel_for item): its tiles are made and
+ * its nodes accumulated, deposits in order. */
 static void accumulate_work(void *ctx, long k, int worker)
 {
 	(void)worker;
-	struct deposit_job *D = ctx;
+	struct deposit_job *D = ctx, *B = D + k;
 	struct illum_map *m = D->m;
 	for (long q = 0; q < D->n; q++) {
 		if (D->p[q].i == INT32_MIN)
@@ -780,7 +786,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 				if (!(w > 0))
 					continue;
 				long ti = floordiv(iu[a]), tj = floordiv(iv[b]);
-				struct tile *t = m->tiles[tile_find(m, (int32_t)ti, (int32_t)tj)];
+				struct tile *t = band_tile(B, m, ti, tj);
 				acc_add(&t->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, m->inv_unit);
 			}
 		}
@@ -800,12 +806,26 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 		return;
 	if (n < 8192)
 		nb = 1;
-	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK;
-	struct deposit_job *D = mem_alloc(sizeof *D * (size_t)nchunks);
-	D[0] = (struct deposit_job){m, s, mem_alloc(sizeof *D->p * (size_t)n), n, PREP_CHUNK, nb, 0};
+	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
+	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
+	D[0] = (struct deposit_job){.m = m, .s = s, .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n,
+	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
-	prep_tiles(D, nchunks);
+	prep_window(D, nchunks);
+	for (int b = 0; b < nb; b++)
+		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
+	/* step 4: the bands' tiles join the map (bands hold disjoint tiles) */
+	for (int b = 0; b < nb; b++) {
+		for (long k = 0; k < D[b].nmade; k++) {
+			*win_slot(m, D[b].made[k]->ti, D[b].made[k]->tj) = 0;
+			tile_insert(m, D[b].made[k]);
+		}
+		arena_adopt(&m->pool, &D[b].pool);
+		free(D[b].made);
+		if (D[b].part)
+			adopt(m, D[b].part);
+	}
 	m->finished = false;
 	free(D->p), free(D);
 }
