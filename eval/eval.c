@@ -440,6 +440,19 @@ static struct value macro_value(struct eval *E, const struct node *def, const st
 
 /* ==== expressions ========================================================= */
 
+/* (#if (A) 1 #else 2 #end): the branch taken yields one value. Apart from
+ * eval_expr so that its sink does not weigh on every expression's frame
+ * (the stack guard counts them). */
+static __attribute__((noinline)) struct value dir_value(struct eval *E, const struct node *n)
+{
+	struct sink s;
+	sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
+	eval_item(E, n->a, &s);
+	if (s.nresults == 0)
+		eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
+	return s.result;
+}
+
 static struct value identifier(struct eval *E, const struct node *n)
 {
 	struct value *v = env_lookup(E, n->str);
@@ -531,14 +544,7 @@ static struct value eval_expr_node(struct eval *E, const struct node *n)
 	case N_COLOUR: return colour_prefix(E, n);
 	case N_ARRAY: return array_new(E, n);
 	case N_FUNC: return function_value(E, n);
-	case N_DIRVALUE: { /* (#if (A) 1 #else 2 #end): the branch taken yields one value */
-		struct sink s;
-		sink_init(&s, SK_VALUE, TK_EOF, n->loc, NULL);
-		eval_item(E, n->a, &s);
-		if (s.nresults == 0)
-			eval_fail(E, n->loc, "this %s yields no value here", tok_name(n->a->op ? n->a->op : TK_DIR_IF));
-		return s.result;
-	}
+	case N_DIRVALUE: return dir_value(E, n);
 	case N_BLOCK: return eval_block(E, n);
 	case N_MOD:
 		if (n->op == TK_TRANSFORM)
@@ -563,7 +569,7 @@ void eval_count_object(struct eval *E, struct srcloc loc)
 		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
-static void exec_declare(struct eval *E, const struct node *n)
+static __attribute__((noinline)) void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
 	if (builtin_is_name(n->str))
@@ -592,7 +598,7 @@ static void exec_declare(struct eval *E, const struct node *n)
 	*env_declare(E, n->str, local) = v;
 }
 
-static void exec_for(struct eval *E, const struct node *n, struct sink *s)
+static __attribute__((noinline)) void exec_for(struct eval *E, const struct node *n, struct sink *s)
 {
 	double start = eval_float(E, n->kids[0]);
 	double end = eval_float(E, n->kids[1]);
@@ -618,7 +624,7 @@ static void exec_for(struct eval *E, const struct node *n, struct sink *s)
 	}
 }
 
-static void exec_switch(struct eval *E, const struct node *n, struct sink *s)
+static __attribute__((noinline)) void exec_switch(struct eval *E, const struct node *n, struct sink *s)
 {
 	double v = eval_float(E, n->a);
 	int matched = 0;
@@ -647,7 +653,7 @@ static int ifdef_test(struct eval *E, const struct node *a)
 	eval_fail(E, a->loc, "#ifdef needs an identifier");
 }
 
-static void exec_message(struct eval *E, const struct node *n)
+static __attribute__((noinline)) void exec_message(struct eval *E, const struct node *n)
 {
 	int len;
 	const char *s = eval_string(E, n->a, &len);
@@ -725,7 +731,7 @@ static struct inc_cache *load_include(struct eval *E, const struct node *n, cons
 	return c;
 }
 
-static void exec_include(struct eval *E, const struct node *n, struct sink *s)
+static __attribute__((noinline)) void exec_include(struct eval *E, const struct node *n, struct sink *s)
 {
 	int len;
 	const char *name = eval_string(E, n->a, &len);

@@ -395,11 +395,13 @@ void geom_sor(struct eval *E, struct sink *s, struct object *o)
 	struct outline_build *b = build_of(E, s);
 	int n = want_count(E, s, b, 0, 4, "a point count and the points: sor { n, <r,y>, … }");
 	double (*P)[2] = points_after(E, b, 0, n);
-	for (int k = 1; k < n; k++)
-		if (!(P[k][1] > P[k - 1][1]) && k < n - 1)
+	/* the heights rise along the curve (P[1] … P[n-2]); the two end points,
+	 * which only set slopes, may repeat their neighbour's height */
+	for (int k = 1; k < n; k++) {
+		bool curve = k >= 2 && k <= n - 2;
+		if (curve ? !(P[k][1] > P[k - 1][1]) : !(P[k][1] >= P[k - 1][1]))
 			eval_fail(E, b->loc[1 + k], "sor points must rise: y = %g after %g", P[k][1], P[k - 1][1]);
-	if (!(P[n - 1][1] > P[n - 3][1]))
-		eval_fail(E, b->loc[n], "sor points must rise: y = %g after %g", P[n - 1][1], P[n - 3][1]);
+	}
 	struct sor_shape *S = NEW(E, struct sor_shape);
 	S->n = n - 3;
 	S->p = ARENA_ARRAY(&SC(E)->arena, struct sor_piece, S->n);
