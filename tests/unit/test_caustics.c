@@ -526,6 +526,81 @@ static void t_eq1_every_primitive(void)
 	}
 }
 
+/* ---- thread counts -------------------------------------------------------- */
+
+struct nodelist {
+	struct illum_node *a;
+	long n, cap;
+};
+
+static void keep_node(void *ctx, const struct illum_node *n)
+{
+	struct nodelist *L = ctx;
+	if (L->n == L->cap)
+		L->a = realloc(L->a, sizeof *L->a * (size_t)(L->cap = L->cap ? 2 * L->cap : 4096));
+	L->a[L->n++] = *n;
+}
+
+/* Every map of scene B (Fresnel on: reflected and refracted light on the
+ * floor) is the same, bit for bit, on 1, 2 and 3 threads: energies, counts,
+ * areas, irradiances and even the float Σw², whose sums depend on the order
+ * of the deposits (they are taken in work-item order, whichever thread
+ * traced the item). Both methods. */
+static void t_threads_identical(void)
+{
+	struct diag dg;
+	diag_init(&dg, stderr);
+	struct eval_options eo;
+	eval_default_options(&eo);
+	const char *defs[1] = {"Fresnel=1"};
+	eo.defines = defs;
+	eo.ndefines = 1;
+	struct scene s;
+	if (eval_scene("tests/accuracy/sphere.scn", &eo, &dg, &s) != 0) {
+		CHECK(0);
+		return;
+	}
+	struct bvh *b = bvh_build(s.objects, s.nobjects);
+	struct mat_cache mc;
+	memset(&mc, 0, sizeof mc);
+	const struct object *floor = s.objects[s.nobjects - 1];
+	for (int shafts = 0; shafts < 2; shafts++) {
+		struct nodelist one = {NULL, 0, 0};
+		for (int t = 1; t <= 3; t++) {
+			struct lp_opts o = {.rays = shafts ? 20000 : 100000, .max_depth = 10, .min_weight = 1e-9, .threads = t,
+			                    .discard_isolated = true, .channel = -1, .shafts = shafts};
+			struct lp_stats st;
+			struct lp_result *r = lp_run(&s, b, &mc, &o, &st);
+			struct nodelist L = {NULL, 0, 0};
+			for (int l = 0; r && l < LP_LEVELS; l++)
+				if (lp_map_level(r, floor, l))
+					illum_each(lp_map_level(r, floor, l), keep_node, &L);
+			CHECK(L.n > 1000);
+			if (t == 1) {
+				one = L;
+			} else {
+				CHECK(L.n == one.n);
+				long diff = 0, dsq = 0;
+				for (long k = 0; k < L.n && k < one.n; k++) {
+					const struct illum_node *x = &L.a[k], *y = &one.a[k];
+					diff += x->i != y->i || x->j != y->j || x->count != y->count || x->isolated != y->isolated;
+					diff += memcmp(x->energy, y->energy, sizeof x->energy) != 0 || memcmp(&x->area, &y->area, sizeof x->area);
+					diff += memcmp(x->irr, y->irr, sizeof x->irr) != 0;
+					dsq += memcmp(x->sumsq, y->sumsq, sizeof x->sumsq) != 0;
+				}
+				printf("# %s, %d threads: %ld nodes, %ld differ, %ld differ in sumsq\n", shafts ? "shafts" : "points", t,
+				       L.n, diff, dsq);
+				CHECK(diff == 0 && dsq == 0);
+				free(L.a);
+			}
+			lp_free(r);
+		}
+		free(one.a);
+	}
+	bvh_free(b);
+	scene_free(&s);
+}
+
 int main(void)
 {
 	RUN(t_sphere_ideal);
@@ -543,6 +618,7 @@ int main(void)
 	RUN(t_render_caustic_layer);
 	RUN(t_eye_dispersion);
 	RUN(t_eq1_every_primitive);
+	RUN(t_threads_identical);
 	srcfile_free_all();
 	return test_done();
 }

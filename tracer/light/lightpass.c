@@ -89,6 +89,24 @@ struct job {
 	long nitems;
 	const struct object *clipped; /* see lp_stats */
 	struct band band;           /* the light this pass carries */
+	struct span *spans;         /* per item: where its records went */
+};
+
+/* The records of one work item: recs.r[r0 .. r0+nr) and precs.r[p0 ..
+ * p0+np) of worker w. Taken in item order, the records are in the same
+ * order for any thread count, and so is every map's sum (even its float
+ * Σw²). */
+struct span {
+	int w;
+	long r0, nr, p0, np;
+};
+
+/* The same, resolved to memory once the workers are done. */
+struct seg {
+	const struct rec *r;
+	long nr;
+	const struct prec *p;
+	long np;
 };
 
 /* Light shafts (docs/design.md §4): where one specular path of a corner ray
@@ -785,10 +803,12 @@ static void work(void *ctx, long k, int worker)
 {
 	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
+	long r0 = w->recs.n, p0 = w->precs.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
+	J->spans[k] = (struct span){worker, r0, w->recs.n - r0, p0, w->precs.n - p0};
 	progress_step(J->o->progress, 1);
 }
 
@@ -936,6 +956,21 @@ static int level_of(double size, double cell, int nl)
 #define FOOTPRINT_MAX_CELLS 1024 /* larger footprints are deposited at their corners
                                      (deposit_levels) */
 
+/* About how many grid cells (du × dv) polygon uv[0..n) touches: its area in
+ * cells plus its perimeter in cells (the cells its edges cross) plus one.
+ * A thin slanted sliver whose bounding box spans thousands of cells touches
+ * only those along it; its bounding box would overcount it by far. */
+static double footprint_cells(const double (*uv)[2], int n, double du, double dv)
+{
+	double area = 0, edges = 0;
+	for (int c = 0; c < n; c++) {
+		const double *a = uv[c], *b = uv[(c + 1) % n];
+		area += (a[0] - uv[0][0]) * (b[1] - uv[0][1]) - (b[0] - uv[0][0]) * (a[1] - uv[0][1]);
+		edges += fabs(b[0] - a[0]) / du + fabs(b[1] - a[1]) / dv;
+	}
+	return 0.5 * fabs(area) / (du * dv) + edges + 1;
+}
+
 /* Deposits a surface's shaft footprints p[0..np) and point records
  * s[0..ns) (of spread sz) into the levels lv[0..nl) (lv[0] exists; cell the
  * finest level's), each at the level of its size (level_of), making levels
@@ -943,8 +978,9 @@ static int level_of(double size, double cell, int nl)
  * (illum_deposit_poly_all and illum_deposit_all fix the map's fixed-point
  * unit before any deposit, so the result is the same for any order and
  * thread count). A footprint under a quarter of a cell a side is a point
- * deposit at its centre; one over more than FOOTPRINT_MAX_CELLS of its
- * level's cells (nl = 1: a fixed grid) gives its energy to its corners. */
+ * deposit at its centre; one touching more than FOOTPRINT_MAX_CELLS of its
+ * level's cells (footprint_cells: by area and edges, not bounding box; nl =
+ * 1: a fixed grid) gives its energy to its corners. */
 static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *p,
                            long np, const struct illum_splat *s, const double *sz, long ns, int threads)
 {
@@ -982,7 +1018,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 				ps[m++] = (struct illum_splat){cu, cv, {pp[i].e[0], pp[i].e[1], pp[i].e[2]}};
 				continue;
 			}
-			if (((u1 - u0) / du + 1) * ((v1 - v0) / dv + 1) <= FOOTPRINT_MAX_CELLS) {
+			if (footprint_cells(pp[i].uv, pp[i].n, du, dv) <= FOOTPRINT_MAX_CELLS) {
 				pp[keep++] = pp[i];
 				continue;
 			}
@@ -1001,20 +1037,19 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
  * (a counting sort, keeping their order), so the work is O(records) whatever
  * the number of surfaces. Point deposits and finishing run on o->threads
  * threads; shaft footprints (precs) are spread over their cells. */
-static struct lp_result *build_maps(const struct recbuf *bufs, const struct precbuf *pbufs, int nbuf,
-                                    const struct lp_opts *o)
+static struct lp_result *build_maps(const struct seg *sg, long nseg, const struct lp_opts *o)
 {
 	struct lp_result *r = mem_calloc(1, sizeof *r);
 	long total = 0, ptotal = 0, t = 0;
-	for (int b = 0; b < nbuf; b++)
-		total += bufs[b].n, ptotal += pbufs[b].n;
+	for (long g = 0; g < nseg; g++)
+		total += sg[g].nr, ptotal += sg[g].np;
 	/* the distinct surfaces (through the hash as it grows), then in source order */
 	r->objs = mem_alloc(sizeof *r->objs * 16);
 	int cap = 16;
 	const struct object *prev = NULL;
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n + pbufs[b].n; i++) {
-			const struct object *ob = i < bufs[b].n ? bufs[b].r[i].obj : pbufs[b].r[i - bufs[b].n].obj;
+	for (long g = 0; g < nseg; g++)
+		for (long i = 0; i < sg[g].nr + sg[g].np; i++) {
+			const struct object *ob = i < sg[g].nr ? sg[g].r[i].obj : sg[g].p[i - sg[g].nr].obj;
 			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
 			if (seen)
@@ -1032,8 +1067,9 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	if (n > 1)
 		qsort(objs, (size_t)n, sizeof *objs, by_source);
 	index_maps(r);
-	/* group the records per surface (counting sort by map index) */
-	int *ki = mem_alloc(sizeof *ki * (size_t)(total ? total : 1));
+	/* group the records per surface (counting sort by map index; one
+	 * surface, the usual case, needs no index per record) */
+	int *ki = n > 1 ? mem_alloc(sizeof *ki * (size_t)(total ? total : 1)) : NULL;
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
 	long *pstart = mem_calloc((size_t)n + 1, sizeof *pstart);
 	struct vec3 *pts = mem_alloc(sizeof *pts * (size_t)(total ? total : 1));
@@ -1041,28 +1077,29 @@ static struct lp_result *build_maps(const struct recbuf *bufs, const struct prec
 	double *psz = mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
 	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
 	t = 0;
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n; i++, t++)
-			start[(ki[t] = find_map(r, bufs[b].r[i].obj)) + 1]++;
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < pbufs[b].n; i++)
-			pstart[find_map(r, pbufs[b].r[i].obj) + 1]++;
+	for (long g = 0; g < nseg; g++)
+		for (long i = 0; i < sg[g].nr; i++, t++)
+			start[(ki ? (ki[t] = find_map(r, sg[g].r[i].obj)) : 0) + 1]++;
+	for (long g = 0; g < nseg; g++)
+		for (long i = 0; i < sg[g].np; i++)
+			pstart[find_map(r, sg[g].p[i].obj) + 1]++;
 	for (int k = 0; k < n; k++)
 		start[k + 1] += start[k], pstart[k + 1] += pstart[k];
 	t = 0;
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < bufs[b].n; i++, t++) {
-			const struct rec *rc = &bufs[b].r[i];
-			long at = start[ki[t]] + fill[ki[t]]++;
+	for (long g = 0; g < nseg; g++)
+		for (long i = 0; i < sg[g].nr; i++, t++) {
+			const struct rec *rc = &sg[g].r[i];
+			int k = ki ? ki[t] : 0;
+			long at = start[k] + fill[k]++;
 			pts[at] = rc->p;
 			psz[at] = rc->size;
 			sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
 		}
 	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
-	for (int b = 0; b < nbuf; b++)
-		for (long i = 0; i < pbufs[b].n; i++) {
-			int k = find_map(r, pbufs[b].r[i].obj);
-			pr[pstart[k] + fill[k]++] = pbufs[b].r[i];
+	for (long g = 0; g < nseg; g++)
+		for (long i = 0; i < sg[g].np; i++) {
+			int k = find_map(r, sg[g].p[i].obj);
+			pr[pstart[k] + fill[k]++] = sg[g].p[i];
 		}
 	struct lp_result *out = mem_calloc(1, sizeof *out);
 	int cap2 = n ? n : 1;
@@ -1189,6 +1226,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	J.targets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.targets);
 	J.ntargets = mem_calloc((size_t)(s->nlights ? s->nlights : 1), sizeof *J.ntargets);
 	J.nitems = plan(&J);
+	J.spans = mem_calloc((size_t)(J.nitems ? J.nitems : 1), sizeof *J.spans);
 	char what[64], round[32] = "";
 	if (o->tolerance > 0) /* a round of the progressive pass */
 		snprintf(round, sizeof round, ", %ld rays", o->rays);
@@ -1220,7 +1258,13 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 			acc.cut[c] += ws[i].cut[c];
 		}
 	}
-	struct lp_result *r = J.nitems > 0 ? build_maps(bufs, pbufs, nt, o) : NULL;
+	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
+	for (long k = 0; k < J.nitems; k++) {
+		const struct span *p = &J.spans[k];
+		sg[k] = (struct seg){p->nr ? bufs[p->w].r + p->r0 : NULL, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np};
+	}
+	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
+	free(sg), free(J.spans);
 	for (long k = 0; k < J.nitems && !o->shafts; k++)
 		acc.rays += J.items[k].count;
 	for (int k = 0; r && k < r->n; k++) {
