@@ -2,7 +2,7 @@
 /* pattern.c: POV-Ray's patterns. Each raw function follows the definition
  * of POV-Ray 3.7 (its documentation and pattern.cpp): the value before the
  * wave, then pattern_value applies frequency, phase and the wave exactly as
- * POV-Ray does, including its modulus of 1.00001 (docs/design.md §3). */
+ * POV-Ray does, including its modulus of 1.00001 (docs/design.md §10). */
 #include "pattern.h"
 
 #include <math.h>

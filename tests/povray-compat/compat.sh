@@ -8,6 +8,9 @@
 #   sh tests/povray-compat/compat.sh --corpus   every scene of povray-examples;
 #                                               writes docs/povray-corpus.md
 #
+# The twenty-scene run first checks that each of POV-Ray's include files
+# parses in a #version 3.7 scene (one TAP line each).
+#
 # Per scene it reports: parsed (arvo --check exits 0), rendered (arvo wrote
 # the PNG) and the mean absolute difference of the two 8-bit images over
 # every pixel and channel, in % of full scale (idiff's "Mean error"). A
