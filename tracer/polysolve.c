@@ -113,10 +113,7 @@ static int changes(const struct chain *s, double x)
 	return v;
 }
 
-/* The root of p in [lo,hi], where p(lo) has the sign of flo and p(hi) the
- * other: Newton steps inside a shrinking bracket, bisection when a step
- * would leave it. */
-static double refine(const double *c, int n, double lo, double hi, double flo)
+double poly_refine(const double *c, int n, double lo, double hi, double flo)
 {
 	double x = 0.5 * (lo + hi);
 	for (int it = 0; it < 200; it++) {
@@ -153,7 +150,7 @@ static void isolate(const struct chain *s, double a, double b, int va, int vb, i
 			return;
 		}
 		if (fa != 0 && (fa < 0) != (fb < 0)) {
-			out[(*k)++] = refine(p, n, a, b, fa);
+			out[(*k)++] = poly_refine(p, n, a, b, fa);
 			return;
 		}
 	}

@@ -23,4 +23,9 @@ int poly_roots(const double *c, int n, double lo, double hi, double *roots);
 /* c(x) by Horner; the derivative in *d when d is not NULL. */
 double poly_eval(const double *c, int n, double x, double *d);
 
+/* The root of c in [lo,hi], where c(lo) has the sign of flo and c(hi) the
+ * other: Newton steps inside a shrinking bracket, bisection when a step
+ * would leave it; to full double precision. */
+double poly_refine(const double *c, int n, double lo, double hi, double flo);
+
 #endif

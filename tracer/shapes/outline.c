@@ -9,45 +9,11 @@
  * vertex the outline only touches zero or two times). End points are the
  * exact values the pieces share, not the polynomial evaluated at 0 and 1. */
 #include "outline.h"
+#include "../polysolve.h"
 
 #include <math.h>
 #include <stddef.h>
 
-/* c[0] + c[1]x + … + c[n]xⁿ by Horner, with the derivative in *d. */
-static double peval(const double *c, int n, double x, double *d)
-{
-	double p = c[n], dp = 0;
-	for (int i = n - 1; i >= 0; i--) {
-		dp = dp * x + p;
-		p = p * x + c[i];
-	}
-	if (d)
-		*d = dp;
-	return p;
-}
-
-/* The root of c in [lo,hi] where c changes sign once (flo: c(lo)):
- * Newton steps kept inside the shrinking bracket, else bisection. */
-static double refine(const double *c, int n, double lo, double hi, double flo)
-{
-	double x = 0.5 * (lo + hi);
-	for (int it = 0; it < 100; it++) {
-		double d, f = peval(c, n, x, &d);
-		if (f == 0)
-			return x;
-		if ((f < 0) == (flo < 0))
-			lo = x;
-		else
-			hi = x;
-		double nx = d != 0 ? x - f / d : lo;
-		if (!(nx > lo && nx < hi))
-			nx = 0.5 * (lo + hi);
-		if (nx == x || hi - lo <= 4e-16 * fmax(1, fmax(fabs(lo), fabs(hi))))
-			return nx;
-		x = nx;
-	}
-	return x;
-}
 
 int outline_roots(const double *c, int n, double lo, double hi, double *out)
 {
@@ -67,22 +33,22 @@ int outline_roots(const double *c, int n, double lo, double hi, double *out)
 	b[0] = lo;
 	b[m + 1] = hi;
 	for (int i = 0; i <= m; i++) {
-		double f0 = peval(c, n, b[i], NULL), f1 = peval(c, n, b[i + 1], NULL);
+		double f0 = poly_eval(c, n, b[i], NULL), f1 = poly_eval(c, n, b[i + 1], NULL);
 		if (f0 == 0) {
 			if (k == 0 || out[k - 1] != b[i])
 				out[k++] = b[i];
 		} else if ((f0 < 0) != (f1 < 0) && f1 != 0) {
-			out[k++] = refine(c, n, b[i], b[i + 1], f0);
+			out[k++] = poly_refine(c, n, b[i], b[i + 1], f0);
 		}
 	}
-	if (peval(c, n, hi, NULL) == 0 && (k == 0 || out[k - 1] != hi))
+	if (poly_eval(c, n, hi, NULL) == 0 && (k == 0 || out[k - 1] != hi))
 		out[k++] = hi;
 	return k;
 }
 
 void curve2_eval(const struct curve2 *c, double s, double *x, double *y, double *dx, double *dy)
 {
-	double px = peval(c->x, 3, s, dx), py = peval(c->y, 3, s, dy);
+	double px = poly_eval(c->x, 3, s, dx), py = poly_eval(c->y, 3, s, dy);
 	if (x)
 		*x = s == 0 ? c->p0[0] : s == 1 ? c->p1[0] : px;
 	if (y)
@@ -106,7 +72,7 @@ struct curve2 curve2_make(const double cx[4], const double cy[4], const double p
 		c.hi[a] = fmax(p0[a], p1[a]);
 		int m = outline_roots(d, 2, 0, 1, r);
 		for (int i = 0; i < m; i++) {
-			double v = peval(q, 3, r[i], NULL);
+			double v = poly_eval(q, 3, r[i], NULL);
 			c.lo[a] = fmin(c.lo[a], v);
 			c.hi[a] = fmax(c.hi[a], v);
 		}
@@ -142,7 +108,7 @@ static int crossings(const struct curve2 *c, double x, double xfar, double y, do
 		double px = INFINITY;
 		if (!(c->lo[0] > xfar)) {
 			double s = c->y[2] == 0 && c->y[3] == 0 ? (y - c->p0[1]) / (c->p1[1] - c->p0[1])
-			                                         : refine(q, 3, cut[i], cut[i + 1], ya - y);
+			                                         : poly_refine(q, 3, cut[i], cut[i + 1], ya - y);
 			curve2_eval(c, s, &px, NULL, NULL, NULL);
 		}
 		if (px > x) {
