@@ -142,12 +142,13 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
 /* POV-Ray's photons { spacing S }: POV-Ray shoots a target's photons S
  * apart where they reach it, about pi r^2 / (S s)^2 of them for a target
  * of bounding radius r and spacing multiplier s; the light pass shoots as
- * many rays per light (at least 10^4, at most 10^7). 0 without spacing. */
+ * many rays per light (at least 10^4, at most 10^7); without spacing (or
+ * a target) 10^6, the default. */
 static long photon_rays(const struct scene *s)
 {
 	double S = s->gs.illum.spacing, n = 0;
 	if (!(S > 0))
-		return 0;
+		return 1000000;
 	for (int i = 0; i < s->nobjects; i++) {
 		const struct object *o = s->objects[i];
 		if (!o->has_photons || !o->photons.target || !shape_bounded(o))
@@ -156,7 +157,7 @@ static long photon_rays(const struct scene *s)
 		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)), sp = S * o->photons.spacing;
 		n += M_PI * r * r / (sp * sp);
 	}
-	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 0;
+	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 1000000;
 }
 
 static int light_pass(const struct scene *s, const struct bvh *b, const struct mat_cache *mats,
@@ -173,7 +174,7 @@ static int light_pass(const struct scene *s, const struct bvh *b, const struct m
 		 * else its photons { spacing }, else 1e6 */
 		.rays = o->rays > 0 ? o->rays : s->gs.illum.rays > 0 ? s->gs.illum.rays
 		      : s->gs.illum.count > 0 ? s->gs.illum.count
-		      : photon_rays(s) > 0 ? photon_rays(s) : 1000000,
+		      : photon_rays(s),
 		.max_depth = s->gs.illum.max_depth > 0 ? s->gs.illum.max_depth
 		           : s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5,
 		.min_weight = 1e-4, .threads = threads, .discard_isolated = true, .channel = -1, .progress = prog,
