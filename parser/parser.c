@@ -329,6 +329,24 @@ static struct node *parse_postfix(struct parser *p, struct node *e)
 
 static struct node *parse_block_body(struct parser *p, struct node *blk);
 
+/* params := ident {',' ident}, each pushed onto n as an N_IDENT (function
+ * and macro headers); 0 after an error, reported. */
+static int parse_params(struct parser *p, struct node *n)
+{
+	do {
+		if (!check(p, TK_IDENT)) {
+			expected(p, "a parameter name");
+			return 0;
+		}
+		struct node *id = node(p, N_IDENT, p->tok.loc);
+		id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
+		id->len = p->tok.len;
+		ast_push(p->arena, n, id);
+		advance(p);
+	} while (accept(p, TK_COMMA));
+	return 1;
+}
+
 /* function := 'function' ['(' [ident {',' ident}] ')'] '{' body '}'
  * body := 'pigment' block | 'pattern' block | expr   (in expr, a '^' b is a power) */
 static struct node *parse_function(struct parser *p)
@@ -338,19 +356,8 @@ static struct node *parse_function(struct parser *p)
 	if (check(p, TK_LPAREN)) {
 		struct srcloc open = p->tok.loc;
 		advance(p);
-		if (!check(p, TK_RPAREN)) {
-			do {
-				if (!check(p, TK_IDENT)) {
-					expected(p, "a parameter name");
-					return n;
-				}
-				struct node *id = node(p, N_IDENT, p->tok.loc);
-				id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-				id->len = p->tok.len;
-				ast_push(p->arena, n, id);
-				advance(p);
-			} while (accept(p, TK_COMMA));
-		}
+		if (!check(p, TK_RPAREN) && !parse_params(p, n))
+			return n;
 		expect_close(p, TK_RPAREN, TK_LPAREN, open);
 	}
 	struct srcloc open = p->tok.loc;
@@ -886,19 +893,8 @@ static struct node *parse_macro(struct parser *p, struct token d)
 	struct srcloc open = p->tok.loc;
 	if (!expect(p, TK_LPAREN))
 		return n;
-	if (!check(p, TK_RPAREN)) {
-		do {
-			if (!check(p, TK_IDENT)) {
-				expected(p, "a parameter name");
-				break;
-			}
-			struct node *id = node(p, N_IDENT, p->tok.loc);
-			id->str = arena_strndup(p->arena, p->tok.text, (size_t)p->tok.len);
-			id->len = p->tok.len;
-			ast_push(p->arena, n, id);
-			advance(p);
-		} while (accept(p, TK_COMMA));
-	}
+	if (!check(p, TK_RPAREN))
+		parse_params(p, n);
 	if (p->panic)
 		recover_header(p);
 	else
