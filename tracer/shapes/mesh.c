@@ -162,24 +162,8 @@ bool mesh_finish(struct mesh *m, struct arena *a, int *bad)
 static bool tri_hit(const struct mesh *m, int t, const struct ray *r, double *tt, double *ua,
                     double *vb)
 {
-	struct vec3 p0 = corner(m, t, 0), e1 = v_sub(corner(m, t, 1), p0), e2 = v_sub(corner(m, t, 2), p0);
-	struct vec3 pv = v_cross(r->d, e2);
-	double det = v_dot(e1, pv);
-	if (det == 0 || !isfinite(det))
-		return false;
-	double inv = 1 / det;
-	struct vec3 s = v_sub(r->o, p0);
-	double a = v_dot(s, pv) * inv;
-	if (a < 0 || a > 1)
-		return false;
-	struct vec3 qv = v_cross(s, e1);
-	double b = v_dot(r->d, qv) * inv;
-	if (b < 0 || a + b > 1)
-		return false;
-	*tt = v_dot(e2, qv) * inv;
-	*ua = a;
-	*vb = b;
-	return true;
+	struct vec3 p0 = corner(m, t, 0);
+	return prim_tri_hit(p0, v_sub(corner(m, t, 1), p0), v_sub(corner(m, t, 2), p0), r, tt, ua, vb);
 }
 
 /* The ray's parameter interval inside box b, clipped to (lo, hi). */

@@ -98,6 +98,32 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
 	return true;
 }
 
+
+/* Möller–Trumbore in double precision, edges inclusive: the ray meets the
+ * triangle p0 + a·e1 + b·e2 at *t, with barycentric (a, b) in *a, *b (no
+ * interval test on t). The triangle primitive and the mesh share it. */
+static inline bool prim_tri_hit(struct vec3 p0, struct vec3 e1, struct vec3 e2, const struct ray *r,
+                                double *t, double *a, double *b)
+{
+	struct vec3 pv = v_cross(r->d, e2);
+	double det = v_dot(e1, pv);
+	if (det == 0 || !isfinite(det))
+		return false;
+	double inv = 1 / det;
+	struct vec3 s = v_sub(r->o, p0);
+	double u = v_dot(s, pv) * inv;
+	if (u < 0 || u > 1)
+		return false;
+	struct vec3 qv = v_cross(s, e1);
+	double v = v_dot(r->d, qv) * inv;
+	if (v < 0 || u + v > 1)
+		return false;
+	*t = v_dot(e2, qv) * inv;
+	*a = u;
+	*b = v;
+	return true;
+}
+
 /* Area of {u0≤u≤u1, v0≤v≤v1, u+v≤1} for a rectangle already inside the
  * positive quadrant: the rectangle minus the corner cut off by u + v = 1. */
 static inline double prim_tri_clipped_area(double u0, double u1, double v0, double v1)

@@ -36,21 +36,8 @@ static bool tr_intersect(const struct object *o, const struct ray *r, double tmi
                          struct local_hit *lh)
 {
 	struct vec3 e1 = v_sub(TP(o, 1), TP(o, 0)), e2 = v_sub(TP(o, 2), TP(o, 0));
-	struct vec3 pv = v_cross(r->d, e2);
-	double det = v_dot(e1, pv);
-	if (det == 0 || !isfinite(det))
-		return false;
-	double inv = 1 / det;
-	struct vec3 s = v_sub(r->o, TP(o, 0));
-	double u = v_dot(s, pv) * inv;
-	if (u < 0 || u > 1)
-		return false;
-	struct vec3 qv = v_cross(s, e1);
-	double v = v_dot(r->d, qv) * inv;
-	if (v < 0 || u + v > 1)
-		return false;
-	double t = v_dot(e2, qv) * inv;
-	if (!(t > tmin && t < tmax))
+	double t, u, v;
+	if (!prim_tri_hit(TP(o, 0), e1, e2, r, &t, &u, &v) || !(t > tmin && t < tmax))
 		return false;
 	lh->t = t;
 	lh->u = u;
