@@ -36,7 +36,10 @@ struct fx {
 static struct fx fx_from(double d)
 {
 	struct fx r = {0, 0};
-	double m = rint(d * 0x1p96); /* scaling by powers of two is exact here */
+	double m = d * 0x1p96; /* scaling by powers of two is exact here */
+	if (m < 0x1p52) /* rint, inline: below 2^52 adding 2^52 rounds to an integer (to even,
+	                   as rint does); from 2^52 on a double is one already */
+		m = (m + 0x1p52) - 0x1p52;
 	if (!(m > 0))
 		return r;
 	if (!(m < 0x1p128))
@@ -253,10 +256,32 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	return true;
 }
 
-static int cmp_i32(const void *a, const void *b)
+/* Sorts a[0..n) ascending: a radix sort, two passes of 16 bits (qsort's
+ * comparisons cost ~25 times more on the window's samples). */
+static void sort_i32(int32_t *a, long n)
 {
-	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-	return x < y ? -1 : x > y;
+	uint32_t *x = (uint32_t *)a, *tmp = mem_alloc(sizeof *tmp * (size_t)(n ? n : 1));
+	long *cnt = mem_alloc(sizeof *cnt * 65536);
+	for (long i = 0; i < n; i++)
+		x[i] ^= 0x80000000u; /* signed order as unsigned */
+	for (int pass = 0; pass < 2; pass++) {
+		uint32_t *src = pass ? tmp : x, *dst = pass ? x : tmp;
+		int sh = 16 * pass;
+		memset(cnt, 0, sizeof *cnt * 65536);
+		for (long i = 0; i < n; i++)
+			cnt[(src[i] >> sh) & 0xffff]++;
+		long at = 0;
+		for (long d = 0; d < 65536; d++) {
+			long c = cnt[d];
+			cnt[d] = at;
+			at += c;
+		}
+		for (long i = 0; i < n; i++)
+			dst[cnt[(src[i] >> sh) & 0xffff]++] = src[i];
+	}
+	for (long i = 0; i < n; i++)
+		x[i] ^= 0x80000000u;
+	free(tmp), free(cnt);
 }
 
 #define WIN_SAMPLE 32768 /* tile coordinates looked at to place the window */
@@ -271,8 +296,8 @@ static double win_fit(struct illum_map *m, int32_t *ti, int32_t *tj, long ns, lo
 	static const double q[] = {0, 0.001, 0.005, 0.02, 0.05};
 	if (ns <= 0)
 		return 0;
-	qsort(ti, (size_t)ns, sizeof *ti, cmp_i32);
-	qsort(tj, (size_t)ns, sizeof *tj, cmp_i32);
+	sort_i32(ti, ns);
+	sort_i32(tj, ns);
 	for (int k = 0; k < 5; k++) {
 		long lo = (long)(q[k] * (double)(ns - 1)), hi = ns - 1 - lo;
 		if (win_grow(m, ti[lo], ti[hi], tj[lo], tj[hi], more))
@@ -547,13 +572,16 @@ static double energy_max(const double e[3])
 	return x;
 }
 
-static void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
+static inline void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
 {
-	struct fx f = {0, 0};
-	float q = 0;
-	for (int c = 0; c < 3; c++) {
-		if (c == 0 || e[c] != e[c - 1]) { /* white light: the same numbers thrice */
-			double x = w * e[c];
+	double x = w * e[0];
+	struct fx f = fx_from(x * inv_unit);
+	float q = (float)(x * x);
+	fx_add(&n->e[0], f);
+	n->sq[0] += q;
+	for (int c = 1; c < 3; c++) {
+		if (e[c] != e[c - 1]) { /* white light: the same numbers thrice */
+			x = w * e[c];
 			f = fx_from(x * inv_unit);
 			q = (float)(x * x);
 		}
@@ -665,17 +693,6 @@ struct prep {
 	double fu, fv;      /* the weights of the upper ones */
 };
 
-/* The nodes and weights of p: the same numbers axis_split gave. */
-static void prep_nodes(const struct illum_map *m, const struct prep *p, long iu[2], long iv[2], double wu[2],
-                       double wv[2])
-{
-	const struct axis *a = &m->ax[0], *b = &m->ax[1];
-	iu[0] = p->i, iv[0] = p->j;
-	iu[1] = a->wraps && p->i + 1 == a->n ? 0 : p->i + 1;
-	iv[1] = b->wraps && p->j + 1 == b->n ? 0 : p->j + 1;
-	wu[0] = 1 - p->fu, wu[1] = p->fu, wv[0] = 1 - p->fv, wv[1] = p->fv;
-}
-
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_splat *s;
@@ -683,6 +700,7 @@ struct deposit_job {
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
+	double emax;        /* per chunk: the largest energy_max of its splats */
 	struct arena pool;  /* per band: the tiles it made in the window */
 	struct tile **made; /* per band: those tiles, in order */
 	long nmade, cap;
@@ -697,10 +715,12 @@ static void prep_work(void *ctx, long k, int worker)
 	const struct illum_map *m = D->m;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
+	J->emax = 0;
 	for (long q = lo; q < hi; q++) {
 		const struct illum_splat *sp = &D->s[q];
 		struct prep *p = &D->p[q];
-		double e[3];
+		double e[3], x = energy_max(sp->e);
+		J->emax = x > J->emax ? x : J->emax;
 		p->i = INT32_MIN;
 		if (!isfinite(sp->u) || !isfinite(sp->v)) {
 			J->dropped++;
@@ -771,23 +791,37 @@ static void accumulate_work(void *ctx, long k, int worker)
 	(void)worker;
 	struct deposit_job *D = ctx, *B = D + k;
 	struct illum_map *m = D->m;
+	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
+	double inv = m->inv_unit;
+	long lti = LONG_MIN, ltj = LONG_MIN; /* the tile of the last node (most splats stay in one) */
+	struct tile *lt = NULL;
 	for (long q = 0; q < D->n; q++) {
-		if (D->p[q].i == INT32_MIN)
+		const struct prep *p = &D->p[q];
+		if (p->i == INT32_MIN)
 			continue;
-		long iu[2], iv[2];
-		double wu[2], wv[2], e[3];
-		prep_nodes(m, &D->p[q], iu, iv, wu, wv);
+		long iv[2] = {p->j, ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1};
+		bool mine[2] = {true, true};
+		if (D->nb > 1) {
+			mine[0] = band_of(iv[0], D->nb) == (int)k;
+			mine[1] = band_of(iv[1], D->nb) == (int)k;
+			if (!mine[0] && !mine[1])
+				continue;
+		}
+		long iu[2] = {p->i, ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1};
+		double wu[2] = {1 - p->fu, p->fu}, wv[2] = {1 - p->fv, p->fv}, e[3];
 		energy_clean(D->s[q].e, e);
 		for (int b = 0; b < 2; b++) {
-			if (D->nb > 1 && band_of(iv[b], D->nb) != (int)k)
+			if (!mine[b])
 				continue;
+			long tj = floordiv(iv[b]);
 			for (int a = 0; a < 2; a++) {
 				double w = wu[a] * wv[b];
 				if (!(w > 0))
 					continue;
-				long ti = floordiv(iu[a]), tj = floordiv(iv[b]);
-				struct tile *t = band_tile(B, m, ti, tj);
-				acc_add(&t->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, m->inv_unit);
+				long ti = floordiv(iu[a]);
+				if (ti != lti || tj != ltj)
+					lt = band_tile(B, m, ti, tj), lti = ti, ltj = tj;
+				acc_add(&lt->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, inv);
 			}
 		}
 	}
@@ -798,10 +832,6 @@ static void accumulate_work(void *ctx, long k, int worker)
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
-	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
-	for (long i = 0; i < n; i++)
-		emax = fmax(emax, energy_max(s[i].e));
-	map_reserve(m, (double)n * emax);
 	if (n <= 0)
 		return;
 	if (n < 8192)
@@ -811,6 +841,10 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	D[0] = (struct deposit_job){.m = m, .s = s, .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n,
 	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
+	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
+	for (long k = 0; k < nchunks; k++)
+		emax = D[k].emax > emax ? D[k].emax : emax;
+	map_reserve(m, (double)n * emax);
 	prep_window(D, nchunks);
 	for (int b = 0; b < nb; b++)
 		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].part = NULL;
