@@ -35,7 +35,9 @@
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../common/arena.h"
 
@@ -60,7 +62,9 @@ struct query {
 	double t0;             /* where the float ray starts along r */
 	unsigned skip;         /* leaves with these flags are ignored */
 	struct hit *h;         /* best hit so far */
+	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
+	double best_t;         /* its t, when deferred */
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
@@ -130,8 +134,33 @@ static void collect(struct builder *B, const struct object *o)
 
 /* ==== callbacks ========================================================== */
 
-static float down(double x) { float f = (float)x; return (double)f > x ? nextafterf(f, -INFINITY) : f; }
-static float up(double x) { float f = (float)x; return (double)f < x ? nextafterf(f, INFINITY) : f; }
+/* The next float towards -inf (+inf) from a finite, non-zero float f:
+ * nextafterf, without the call. */
+static float step_float(float f, bool towards_up)
+{
+	uint32_t b;
+	memcpy(&b, &f, sizeof b);
+	b += (f > 0) == towards_up ? 1u : ~0u; /* away from or towards zero */
+	memcpy(&f, &b, sizeof f);
+	return f;
+}
+
+/* x rounded to a float no greater (down) or no less (up) than it. */
+static float down(double x)
+{
+	float f = (float)x;
+	if (!((double)f > x))
+		return f;
+	return f == 0 ? -0x1p-149f : step_float(f, false);
+}
+
+static float up(double x)
+{
+	float f = (float)x;
+	if (!((double)f < x))
+		return f;
+	return f == 0 ? 0x1p-149f : step_float(f, true);
+}
 
 static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 {
@@ -157,6 +186,7 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 		if (!shape_hit_t(o, q->r, q->tmin, hi, &t))
 			return;
 		q->deferred = true;
+		q->best_t = t;
 	} else {
 		struct hit tmp;
 		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
@@ -287,8 +317,13 @@ static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
 	const struct bvh *b = q->b;
 	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
 	                  v_add(b->bounds.hi, v3(b->pad, b->pad, b->pad))};
-	double te;
-	if (!enter(bx, q->r, -INFINITY, INFINITY, &te) || !(te < q->tmax))
+	struct vec3 ro = q->r->o;
+	double te = 0; /* a ray starting inside the box enters it at t <= 0 */
+	bool inside = ro.x >= bx.lo.x && ro.x <= bx.hi.x && ro.y >= bx.lo.y && ro.y <= bx.hi.y &&
+	              ro.z >= bx.lo.z && ro.z <= bx.hi.z;
+	if (!inside && !enter(bx, q->r, -INFINITY, INFINITY, &te))
+		return false;
+	if (!(te < q->tmax))
 		return false;
 	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
 	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
@@ -362,14 +397,15 @@ static bool unbounded(struct query *q, bool any)
 static void finish(struct query *q)
 {
 	if (q->deferred)
-		shape_intersect(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->h);
+		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
 static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                      unsigned skip, bool any, struct hit *h)
 {
-	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip, .h = h, .best = -1};
+	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV, .h = h,
+	                  .uv = !(skip & BVH_NO_UV), .best = -1};
 	if (unbounded(&q, any) || b->nprims == 0)
 		return q.found;
 	if (b->scene)
@@ -390,7 +426,8 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 	for (int i = 0; i < 8; i++) {
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
-		                    .skip = skip, .h = &h[i < n ? i : 0], .best = -1};
+		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
+		                    .uv = !(skip & BVH_NO_UV), .best = -1};
 		valid[i] = 0;
 		if (i >= n)
 			continue;
