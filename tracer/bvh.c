@@ -308,11 +308,11 @@ static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, 
 	return true;
 }
 
-/* The float ray of query q, written as lane i of a packet of N rays (N = 1:
- * an RTCRayHit): it starts where q's ray enters the padded box of
- * everything bounded, and its interval is rounded outward. False (and no
- * ray) when the ray misses that box within q's interval. */
-static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
+/* The float ray of query q, as the nine rows of an RTCRay (org xyz,
+ * tnear, dir xyz, time, tfar): it starts where q's ray enters the padded
+ * box of everything bounded, and its interval is rounded outward. False
+ * (and no ray) when the ray misses that box within q's interval. */
+static bool float_ray(struct query *q, float row[9])
 {
 	const struct bvh *b = q->b;
 	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
@@ -328,11 +328,18 @@ static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
 	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
 	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
 	double lo = q->tmin - q->t0;
-	/* RTCRayN's rows: org xyz, tnear, dir xyz, time, tfar; then mask, id,
-	 * flags and the hit's geomID as words 9, 10, 11 and 12 + 6 */
-	const float row[9] = {(float)o.x, (float)o.y, (float)o.z, lo > 0 ? down(lo * (1 - 1e-6)) : 0,
-	                      (float)q->r->d.x, (float)q->r->d.y, (float)q->r->d.z, 0,
-	                      isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6))};
+	row[0] = (float)o.x, row[1] = (float)o.y, row[2] = (float)o.z;
+	row[3] = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
+	row[4] = (float)q->r->d.x, row[5] = (float)q->r->d.y, row[6] = (float)q->r->d.z, row[7] = 0;
+	row[8] = isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6));
+	return true;
+}
+
+/* Writes a float ray as lane i of a packet of N rays (N = 1: an RTCRayHit).
+ * RTCRayN's rows: the nine of float_ray, then mask, id, flags and the hit's
+ * geomID as words 9, 10, 11 and 12 + 6. */
+static inline void put_lane(float *f, unsigned N, unsigned i, const float row[9])
+{
 	for (unsigned k = 0; k < 9; k++)
 		f[k * N + i] = row[k];
 	unsigned *u = (unsigned *)f;
@@ -340,7 +347,6 @@ static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
 	u[10 * N + i] = 0;
 	u[11 * N + i] = 0;
 	u[18 * N + i] = RTC_INVALID_GEOMETRY_ID;
-	return true;
 }
 
 /* The bounded leaves through Embree; q holds the interval and the result. */
@@ -348,8 +354,10 @@ static void walk(struct query *q, bool any)
 {
 	const struct bvh *b = q->b;
 	struct RTCRayHit rh;
-	if (!float_ray(q, (float *)&rh, 1, 0))
+	float row[9];
+	if (!float_ray(q, row))
 		return;
+	put_lane((float *)&rh, 1, 0, row);
 	rtcInitIntersectContext(&q->rc);
 	q->lanes = 1;
 	if (any) {
@@ -438,7 +446,10 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 			brute(q, false);
 			continue;
 		}
-		valid[i] = float_ray(q, (float *)&rh, 8, (unsigned)i) ? -1 : 0;
+		float row[9];
+		valid[i] = float_ray(q, row) ? -1 : 0;
+		if (valid[i])
+			put_lane((float *)&rh, 8, (unsigned)i, row);
 		any |= valid[i] != 0;
 	}
 	if (any) {

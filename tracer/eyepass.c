@@ -54,6 +54,7 @@ struct surf {
 };
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
+static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
 static double v_maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
 
 /* The query flag for hits shaded here: (u,v) are looked at only to read
@@ -290,6 +291,9 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	const struct interior *in = mat_interior(sf->h->obj);
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
+	const struct finish *f = sf->tex->finish;
+	if (!clear && no_colour(f->refl_min) && no_colour(f->refl_max))
+		return v3(0, 0, 0); /* neither reflects nor transmits: R = T = 0 */
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
 	struct surf_in si = {sf->h, sf->tex->finish, sf->pc, in, d, sf->nf,
@@ -583,14 +587,21 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0};
-	double jx = jitter ? smp_next(&pa->rng) : 0.5, jy = jitter ? smp_next(&pa->rng) : 0.5;
-	if (jitter && i < m * m) {
-		jx = (i % m + jx) / m;
-		jy = (i / m + jy) / m;
+	double jx = 0.5, jy = 0.5;
+	if (jitter) {
+		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
+		jx = smp_next(&pa->rng), jy = smp_next(&pa->rng);
+		if (i < m * m) {
+			jx = (i % m + jx) / m;
+			jy = (i / m + jy) / m;
+		}
 	}
-	double l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
+	double l1 = 0, l2 = 0; /* the lens sample, drawn only for a lens */
+	if (ctx->cam.aperture > 0)
+		l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
+	else
+		pa->rng.dim += 2; /* the numbers after it stay the same */
 	return cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 }
 
