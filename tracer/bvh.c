@@ -35,7 +35,9 @@
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../common/arena.h"
 
@@ -60,7 +62,9 @@ struct query {
 	double t0;             /* where the float ray starts along r */
 	unsigned skip;         /* leaves with these flags are ignored */
 	struct hit *h;         /* best hit so far */
+	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
+	double best_t;         /* its t, when deferred */
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
@@ -130,8 +134,33 @@ static void collect(struct builder *B, const struct object *o)
 
 /* ==== callbacks ========================================================== */
 
-static float down(double x) { float f = (float)x; return (double)f > x ? nextafterf(f, -INFINITY) : f; }
-static float up(double x) { float f = (float)x; return (double)f < x ? nextafterf(f, INFINITY) : f; }
+/* The next float towards -inf (+inf) from a finite, non-zero float f:
+ * nextafterf, without the call. */
+static float step_float(float f, bool towards_up)
+{
+	uint32_t b;
+	memcpy(&b, &f, sizeof b);
+	b += (f > 0) == towards_up ? 1u : ~0u; /* away from or towards zero */
+	memcpy(&f, &b, sizeof f);
+	return f;
+}
+
+/* x rounded to a float no greater (down) or no less (up) than it. */
+static float down(double x)
+{
+	float f = (float)x;
+	if (!((double)f > x))
+		return f;
+	return f == 0 ? -0x1p-149f : step_float(f, false);
+}
+
+static float up(double x)
+{
+	float f = (float)x;
+	if (!((double)f < x))
+		return f;
+	return f == 0 ? 0x1p-149f : step_float(f, true);
+}
 
 static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 {
@@ -157,6 +186,7 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 		if (!shape_hit_t(o, q->r, q->tmin, hi, &t))
 			return;
 		q->deferred = true;
+		q->best_t = t;
 	} else {
 		struct hit tmp;
 		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
@@ -278,26 +308,38 @@ static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, 
 	return true;
 }
 
-/* The float ray of query q, written as lane i of a packet of N rays (N = 1:
- * an RTCRayHit): it starts where q's ray enters the padded box of
- * everything bounded, and its interval is rounded outward. False (and no
- * ray) when the ray misses that box within q's interval. */
-static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
+/* The float ray of query q, as the nine rows of an RTCRay (org xyz,
+ * tnear, dir xyz, time, tfar): it starts where q's ray enters the padded
+ * box of everything bounded, and its interval is rounded outward. False
+ * (and no ray) when the ray misses that box within q's interval. */
+static bool float_ray(struct query *q, float row[9])
 {
 	const struct bvh *b = q->b;
 	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
 	                  v_add(b->bounds.hi, v3(b->pad, b->pad, b->pad))};
-	double te;
-	if (!enter(bx, q->r, -INFINITY, INFINITY, &te) || !(te < q->tmax))
+	struct vec3 ro = q->r->o;
+	double te = 0; /* a ray starting inside the box enters it at t <= 0 */
+	bool inside = ro.x >= bx.lo.x && ro.x <= bx.hi.x && ro.y >= bx.lo.y && ro.y <= bx.hi.y &&
+	              ro.z >= bx.lo.z && ro.z <= bx.hi.z;
+	if (!inside && !enter(bx, q->r, -INFINITY, INFINITY, &te))
+		return false;
+	if (!(te < q->tmax))
 		return false;
 	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
 	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
 	double lo = q->tmin - q->t0;
-	/* RTCRayN's rows: org xyz, tnear, dir xyz, time, tfar; then mask, id,
-	 * flags and the hit's geomID as words 9, 10, 11 and 12 + 6 */
-	const float row[9] = {(float)o.x, (float)o.y, (float)o.z, lo > 0 ? down(lo * (1 - 1e-6)) : 0,
-	                      (float)q->r->d.x, (float)q->r->d.y, (float)q->r->d.z, 0,
-	                      isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6))};
+	row[0] = (float)o.x, row[1] = (float)o.y, row[2] = (float)o.z;
+	row[3] = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
+	row[4] = (float)q->r->d.x, row[5] = (float)q->r->d.y, row[6] = (float)q->r->d.z, row[7] = 0;
+	row[8] = isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6));
+	return true;
+}
+
+/* Writes a float ray as lane i of a packet of N rays (N = 1: an RTCRayHit).
+ * RTCRayN's rows: the nine of float_ray, then mask, id, flags and the hit's
+ * geomID as words 9, 10, 11 and 12 + 6. */
+static inline void put_lane(float *f, unsigned N, unsigned i, const float row[9])
+{
 	for (unsigned k = 0; k < 9; k++)
 		f[k * N + i] = row[k];
 	unsigned *u = (unsigned *)f;
@@ -305,7 +347,6 @@ static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
 	u[10 * N + i] = 0;
 	u[11 * N + i] = 0;
 	u[18 * N + i] = RTC_INVALID_GEOMETRY_ID;
-	return true;
 }
 
 /* The bounded leaves through Embree; q holds the interval and the result. */
@@ -313,8 +354,10 @@ static void walk(struct query *q, bool any)
 {
 	const struct bvh *b = q->b;
 	struct RTCRayHit rh;
-	if (!float_ray(q, (float *)&rh, 1, 0))
+	float row[9];
+	if (!float_ray(q, row))
 		return;
+	put_lane((float *)&rh, 1, 0, row);
 	rtcInitIntersectContext(&q->rc);
 	q->lanes = 1;
 	if (any) {
@@ -362,14 +405,15 @@ static bool unbounded(struct query *q, bool any)
 static void finish(struct query *q)
 {
 	if (q->deferred)
-		shape_intersect(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->h);
+		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
 static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                      unsigned skip, bool any, struct hit *h)
 {
-	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip, .h = h, .best = -1};
+	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV, .h = h,
+	                  .uv = !(skip & BVH_NO_UV), .best = -1};
 	if (unbounded(&q, any) || b->nprims == 0)
 		return q.found;
 	if (b->scene)
@@ -390,7 +434,8 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 	for (int i = 0; i < 8; i++) {
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
-		                    .skip = skip, .h = &h[i < n ? i : 0], .best = -1};
+		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
+		                    .uv = !(skip & BVH_NO_UV), .best = -1};
 		valid[i] = 0;
 		if (i >= n)
 			continue;
@@ -401,7 +446,10 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 			brute(q, false);
 			continue;
 		}
-		valid[i] = float_ray(q, (float *)&rh, 8, (unsigned)i) ? -1 : 0;
+		float row[9];
+		valid[i] = float_ray(q, row) ? -1 : 0;
+		if (valid[i])
+			put_lane((float *)&rh, 8, (unsigned)i, row);
 		any |= valid[i] != 0;
 	}
 	if (any) {

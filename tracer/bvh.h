@@ -16,6 +16,10 @@
 
 struct bvh;
 
+/* A bit of a query's skip mask that is no object flag: the nearest hit may
+ * come without its (u,v) and partials (NaN and zero; shape_hit_at). */
+#define BVH_NO_UV (1u << 31)
+
 /* Builds the hierarchy over objs[0..n); the objects must outlive it. */
 struct bvh *bvh_build(struct object **objs, int n);
 /* Nearest hit with tmin < t < tmax over every object (as shape_intersect). */

@@ -77,13 +77,10 @@ bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double 
 	return true;
 }
 
-/* The nearer root in range; the point is projected back onto the sphere. */
-static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                          struct local_hit *lh)
+/* The hit at root t (as sph_hit_t found it): the point projected back onto
+ * the sphere and the normal; with uv, its (u,v) and partials too. */
+bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh)
 {
-	double t;
-	if (!sph_hit_t(o, r, tmin, tmax, &t))
-		return false;
 	struct vec3 q = v_sub(ray_at(*r, t), S_C(o));
 	double l = v_len(q);
 	if (!(l > 0))
@@ -92,8 +89,18 @@ static bool sph_intersect(const struct object *o, const struct ray *r, double tm
 	lh->t = t;
 	lh->p = v_madd(S_C(o), q, S_R(o));
 	lh->n = q;
+	if (!uv)
+		return true;
 	sph_uv(q, &lh->u, &lh->v);
 	return sph_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
+}
+
+/* The nearer root in range, in full. */
+static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct local_hit *lh)
+{
+	double t;
+	return sph_hit_t(o, r, tmin, tmax, &t) && sph_hit_at(o, r, t, true, lh);
 }
 
 static bool sph_inside(const struct object *o, struct vec3 p)
