@@ -301,8 +301,10 @@ static unsigned chart(const struct hit *h)
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
 
-static void record(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
+static void record(struct worker *w, struct hit *h, const struct ray *r, const double e[3], uint64_t sig)
 {
+	if (isnan(h->u)) /* traced without its (u,v) (BVH_NO_UV): a deposit needs them */
+		shape_hit_at(h->obj, r, 0, INFINITY, h->t, true, h);
 	if (w->corners) {
 		land(w, h, e, sig_mix(sig, h->obj, 16 + chart(h)));
 		return;
@@ -339,7 +341,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h)) {
+	if (!bvh_intersect_skip(J->b, &r, 0, INFINITY, BVH_NO_UV, &h)) {
 		add3(w->escaped, e, 1);
 		return;
 	}
@@ -375,7 +377,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
 	bool diffuse = si.f->diffuse > 0 && opacity > 0;
 	if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
-		record(w, &h, e, sig);
+		record(w, &h, &r, e, sig);
 		add3(w->deposited, rest, 1);
 	} else if (diffuse && nspec == 0) {
 		add3(w->direct, rest, 1);
