@@ -76,6 +76,15 @@ static void fx_add(struct fx *a, struct fx b)
 	a->hi = hi2;
 }
 
+/* *a += b where the sum cannot pass 2^128 (a map whose energy bound is
+ * finite: map_reserve keeps every sum under 2^32 units). */
+static void fx_add_fast(struct fx *a, struct fx b)
+{
+	uint64_t lo = a->lo + b.lo;
+	a->hi += b.hi + (lo < b.lo);
+	a->lo = lo;
+}
+
 /* a − b, given a ≥ b. */
 static struct fx fx_sub(struct fx a, struct fx b)
 {
@@ -125,6 +134,7 @@ struct illum_map {
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
 	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
+	struct fx total[3];       /* the energy held, summed by illum_finish (while finished) */
 	int shift;                /* accumulators count units of 2^(shift−96) W (see map_reserve) */
 	double unit, inv_unit;    /* 2^shift and 2^−shift */
 	double bound;             /* energy deposited so far (per channel, at most): bounds every node's sum */
@@ -591,6 +601,28 @@ static inline void acc_add(struct acc *n, double w, const double e[3], double in
 	n->count += n->count < UINT32_MAX;
 }
 
+/* acc_add where no sum can saturate (fx_add_fast), white light (e[0] =
+ * e[1] = e[2]) taken once: the same result. */
+static inline void acc_add_fast(struct acc *n, double w, const double e[3], bool white, double inv_unit)
+{
+	if (!white) {
+		for (int c = 0; c < 3; c++) {
+			double x = w * e[c];
+			fx_add_fast(&n->e[c], fx_from(x * inv_unit));
+			n->sq[c] += (float)(x * x);
+		}
+	} else {
+		double x = w * e[0];
+		struct fx f = fx_from(x * inv_unit);
+		float q = (float)(x * x);
+		for (int c = 0; c < 3; c++) {
+			fx_add_fast(&n->e[c], f);
+			n->sq[c] += q;
+		}
+	}
+	n->count += n->count < UINT32_MAX;
+}
+
 /* e = energy with NaN and negative components set to 0; false when all are. */
 static bool energy_clean(const double energy[3], double e[3])
 {
@@ -703,6 +735,7 @@ struct deposit_job {
 	double emax;        /* per chunk: the largest energy_max of its splats */
 	struct arena pool;  /* per band: the tiles it made in the window */
 	struct tile **made; /* per band: those tiles, in order */
+	long *where;        /* per band: their window entries */
 	long nmade, cap;
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
@@ -765,10 +798,14 @@ static struct tile *band_tile(struct deposit_job *B, struct illum_map *m, long t
 			return m->tiles[*w - 1];
 		if (*w < 0)
 			return B->made[-*w - 1];
-		if (B->nmade == B->cap)
-			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)(B->cap = B->cap ? 2 * B->cap : 256));
+		if (B->nmade == B->cap) {
+			B->cap = B->cap ? 2 * B->cap : 256;
+			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)B->cap);
+			B->where = mem_realloc(B->where, sizeof *B->where * (size_t)B->cap);
+		}
 		struct tile *t = ARENA_NEW(&B->pool, struct tile);
 		t->ti = (int32_t)ti, t->tj = (int32_t)tj;
+		B->where[B->nmade] = w - m->win;
 		B->made[B->nmade++] = t;
 		*w = (int32_t)(-B->nmade);
 		return t;
@@ -793,6 +830,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
 	double inv = m->inv_unit;
+	bool finite = m->bound < 0x1p32 * m->unit; /* no sum can reach 2^128 (map_reserve) */
 	long lti = LONG_MIN, ltj = LONG_MIN; /* the tile of the last node (most splats stay in one) */
 	struct tile *lt = NULL;
 	for (long q = 0; q < D->n; q++) {
@@ -810,6 +848,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 		long iu[2] = {p->i, ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1};
 		double wu[2] = {1 - p->fu, p->fu}, wv[2] = {1 - p->fv, p->fv}, e[3];
 		energy_clean(D->s[q].e, e);
+		bool white = e[0] == e[1] && e[1] == e[2];
 		for (int b = 0; b < 2; b++) {
 			if (!mine[b])
 				continue;
@@ -821,7 +860,11 @@ static void accumulate_work(void *ctx, long k, int worker)
 				long ti = floordiv(iu[a]);
 				if (ti != lti || tj != ltj)
 					lt = band_tile(B, m, ti, tj), lti = ti, ltj = tj;
-				acc_add(&lt->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, inv);
+				struct acc *n = &lt->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)];
+				if (finite)
+					acc_add_fast(n, w, e, white, inv);
+				else
+					acc_add(n, w, e, inv);
 			}
 		}
 	}
@@ -847,16 +890,29 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	map_reserve(m, (double)n * emax);
 	prep_window(D, nchunks);
 	for (int b = 0; b < nb; b++)
-		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].part = NULL;
+		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
+		D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
-	/* step 4: the bands' tiles join the map (bands hold disjoint tiles) */
+	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
+	 * their window entries (without reading the tiles, which are cold) */
+	long total = m->ntiles;
+	for (int b = 0; b < nb; b++)
+		total += D[b].nmade;
+	if (total > m->cap) {
+		long cap = m->cap ? m->cap : 8;
+		while (cap < total)
+			cap *= 2;
+		m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
+		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
+		m->cap = cap;
+	}
 	for (int b = 0; b < nb; b++) {
 		for (long k = 0; k < D[b].nmade; k++) {
-			*win_slot(m, D[b].made[k]->ti, D[b].made[k]->tj) = 0;
-			tile_insert(m, D[b].made[k]);
+			m->win[D[b].where[k]] = (int32_t)(m->ntiles + 1);
+			m->tiles[m->ntiles++] = D[b].made[k];
 		}
 		arena_adopt(&m->pool, &D[b].pool);
-		free(D[b].made);
+		free(D[b].made), free(D[b].where);
 		if (D[b].part)
 			adopt(m, D[b].part);
 	}
@@ -1453,7 +1509,40 @@ struct finish_job {
 	long k0, k1;      /* tiles [k0, k1) */
 	bool discard;
 	struct fx rem[3]; /* energy the isolated rule removed (exact) */
+	struct fx tot[3]; /* energy its tiles hold (exact) */
 };
+
+static uint64_t tile_count(const struct tile *t)
+{
+	uint64_t c = 0;
+	for (int q = 0; q < TN; q++)
+		c += t->n[q].count;
+	return c;
+}
+
+/* Do the 5×5 neighbourhoods of tile (ti,tj)'s nodes stay in the 3×3 tiles
+ * around it? Not where a wrapping axis's neighbourhood crosses its seam
+ * (node_isolated then reaches the tiles on the other side). */
+static bool near_closed(const struct illum_map *m, long ti, long tj)
+{
+	for (int a = 0; a < 2; a++) {
+		long lo = (a ? tj : ti) * ILLUM_TILE - 2, hi = (a ? tj : ti) * ILLUM_TILE + ILLUM_TILE - 1 + 2;
+		if (m->ax[a].wraps && (lo < 0 || hi > m->ax[a].n - 1))
+			return false;
+	}
+	return true;
+}
+
+/* The deposit count of the 3×3 tiles nb holds, stopping past 4. */
+static uint64_t near_count(const struct near *nb)
+{
+	uint64_t c = 0;
+	for (int b = 0; b < 3 && c <= 4; b++)
+		for (int a = 0; a < 3; a++)
+			if (nb->t[b][a])
+				c += tile_count(nb->t[b][a]);
+	return c;
+}
 
 /* Job k of the array at ctx (a parallel_for item). */
 static void finish_work(void *ctx, long job, int worker)
@@ -1463,15 +1552,19 @@ static void finish_work(void *ctx, long job, int worker)
 	const struct illum_map *m = J->m;
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
-		uint64_t tile_count = 0;
 		for (int q = 0; q < TN; q++)
-			tile_count += t->n[q].count;
+			for (int c = 0; c < 3; c++)
+				fx_add(&J->tot[c], t->n[q].e[c]);
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = J->discard && tile_count <= 4;
+		bool check = J->discard && tile_count(t) <= 4, all = false;
 		struct near nb = {.ti = 0};
-		if (check)
+		if (check) {
 			near_fill(m, &nb, t->ti, t->tj);
+			/* at most one splat in the tiles around: every node with a
+			 * deposit is isolated (its neighbourhood is among them) */
+			all = near_closed(m, t->ti, t->tj) && near_count(&nb) <= 4;
+		}
 		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
 			if (t->area)
@@ -1482,7 +1575,7 @@ static void finish_work(void *ctx, long job, int worker)
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			if (t->area)
 				t->area[q] = node_area(m, i, j);
-			if (check && node_isolated(m, &nb, i, j, t->n[q].count)) {
+			if (check && (all || node_isolated(m, &nb, i, j, t->n[q].count))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
 					fx_add(&J->rem[c], t->n[q].e[c]);
@@ -1514,12 +1607,13 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	struct finish_job jobs[64];
 	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
-		                              {{0, 0}, {0, 0}, {0, 0}}};
+		                              {{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
 	parallel_for(nb, nb, finish_work, jobs);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
+	memset(m->total, 0, sizeof m->total);
 	for (int b = 0; b < nb; b++) {
 		for (int c = 0; c < 3; c++)
-			fx_add(&rem[c], jobs[b].rem[c]);
+			fx_add(&rem[c], jobs[b].rem[c]), fx_add(&m->total[c], jobs[b].tot[c]);
 	}
 	if (removed)
 		for (int c = 0; c < 3; c++)
@@ -1568,7 +1662,9 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 void illum_total(const struct illum_map *m, double out[3])
 {
 	struct fx s[3] = {{0, 0}, {0, 0}, {0, 0}};
-	for (long k = 0; k < m->ntiles; k++)
+	if (m->finished) /* summed by illum_finish (sums saturate alike in any order) */
+		memcpy(s, m->total, sizeof s);
+	for (long k = 0; k < m->ntiles && !m->finished; k++)
 		for (int q = 0; q < TN; q++)
 			for (int c = 0; c < 3; c++)
 				fx_add(&s[c], m->tiles[k]->n[q].e[c]);
