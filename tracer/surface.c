@@ -64,13 +64,17 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 	out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
 }
 
+/* surf_straight, given o's interior in. */
+static inline bool straight(const struct scene *s, const struct object *o, const struct interior *in)
+{
+	if (!s->legacy_lights)
+		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
+	return !(o->has_photons && o->photons.target && o->photons.refraction);
+}
+
 bool surf_straight(const struct scene *s, const struct object *o)
 {
-	if (!s->legacy_lights) {
-		const struct interior *in = mat_interior(o);
-		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
-	}
-	return !(o->has_photons && o->photons.target && o->photons.refraction);
+	return straight(s, o, mat_interior(o));
 }
 
 void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
@@ -86,7 +90,7 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 	si->d = d;
 	si->nf = v_dot(h->n, d) < 0 ? h->n : v_neg(h->n);
 	si->legacy = s->legacy_lights;
-	si->straight = surf_straight(s, h->obj);
+	si->straight = straight(s, h->obj, si->in);
 }
 
 /* Can o, or a part of it, pass light straight through? */
