@@ -40,6 +40,7 @@
 #include <string.h>
 
 #include "../common/arena.h"
+#include "shapes/prim.h"
 
 struct bvh {
 	RTCScene scene;                /* NULL when nothing is bounded */
@@ -171,6 +172,16 @@ static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 	                                  up(b.hi.x + p), up(b.hi.y + p), up(b.hi.z + p), 0};
 }
 
+/* A sphere's t over (tmin, tmax), as shape_hit_t finds it: inline for the
+ * common sphere without a transform. */
+static inline bool sphere_t(const struct object *o, const struct ray *r, double tmin, double tmax,
+                            double *t)
+{
+	if (!o->xf)
+		return prim_sphere_t(o->g.sphere.c, o->g.sphere.r, r, tmin, tmax, t);
+	return shape_hit_t(o, r, tmin, tmax, t);
+}
+
 /* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
  * single ray) for query q: on a better hit, records it and shrinks the
  * lane's tfar just past it. */
@@ -183,7 +194,7 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 	/* a tie with the best so far is looked at: the lower index wins */
 	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
 	if (o->kind == OBJ_SPHERE) { /* the t alone; traverse fills *h at the end */
-		if (!shape_hit_t(o, q->r, q->tmin, hi, &t))
+		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return;
 		q->deferred = true;
 		q->best_t = t;
@@ -221,9 +232,11 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 		return;
 	struct query *q = (struct query *)a->context;
 	const struct object *o = q->b->prims[a->primID];
+	double t;
 	if (o->flags & q->skip)
 		return;
-	if (shape_occluded(o, q->r, q->tmin, q->tmax))
+	if (o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
+	                          : shape_occluded(o, q->r, q->tmin, q->tmax))
 		((struct RTCRay *)a->ray)->tfar = -INFINITY;
 }
 
@@ -246,6 +259,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
+
 	t->scene = rtcNewScene(device);
 	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
 	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);

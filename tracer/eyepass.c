@@ -605,6 +605,18 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 	return cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 }
 
+/* Sample i's path and camera ray: sample 0's as eye_pixels started and
+ * traced it (pa0, r0 and its hit pre), when it did. */
+static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, const struct path *pa0,
+                               struct ray r0, const struct hit *pre, int pre_state, struct path *pa)
+{
+	if (i > 0 || !pa0)
+		return camera_sample(ctx, x, y, i, pa);
+	*pa = *pa0;
+	pa->pre = pre, pa->pre_state = pre_state;
+	return r0;
+}
+
 /* Shades one pixel: spp camera samples averaged with equal weights. The
  * radiance and irradiance layers are means over the samples; A is the
  * share of samples that hit; Z, N, P and albedo are the nearest sample's
@@ -617,15 +629,21 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
+	if (ctx->beauty_only) { /* the same radiance, without the layers */
+		memset(out, 0, sizeof *out);
+		for (int i = 0; i < ctx->spp; i++) {
+			struct path pa;
+			struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
+			if (v_dot(r.d, r.d) > 0)
+				sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, NULL));
+			*rays += pa.rays;
+		}
+		put3(out->rgb, sum, 1.0 / ctx->spp);
+		return;
+	}
 	for (int i = 0; i < ctx->spp; i++) {
 		struct path pa;
-		struct ray r;
-		if (i == 0 && pa0) { /* sample 0 was started by eye_pixels */
-			pa = *pa0, r = r0;
-			pa.pre = pre, pa.pre_state = pre_state;
-		} else {
-			r = camera_sample(ctx, x, y, i, &pa);
-		}
+		struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
 		struct aov aov = {.z = INFINITY};
 		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
 			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));

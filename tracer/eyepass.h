@@ -36,6 +36,8 @@ struct eye_ctx {
 	int spp;                       /* camera samples per pixel */
 	struct lp_result *const *caustics; /* light-pass results (one, or one per channel) */
 	int ncaustics;                 /* entries in caustics (0: no light pass) */
+	bool beauty_only;              /* only R G B are kept: the AOV layers are
+	                                  not computed (eye_px holds zeros there) */
 	bool see_through;              /* some object is a straight transmitter: shadow
 	                                  rays look through such objects (surface.h) */
 	bool spectral;                 /* passes spectral: dispersive glass splits a path

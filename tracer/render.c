@@ -343,6 +343,7 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 
 	struct eye_ctx ctx;
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
+	ctx.beauty_only = nplanes == 3;
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;

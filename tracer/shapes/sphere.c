@@ -47,34 +47,10 @@ static void sph_uv(struct vec3 q, double *u, double *v)
 	*v = atan2(sqrt(q.x * q.x + q.z * q.z), -q.y) / M_PI;
 }
 
-/* Ray–sphere roots. The discriminant is computed as 4a·(r² − |f⊥|²), f⊥ the
- * part of (o − c) perpendicular to d, which keeps precision for distant rays
- * (pbrt-v4's formulation). */
-static bool sph_roots(const struct object *o, const struct ray *r, double *t0, double *t1)
-{
-	struct vec3 f = v_sub(r->o, S_C(o)), d = r->d;
-	double a = v_dot(d, d), b = 2 * v_dot(f, d), c = v_dot(f, f) - S_R(o) * S_R(o);
-	if (!(a > 0))
-		return false;
-	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);
-	double rr = S_R(o), lp = v_len(perp);
-	double disc = 4 * a * (rr + lp) * (rr - lp);
-	return prim_quadratic(a, b, c, disc, t0, t1);
-}
-
 /* The nearer root in range (tmin < t < tmax). */
 bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
-	double t0, t1;
-	if (!(S_R(o) > 0) || !sph_roots(o, r, &t0, &t1))
-		return false;
-	if (t0 > tmin && t0 < tmax)
-		*t = t0;
-	else if (t1 > tmin && t1 < tmax)
-		*t = t1;
-	else
-		return false;
-	return true;
+	return prim_sphere_t(S_C(o), S_R(o), r, tmin, tmax, t);
 }
 
 /* The hit at root t (as sph_hit_t found it): the point projected back onto
