@@ -53,7 +53,7 @@ struct bvh {
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
- * lanes says whether the context is this query (1) or a packet's (8). */
+ * lanes says whether the context is this query (1) or a packet's (16). */
 struct query {
 	struct RTCIntersectContext rc;
 	int lanes;             /* 1 */
@@ -71,11 +71,11 @@ struct query {
 	bool deferred;         /* *h is still to be filled from primitive best */
 };
 
-/* The queries of a packet of rays, lane i in q[i] (rtcIntersect8). */
-struct query8 {
+/* The queries of a packet of rays, lane i in q[i] (rtcIntersect16). */
+struct packet {
 	struct RTCIntersectContext rc;
-	int lanes;             /* 8 */
-	struct query q[8];
+	int lanes;             /* BVH_PACKET */
+	struct query q[BVH_PACKET];
 };
 
 /* ==== the device ========================================================= */
@@ -222,7 +222,7 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct query *q = (struct query *)a->context;
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(q->lanes == 1 ? q : &((struct query8 *)a->context)->q[i], (int)a->primID,
+			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[i], (int)a->primID,
 			          a->rayhit, a->N, i, a->geomID);
 }
 
@@ -438,14 +438,14 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	return q.found;
 }
 
-void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
-                    unsigned skip, struct hit *h, bool *found)
+void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
+                          unsigned skip, struct hit *h, bool *found)
 {
-	struct query8 Q;
-	_Alignas(32) struct RTCRayHit8 rh;
-	_Alignas(32) int valid[8];
+	struct packet Q;
+	_Alignas(64) struct RTCRayHit16 rh;
+	_Alignas(64) int valid[BVH_PACKET];
 	bool any = false;
-	for (int i = 0; i < 8; i++) {
+	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
 		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
@@ -463,14 +463,14 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 		float row[9];
 		valid[i] = float_ray(q, row) ? -1 : 0;
 		if (valid[i])
-			put_lane((float *)&rh, 8, (unsigned)i, row);
+			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
 		any |= valid[i] != 0;
 	}
 	if (any) {
 		rtcInitIntersectContext(&Q.rc);
 		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-		Q.lanes = 8;
-		rtcIntersect8(valid, b->scene, &Q.rc, &rh);
+		Q.lanes = BVH_PACKET;
+		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
 	}
 	for (int i = 0; i < n; i++) {
 		finish(&Q.q[i]);
