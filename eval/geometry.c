@@ -28,8 +28,7 @@ void object_transform(struct eval *E, struct object *o, const struct xform *X)
 static struct object *object_copy(struct eval *E, const struct object *o)
 {
 	eval_count_object(E, E->stmt); /* copies of declared CSGs count too */
-	struct object *c = NEW(E, struct object);
-	*c = *o;
+	struct object *c = obj_copy(&SC(E)->arena, o);
 	if (o->kind >= OBJ_FIRST_CSG) {
 		c->g.csg.kids = ARENA_ARRAY(&SC(E)->arena, struct object *, o->g.csg.n);
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -126,8 +125,7 @@ static void clip(struct eval *E, struct sink *s, struct object *o, const struct 
 	eval_items(E, n, &sub);
 	if (tmp.g.csg.n == 0)
 		eval_fail(E, n->loc, "clipped_by needs an object: clipped_by { plane { y, 0 } }");
-	struct object *c = NEW(E, struct object);
-	c->kind = OBJ_CLIP;
+	struct object *c = obj_new(&SC(E)->arena, OBJ_CLIP);
 	c->loc = o->loc;
 	csg_add(E, c, o);
 	for (int i = 0; i < tmp.g.csg.n; i++)
@@ -967,8 +965,7 @@ struct value object_block(struct eval *E, const struct node *blk)
 	struct sink s;
 	struct object *o = NULL;
 	if (blk->op != TK_OBJECT) {
-		o = NEW(E, struct object);
-		o->kind = object_kind_of(blk->op);
+		o = obj_new(&SC(E)->arena, object_kind_of(blk->op));
 		o->loc = blk->loc;
 		o->xf = NULL; /* the identity until a transform comes */
 	}

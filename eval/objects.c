@@ -329,8 +329,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		struct light *l = eval_block(E, n).p.light;
 		scene_add_light(sc, l);
 		if (l->looks_like) { /* the object, moved to the light, casts no shadow */
-			struct object *o = NEW(E, struct object);
-			*o = *l->looks_like;
+			struct object *o = obj_copy(&SC(E)->arena, l->looks_like);
 			struct xform X = xf_translate(l->pos);
 			object_transform(E, o, &X);
 			o->flags |= OF_NO_SHADOW;
