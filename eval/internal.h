@@ -17,6 +17,7 @@
 #define MAX_ARRAY 16777216L   /* elements in an array */
 #define MAX_SCOPES 512        /* scope stack */
 #define MAX_EVAL_DEPTH 2000   /* evaluator recursion: item lists and expressions */
+#define TEX_SEEN 64           /* textures texture_share remembers */
 
 struct scope;
 struct entry;
@@ -45,6 +46,10 @@ struct sink {
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
+	struct texture *own_tex;   /* SK_OBJECT: object_block's scratch texture, which the
+	                            * object's pigment, finish … are written into
+	                            * (texture_share makes it a scene texture at the end) */
+	struct object *own_obj;    /* the object whose texture the scratch is (NULL: none) */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
 };
@@ -86,6 +91,7 @@ struct eval {
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	const struct texture *tex_seen[TEX_SEEN]; /* texture_share's recent textures, by hash */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
 
@@ -163,6 +169,9 @@ bool transform_of(struct eval *E, const struct node *n, struct xform *out);
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X);
 /* A fresh scene copy of t (NULL: the #default texture). */
 struct texture *texture_copy(struct eval *E, const struct texture *t);
+/* A scene texture equal to *t: one made before when it is among the recent
+ * ones (TEX_SEEN, by content), else a fresh copy. */
+struct texture *texture_share(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
 /* A transform old (NULL: identity) followed by X, in a slot of its own, since
@@ -182,6 +191,8 @@ struct texture *texture_layered(struct eval *E, const struct texture *bottom, co
 /* ---- geometry.c: objects ---- */
 /* Moves object o (its texture and children too) by X. */
 void object_transform(struct eval *E, struct object *o, const struct xform *X);
+/* The same, moving texture own in place when o has it (a block's scratch). */
+void object_transform_own(struct eval *E, struct object *o, const struct xform *X, const struct texture *own);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

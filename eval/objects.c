@@ -151,6 +151,46 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+/* The fields of a texture, bit for bit (padding left out), for sharing. */
+struct tex_key {
+	unsigned char b[sizeof(enum pigment_kind) + sizeof(struct colour) + 8 * sizeof(void *) +
+	                sizeof(struct srcloc) + sizeof(int)];
+};
+
+static struct tex_key tex_key(const struct texture *t)
+{
+	struct tex_key k;
+	const void *ptrs[8] = {t->pigment.pat, t->pigment.xf, t->normal, t->finish, t->map, t->below, NULL, NULL};
+	unsigned char *p = k.b;
+	memcpy(p, &t->pigment.kind, sizeof t->pigment.kind), p += sizeof t->pigment.kind;
+	memcpy(p, &t->pigment.c[0], sizeof t->pigment.c[0]), p += sizeof t->pigment.c[0];
+	memcpy(p, ptrs, sizeof ptrs), p += sizeof ptrs;
+	memcpy(p, &t->loc, sizeof t->loc), p += sizeof t->loc;
+	memcpy(p, &t->nmap, sizeof t->nmap);
+	return k;
+}
+
+/* A loop that makes the same texture over and over (a colour of a few, a
+ * declared finish) stores it once: the last TEX_SEEN textures are looked up
+ * by content. Deterministic: it depends on the order of evaluation only. */
+struct texture *texture_share(struct eval *E, const struct texture *t)
+{
+	struct tex_key k = tex_key(t);
+	uint32_t h = 2166136261u;
+	for (size_t i = 0; i < sizeof k.b; i++)
+		h = (h ^ k.b[i]) * 16777619u;
+	const struct texture **slot = &E->tex_seen[h % TEX_SEEN];
+	if (*slot) {
+		struct tex_key s = tex_key(*slot);
+		if (memcmp(s.b, k.b, sizeof k.b) == 0)
+			return (struct texture *)*slot;
+	}
+	struct texture *c = NEW(E, struct texture);
+	*c = *t;
+	*slot = c;
+	return c;
+}
+
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
