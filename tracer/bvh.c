@@ -46,6 +46,7 @@ struct bvh {
 	RTCScene scene;                /* NULL when nothing is bounded */
 	const struct object **prims;   /* bounded leaves, in collection order */
 	int nprims;                    /* entries of prims */
+	bool own_prims;                /* prims is ours to free, not the caller's list */
 	const struct object **unbound; /* unbounded leaves, tested always */
 	int nunbound;                  /* entries of unbound */
 	struct bbox bounds;            /* world bounds of the bounded leaves */
@@ -90,20 +91,35 @@ static void make_device(void)
 
 /* ==== collecting leaves ================================================== */
 
+/* While every object so far is a bounded leaf, prims is the caller's list
+ * itself (a million spheres need no second array of a million pointers);
+ * the first union or unbounded object makes it a copy of its own. */
 struct builder {
 	struct bvh *t;
+	struct object *const *objs; /* the caller's list */
+	int next;                   /* objs[next] is the next to be collected */
 	int cap, capu;
 };
 
 static void add_leaf(struct builder *B, const struct object *o, struct bbox b)
 {
 	struct bvh *t = B->t;
-	if (t->nprims == B->cap) {
-		B->cap = B->cap ? 2 * B->cap : 64;
-		t->prims = mem_realloc(t->prims, sizeof *t->prims * (size_t)B->cap);
+	t->bounds = bbox_union(t->bounds, b);
+	if (!t->own_prims && t->nprims == B->next && B->objs[B->next] == o) {
+		t->nprims++; /* still the caller's list */
+		return;
+	}
+	if (!t->own_prims || t->nprims == B->cap) {
+		B->cap = B->cap ? 2 * B->cap : t->nprims + 64;
+		const struct object **p = mem_alloc(sizeof *p * (size_t)B->cap);
+		for (int i = 0; i < t->nprims; i++)
+			p[i] = t->prims[i];
+		if (t->own_prims)
+			free(t->prims);
+		t->prims = p;
+		t->own_prims = true;
 	}
 	t->prims[t->nprims++] = o;
-	t->bounds = bbox_union(t->bounds, b);
 }
 
 static void add_unbound(struct builder *B, const struct object *o)
@@ -245,9 +261,10 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 struct bvh *bvh_build(struct object **objs, int n)
 {
 	struct bvh *t = mem_calloc(1, sizeof *t);
-	struct builder B = {t, 0, 0};
+	struct builder B = {t, objs, 0, 0, 0};
 	t->bounds = bbox_empty();
-	for (int i = 0; i < n; i++)
+	t->prims = (const struct object **)objs;
+	for (int i = 0; i < n; i++, B.next++)
 		collect(&B, objs[i]);
 	if (t->nprims == 0)
 		return t;
@@ -281,7 +298,8 @@ void bvh_free(struct bvh *b)
 		return;
 	if (b->scene)
 		rtcReleaseScene(b->scene);
-	free(b->prims);
+	if (b->own_prims)
+		free(b->prims);
 	free(b->unbound);
 	free(b);
 }

@@ -20,7 +20,8 @@ struct bvh;
  * come without its (u,v) and partials (NaN and zero; shape_hit_at). */
 #define BVH_NO_UV (1u << 31)
 
-/* Builds the hierarchy over objs[0..n); the objects must outlive it. */
+/* Builds the hierarchy over objs[0..n); the objects, and the array objs
+ * itself (the hierarchy may use it as its list of leaves), must outlive it. */
 struct bvh *bvh_build(struct object **objs, int n);
 /* Nearest hit with tmin < t < tmax over every object (as shape_intersect). */
 bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,
