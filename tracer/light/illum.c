@@ -895,18 +895,17 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	parallel_for(nb, nb, accumulate_work, D);
 	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
 	 * their window entries (without reading the tiles, which are cold) */
-	long total = m->ntiles;
-	for (int b = 0; b < nb; b++)
-		total += D[b].nmade;
-	if (total > m->cap) {
-		long cap = m->cap ? m->cap : 8;
-		while (cap < total)
-			cap *= 2;
-		m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
-		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
-		m->cap = cap;
-	}
 	for (int b = 0; b < nb; b++) {
+		long total = m->ntiles + D[b].nmade; /* room for them (a partial
+		                                        map adopted below adds more) */
+		if (total > m->cap) {
+			long cap = m->cap ? m->cap : 8;
+			while (cap < total)
+				cap *= 2;
+			m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
+			m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
+			m->cap = cap;
+		}
 		for (long k = 0; k < D[b].nmade; k++) {
 			m->win[D[b].where[k]] = (int32_t)(m->ntiles + 1);
 			m->tiles[m->ntiles++] = D[b].made[k];
