@@ -885,7 +885,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 			rc = out_exr_write(fb, outputs[i], &eo, dg);
 		} else {
 			struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),
-			                          o->png_depth};
+			                          o->png_depth, o->threads};
 			rc = out_png_write(fb, outputs[i], &po, dg);
 		}
 	}

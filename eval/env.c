@@ -59,6 +59,7 @@ void scope_release(struct eval *E, struct scope *sc)
 	sc->count = 0;
 	sc->next = E->spare_scopes;
 	E->spare_scopes = sc;
+	E->env_gen++;
 }
 
 void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
@@ -66,9 +67,14 @@ void scope_push(struct eval *E, struct scope *sc, struct srcloc loc)
 	if (E->nscopes >= MAX_SCOPES)
 		eval_fail(E, loc, "too many nested scopes (more than %d)", MAX_SCOPES);
 	E->scopes[E->nscopes++] = sc;
+	E->env_gen++;
 }
 
-void scope_pop(struct eval *E) { E->nscopes--; }
+void scope_pop(struct eval *E)
+{
+	E->nscopes--;
+	E->env_gen++;
+}
 
 /* strcmp(a, b) == 0 for the short names of scenes, without a call. */
 static inline bool same(const char *a, const char *b)
@@ -112,9 +118,13 @@ static struct entry *insert(struct eval *E, struct scope *sc, const char *name)
 {
 	struct entry *e = find(sc, name);
 	if (e) {
-		e->macro = NULL;
+		if (e->macro) { /* a macro becomes a variable: lookups change */
+			e->macro = NULL;
+			E->env_gen++;
+		}
 		return e;
 	}
+	E->env_gen++;
 	if (sc->count >= sc->nbuckets)
 		grow(E, sc);
 	e = E->spare_entries;
@@ -172,6 +182,7 @@ void env_define_macro(struct eval *E, const char *name, const struct node *def)
 {
 	struct entry *e = insert(E, E->scopes[0], name);
 	e->macro = def;
+	E->env_gen++;
 	e->val = val_none();
 }
 
@@ -184,9 +195,63 @@ bool env_undef(struct eval *E, const char *name)
 			if (strcmp((*pp)->name, name) == 0) {
 				*pp = (*pp)->next;
 				sc->count--;
+				E->env_gen++;
 				return true;
 			}
 		}
 	}
 	return false;
+}
+
+/* ==== memos ============================================================== */
+
+/* An identifier, a call or a #declare resolves its name to the same entry
+ * as long as no scope was pushed, popped or recycled and no name was added,
+ * removed or turned from a macro into a variable: E->env_gen counts those
+ * changes, and a node keeps what its name resolved to with the count it was
+ * found at (a loop body's names are looked up once, not once per pass). */
+
+struct value *env_lookup_node(struct eval *E, const struct node *n)
+{
+	struct node *w = (struct node *)n;
+	if (w->memo_gen != E->env_gen) {
+		w->memo = env_lookup(E, n->str);
+		w->memo_gen = E->env_gen;
+	}
+	return w->memo;
+}
+
+struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
+{
+	struct node *w = (struct node *)n;
+	if (w->memo_gen != E->env_gen) {
+		w->memo = env_declare(E, n->str, local);
+		w->memo_gen = E->env_gen; /* after the insert's own change */
+	}
+	return w->memo;
+}
+
+bool env_declared_before(struct eval *E, const struct node *n)
+{
+	return n->memo && n->memo_gen == E->env_gen;
+}
+
+struct call_memo {
+	const struct node *macro;
+	struct value *var;
+};
+
+const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var)
+{
+	struct node *w = (struct node *)n;
+	struct call_memo *m = w->memo;
+	if (!m || w->memo_gen != E->env_gen) {
+		if (!m)
+			w->memo = m = ARENA_NEW(&E->arena, struct call_memo);
+		m->macro = env_macro(E, n->str);
+		m->var = m->macro ? NULL : env_lookup(E, n->str);
+		w->memo_gen = E->env_gen;
+	}
+	*var = m->var;
+	return m->macro;
 }

@@ -62,9 +62,14 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 	}
 }
 
+static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v);
+
 double eval_float(struct eval *E, const struct node *n)
 {
-	struct value v = eval_expr(E, n);
+	double f;
+	struct value v;
+	if (eval_num(E, n, &f, &v))
+		return f;
 	return val_want_float(E, &v, n->loc);
 }
 
@@ -138,37 +143,43 @@ static struct value arith(struct eval *E, enum tok op, const struct value *a, co
 	return r;
 }
 
-static struct value binary(struct eval *E, const struct node *n)
+/* A binary operator other than & and | on two floats (eval_num). */
+static double binary_floats(struct eval *E, const struct node *n, double x, double y)
 {
-	struct value a = eval_expr(E, n->a);
-	if (n->op == TK_AMP || n->op == TK_PIPE) {
-		double x = val_want_float(E, &a, n->a->loc);
-		/* both sides are evaluated, as in POV-Ray */
-		double y = eval_float(E, n->b);
-		return val_float(n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0));
+	switch (n->op) {
+	case TK_PLUS: return x + y;
+	case TK_MINUS: return x - y;
+	case TK_STAR: return x * y;
+	case TK_SLASH:
+		if (y == 0)
+			eval_fail(E, n->loc, "division by zero");
+		return x / y;
+	case TK_EQ: return x == y;
+	case TK_NE: return x != y;
+	case TK_LT: return x < y;
+	case TK_LE: return x <= y;
+	case TK_GT: return x > y;
+	case TK_CARET: return pow(x, y); /* in a function's pigment { } */
+	default: return x >= y;
 	}
-	struct value b = eval_expr(E, n->b);
+}
+
+/* A binary operator other than & and | on its operands' values a and b. */
+static struct value binary_values(struct eval *E, const struct node *n, const struct value *a, const struct value *b)
+{
 	switch (n->op) {
 	case TK_PLUS: case TK_MINUS: case TK_STAR: case TK_SLASH:
-		return arith(E, n->op, &a, &b, n->loc);
+		return arith(E, n->op, a, b, n->loc);
 	default: {
-		double x = val_want_float(E, &a, n->a->loc), y = val_want_float(E, &b, n->b->loc);
-		switch (n->op) {
-		case TK_EQ: return val_float(x == y);
-		case TK_NE: return val_float(x != y);
-		case TK_LT: return val_float(x < y);
-		case TK_LE: return val_float(x <= y);
-		case TK_GT: return val_float(x > y);
-		case TK_CARET: return val_float(pow(x, y)); /* in a function's pigment { } */
-		default: return val_float(x >= y);
-		}
+		double x = val_want_float(E, a, n->a->loc), y = val_want_float(E, b, n->b->loc);
+		return val_float(binary_floats(E, n, x, y));
 	}
 	}
 }
 
-static struct value unary(struct eval *E, const struct node *n)
+/* Unary - + ! on its operand's value a. */
+static struct value unary_value(struct eval *E, const struct node *n, struct value a)
 {
-	struct value a = eval_expr(E, n->a);
 	if (n->op == TK_BANG)
 		return val_float(val_want_float(E, &a, n->a->loc) == 0);
 	if (!is_numeric(&a))
@@ -455,7 +466,7 @@ static __attribute__((noinline)) struct value dir_value(struct eval *E, const st
 
 static struct value identifier(struct eval *E, const struct node *n)
 {
-	struct value *v = env_lookup(E, n->str);
+	struct value *v = env_lookup_node(E, n);
 	if (v) {
 		if (v->kind == V_NONE)
 			eval_fail(E, n->loc, "'%s' has no value", n->str);
@@ -473,58 +484,164 @@ static struct value identifier(struct eval *E, const struct node *n)
 
 static struct value eval_expr_node(struct eval *E, const struct node *n);
 
-/* Every number the language computes passes here: an infinity or a NaN
- * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
- * non-finite number reaches the scene (docs/design.md §8). */
+static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E, struct srcloc loc, int why)
+{
+	if (why == 0)
+		eval_fail(E, loc, "nesting too deep (more than %d levels of blocks, directives, macro calls, includes and expressions)",
+		          MAX_EVAL_DEPTH);
+	if (why == 1)
+		eval_fail(E, loc, "nesting too deep (the evaluator's stack is used up)");
+	eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
+}
+
 /* Counts one level of the evaluator's recursion at loc: the count bounds
  * it at MAX_EVAL_DEPTH wherever the nesting comes from (directives, blocks,
  * macro calls, includes, expressions), and the stack in use is checked
  * against three quarters of the stack limit as a second guard (docs/design.md §9). */
-static void enter(struct eval *E, struct srcloc loc)
+static inline void enter(struct eval *E, struct srcloc loc)
 {
 	char here;
 	if (E->depth >= MAX_EVAL_DEPTH)
-		eval_fail(E, loc, "nesting too deep (more than %d levels of blocks, directives, macro calls, includes and expressions)",
-		          MAX_EVAL_DEPTH);
+		enter_fail(E, loc, 0);
 	if ((size_t)(E->stack_base - &here) > E->stack_max)
-		eval_fail(E, loc, "nesting too deep (the evaluator's stack is used up)");
+		enter_fail(E, loc, 1);
 	if (++E->steps > E->opt->max_steps) /* bounds the time any scene can take */
-		eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
+		enter_fail(E, loc, 2);
 	E->depth++;
+}
+
+static _Noreturn __attribute__((noinline, cold)) void not_finite(struct eval *E, const struct node *n, double x)
+{
+	eval_fail(E, n->loc, "the result is not a finite number (%s)", isnan(x) ? "NaN" : "infinite");
+}
+
+/* Every number the language computes passes here: an infinity or a NaN
+ * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
+ * non-finite number reaches the scene (docs/design.md §8). */
+static void check_finite(struct eval *E, const struct node *n, const struct value *v)
+{
+	if (v->kind == V_FLOAT) {
+		if (!isfinite(v->v[0]))
+			not_finite(E, n, v->v[0]);
+	} else if (v->kind == V_VECTOR || v->kind == V_COLOUR) {
+		for (int i = 0, k = v->kind == V_COLOUR ? 5 : v->n; i < k; i++)
+			if (!isfinite(v->v[i]))
+				not_finite(E, n, v->v[i]);
+	}
+}
+
+/* The end of eval_num's general case: v checked, and a float in *f. */
+static bool num_or_value(struct eval *E, const struct node *n, struct value *v, double *f)
+{
+	E->depth--;
+	check_finite(E, n, v);
+	if (v->kind != V_FLOAT)
+		return false;
+	*f = v->v[0];
+	return true;
+}
+
+/* eval_expr for the expressions that are mostly floats (numbers, names,
+ * operators: a loop's test, arithmetic, a vector's components): the same
+ * checks, counts and order of evaluation, but a float comes back in *f
+ * (and true) without a struct value made and copied at every level; any
+ * other value comes back in *v (and false). */
+static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v)
+{
+	double x, y, r;
+	struct value a, b;
+	switch (n->kind) {
+	case N_NUM:
+		enter(E, n->loc);
+		E->depth--;
+		r = n->num;
+		break;
+	case N_IDENT: {
+		enter(E, n->loc);
+		const struct value *p = env_lookup_node(E, n);
+		if (!p || p->kind != V_FLOAT) {
+			*v = identifier(E, n);
+			return num_or_value(E, n, v, f);
+		}
+		E->depth--;
+		r = p->v[0];
+		break;
+	}
+	case N_UNARY:
+		enter(E, n->loc);
+		if (!eval_num(E, n->a, &x, &a)) {
+			*v = unary_value(E, n, a);
+			return num_or_value(E, n, v, f);
+		}
+		E->depth--;
+		r = n->op == TK_BANG ? x == 0 : n->op == TK_MINUS ? -x : x;
+		break;
+	case N_BINARY: {
+		enter(E, n->loc);
+		bool fa = eval_num(E, n->a, &x, &a);
+		if (n->op == TK_AMP || n->op == TK_PIPE) {
+			if (!fa)
+				x = val_want_float(E, &a, n->a->loc);
+			y = eval_float(E, n->b); /* both sides are evaluated, as in POV-Ray */
+			E->depth--;
+			r = n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0);
+			break;
+		}
+		bool fb = eval_num(E, n->b, &y, &b);
+		if (!fa || !fb) {
+			if (fa)
+				a = val_float(x);
+			if (fb)
+				b = val_float(y);
+			*v = binary_values(E, n, &a, &b);
+			return num_or_value(E, n, v, f);
+		}
+		r = binary_floats(E, n, x, y);
+		E->depth--;
+		break;
+	}
+	default:
+		*v = eval_expr(E, n);
+		if (v->kind != V_FLOAT)
+			return false;
+		*f = v->v[0];
+		return true;
+	}
+	if (!isfinite(r))
+		not_finite(E, n, r);
+	*f = r;
+	return true;
 }
 
 struct value eval_expr(struct eval *E, const struct node *n)
 {
+	if (n->kind == N_NUM || n->kind == N_IDENT || n->kind == N_UNARY || n->kind == N_BINARY) {
+		double f;
+		struct value v;
+		return eval_num(E, n, &f, &v) ? val_float(f) : v;
+	}
 	enter(E, n->loc);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
-	if (v.kind == V_FLOAT || v.kind == V_VECTOR || v.kind == V_COLOUR) {
-		int k = v.kind == V_FLOAT ? 1 : v.kind == V_COLOUR ? 5 : v.n;
-		for (int i = 0; i < k; i++)
-			if (!isfinite(v.v[i]))
-				eval_fail(E, n->loc, "the result is not a finite number (%s)", isnan(v.v[i]) ? "NaN" : "infinite");
-	}
+	check_finite(E, n, &v);
 	return v;
 }
 
+/* Everything but what eval_num evaluates. */
 static struct value eval_expr_node(struct eval *E, const struct node *n)
 {
 	switch (n->kind) {
-	case N_NUM: return val_float(n->num);
 	case N_STR: return val_string(n->str, n->len);
-	case N_IDENT: return identifier(E, n);
 	case N_VEC: return vector_literal(E, n);
-	case N_UNARY: return unary(E, n);
-	case N_BINARY: return binary(E, n);
 	case N_COND: {
 		double c = eval_float(E, n->a);
 		return eval_expr(E, c != 0 ? n->b : n->c);
 	}
 	case N_CALL: {
-		const struct node *def = env_macro(E, n->str);
+		struct value *fv;
+		const struct node *def = env_call_lookup(E, n, &fv);
 		if (def)
 			return macro_value(E, def, n);
-		const struct value *fv = env_lookup(E, n->str);
 		if (fv && fv->kind == V_FUNCTION)
 			return function_call(E, n, fv->p.fn);
 		struct value r;
@@ -572,7 +689,7 @@ void eval_count_object(struct eval *E, struct srcloc loc)
 static __attribute__((noinline)) void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
-	if (builtin_is_name(n->str))
+	if (!env_declared_before(E, n) && builtin_is_name(n->str))
 		eval_fail(E, n->b ? n->b->loc : n->loc, "'%s' is a built-in name and cannot be declared", n->str);
 	if (n->nkids > 0) { /* #declare A[i] = v */
 		const struct node *chain = NULL;
@@ -595,7 +712,7 @@ static __attribute__((noinline)) void exec_declare(struct eval *E, const struct 
 		v = array_copy(E, v);
 	if (v.kind == V_NONE)
 		eval_fail(E, n->a->loc, "nothing to declare");
-	*env_declare(E, n->str, local) = v;
+	*env_declare_node(E, n, local) = v;
 }
 
 static __attribute__((noinline)) void exec_for(struct eval *E, const struct node *n, struct sink *s)
@@ -818,7 +935,8 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 		sink_keyword(E, s, n);
 		return;
 	case N_CALL: {
-		const struct node *def = env_macro(E, n->str);
+		struct value *fv;
+		const struct node *def = env_call_lookup(E, n, &fv);
 		if (def) {
 			call_macro(E, def, n, s);
 			return;
@@ -919,6 +1037,7 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	E->scene = out;
 	E->fail = &jb;
 	arena_init(&E->arena);
+	E->env_gen = 1;
 	E->default_tex = scene_default_texture();
 	int rc = 0;
 	E->stmt = (struct srcloc){file, 1, 1};

@@ -15,9 +15,15 @@
  * texture with the object when the texture came first). */
 void object_transform(struct eval *E, struct object *o, const struct xform *X)
 {
+	object_transform_own(E, o, X, NULL);
+}
+
+void object_transform_own(struct eval *E, struct object *o, const struct xform *X, const struct texture *own)
+{
 	o->xf = xform_then(E, o->xf, X);
 	if (o->tex) {
-		o->tex = texture_copy(E, o->tex);
+		if (o->tex != own) /* textures are shared: a copy moves */
+			o->tex = texture_copy(E, o->tex);
 		texture_transform(E, o->tex, X);
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
@@ -28,8 +34,7 @@ void object_transform(struct eval *E, struct object *o, const struct xform *X)
 static struct object *object_copy(struct eval *E, const struct object *o)
 {
 	eval_count_object(E, E->stmt); /* copies of declared CSGs count too */
-	struct object *c = NEW(E, struct object);
-	*c = *o;
+	struct object *c = obj_copy(&SC(E)->arena, o);
 	if (o->kind >= OBJ_FIRST_CSG) {
 		c->g.csg.kids = ARENA_ARRAY(&SC(E)->arena, struct object *, o->g.csg.n);
 		for (int i = 0; i < o->g.csg.n; i++)
@@ -72,12 +77,29 @@ static struct object *object_target(struct eval *E, struct sink *s, struct srclo
 	return s->target;
 }
 
+/* The object whose texture is sink s's scratch (object_block) gets a scene
+ * texture in its place: the block ends, or the scratch is wanted for another
+ * object (the clip node clipped_by makes). */
+static void unscratch(struct eval *E, struct sink *s)
+{
+	if (s->own_obj && s->own_obj->tex == s->own_tex)
+		s->own_obj->tex = texture_share(E, s->own_tex);
+	s->own_obj = NULL;
+}
+
 /* pigment/finish/interior blocks inside an object modify what it has. */
 static void object_material_block(struct eval *E, struct sink *s, struct object *o, const struct node *n)
 {
 	struct sink sub;
 	if (n->op == TK_PIGMENT || n->op == TK_FINISH || n->op == TK_NORMAL) {
-		o->tex = texture_copy(E, o->tex);
+		if (!s->own_tex) { /* a sink without a scratch texture: a copy */
+			o->tex = texture_copy(E, o->tex);
+		} else if (o->tex != s->own_tex) { /* the first change: into the block's scratch */
+			unscratch(E, s);
+			*s->own_tex = o->tex ? *o->tex : E->default_tex;
+			o->tex = s->own_tex;
+			s->own_obj = o;
+		}
 		if (o->tex->loc.file < 0)
 			o->tex->loc = n->loc;
 		if (n->op == TK_PIGMENT)
@@ -126,8 +148,7 @@ static void clip(struct eval *E, struct sink *s, struct object *o, const struct 
 	eval_items(E, n, &sub);
 	if (tmp.g.csg.n == 0)
 		eval_fail(E, n->loc, "clipped_by needs an object: clipped_by { plane { y, 0 } }");
-	struct object *c = NEW(E, struct object);
-	c->kind = OBJ_CLIP;
+	struct object *c = obj_new(&SC(E)->arena, OBJ_CLIP);
 	c->loc = o->loc;
 	csg_add(E, c, o);
 	for (int i = 0; i < tmp.g.csg.n; i++)
@@ -499,7 +520,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	if (transform_of(E, n, &X)) {
-		object_transform(E, object_target(E, s, n->loc), &X);
+		object_transform_own(E, object_target(E, s, n->loc), &X, s->own_tex);
 		s->modified = 1;
 		return;
 	}
@@ -966,15 +987,17 @@ struct value object_block(struct eval *E, const struct node *blk)
 {
 	struct sink s;
 	struct object *o = NULL;
+	struct texture scratch; /* the object's own texture while the block runs */
 	if (blk->op != TK_OBJECT) {
-		o = NEW(E, struct object);
-		o->kind = object_kind_of(blk->op);
+		o = obj_new(&SC(E)->arena, object_kind_of(blk->op));
 		o->loc = blk->loc;
 		o->xf = NULL; /* the identity until a transform comes */
 	}
 	sink_init(&s, SK_OBJECT, blk->op, blk->loc, o);
+	s.own_tex = &scratch;
 	eval_items(E, blk, &s);
 	o = object_target(E, &s, blk->loc);
+	unscratch(E, &s);
 	if (blk->op != TK_OBJECT) {
 		/* geometry is fixed when the block ends; transforms composed already */
 		object_geometry(E, &s, o);

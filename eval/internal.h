@@ -17,6 +17,7 @@
 #define MAX_ARRAY 16777216L   /* elements in an array */
 #define MAX_SCOPES 512        /* scope stack */
 #define MAX_EVAL_DEPTH 2000   /* evaluator recursion: item lists and expressions */
+#define TEX_SEEN 1024         /* textures texture_share remembers */
 
 struct scope;
 struct entry;
@@ -45,6 +46,10 @@ struct sink {
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
 	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
+	struct texture *own_tex;   /* SK_OBJECT: object_block's scratch texture, which the
+	                            * object's pigment, finish … are written into
+	                            * (texture_share makes it a scene texture at the end) */
+	struct object *own_obj;    /* the object whose texture the scratch is (NULL: none) */
 	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
 };
@@ -68,6 +73,7 @@ struct eval {
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
 	struct scope *spare_scopes; /* released scopes, for reuse */
+	unsigned long env_gen;     /* changes of the scopes so far (from 1): node memos (env.c) */
 	struct entry *spare_entries;
 	long iterations;           /* loop iterations so far */
 	int breaking;              /* a #break is unwinding to its #switch */
@@ -86,6 +92,8 @@ struct eval {
 	int warned_fog_turb;       /* 'turbulence' in fog ignored warning given */
 	int warned_mesh_tex;       /* per-triangle mesh textures ignored warning given */
 	struct inc_cache *includes; /* files already parsed, by real path */
+	const struct texture *tex_seen[TEX_SEEN]; /* texture_share's recent textures, by hash */
+	uint64_t tex_hash[TEX_SEEN]; /* and their hashes */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
 
@@ -128,6 +136,14 @@ const struct node *env_macro(struct eval *E, const char *name);
 /* #declare (global unless the name is local somewhere on the stack) and #local. */
 struct value *env_declare(struct eval *E, const char *name, bool local);
 void env_define_macro(struct eval *E, const char *name, const struct node *def);
+/* The same through a node's memo (N_IDENT, N_DECLARE): looked up again only
+ * when the scopes changed since. */
+struct value *env_lookup_node(struct eval *E, const struct node *n);
+struct value *env_declare_node(struct eval *E, const struct node *n, bool local);
+/* N_DECLARE n declared its name already, and the scopes are as they were. */
+bool env_declared_before(struct eval *E, const struct node *n);
+/* N_CALL n's macro (NULL: none), and else in *var its variable (NULL: none). */
+const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var);
 bool env_undef(struct eval *E, const char *name);
 
 /* ---- builtins.c ---- */
@@ -163,6 +179,9 @@ bool transform_of(struct eval *E, const struct node *n, struct xform *out);
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X);
 /* A fresh scene copy of t (NULL: the #default texture). */
 struct texture *texture_copy(struct eval *E, const struct texture *t);
+/* A scene texture equal to *t: one made before when it is among the recent
+ * ones (at most TEX_SEEN, by content), else a fresh copy. */
+struct texture *texture_share(struct eval *E, const struct texture *t);
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
 /* A transform old (NULL: identity) followed by X, in a slot of its own, since
@@ -182,6 +201,8 @@ struct texture *texture_layered(struct eval *E, const struct texture *bottom, co
 /* ---- geometry.c: objects ---- */
 /* Moves object o (its texture and children too) by X. */
 void object_transform(struct eval *E, struct object *o, const struct xform *X);
+/* The same, moving texture own in place when o has it (a block's scratch). */
+void object_transform_own(struct eval *E, struct object *o, const struct xform *X, const struct texture *own);
 bool is_object_kw(enum tok kw); /* sphere … merge, object */
 void object_keyword(struct eval *E, struct sink *s, const struct node *n);
 void object_value(struct eval *E, struct sink *s, const struct value *v, struct srcloc loc);

@@ -6,6 +6,7 @@
  * camera, global settings). This file holds the dispatch, the argument
  * helpers they share, and value blocks. Misplaced or unknown keywords are
  * errors. */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -148,6 +149,60 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 {
 	struct texture *c = NEW(E, struct texture);
 	*c = t ? *t : E->default_tex;
+	return c;
+}
+
+/* The fields of a texture as words, bit for bit (padding left out), for
+ * sharing. */
+#define TEX_WORDS 14
+
+static void tex_key(const struct texture *t, uint64_t k[TEX_WORDS])
+{
+	const struct colour *c = &t->pigment.c[0];
+	const double d[5] = {c->r, c->g, c->b, c->f, c->t};
+	memcpy(k, d, sizeof d);
+	k[5] = (uint64_t)t->pigment.kind;
+	k[6] = (uint64_t)(uintptr_t)t->pigment.pat;
+	k[7] = (uint64_t)(uintptr_t)t->pigment.xf;
+	k[8] = (uint64_t)(uintptr_t)t->normal;
+	k[9] = (uint64_t)(uintptr_t)t->finish;
+	k[10] = (uint64_t)(uintptr_t)t->map;
+	k[11] = (uint64_t)(uintptr_t)t->below;
+	k[12] = (uint64_t)(uint32_t)t->loc.file << 32 | (uint32_t)t->loc.line;
+	k[13] = (uint64_t)(uint32_t)t->loc.col << 32 | (uint32_t)t->nmap;
+}
+
+/* A loop that makes the same texture over and over (a colour of a few, a
+ * declared finish) stores it once: up to TEX_SEEN recent textures are
+ * looked up by content. Deterministic: it depends on the order of
+ * evaluation only. */
+struct texture *texture_share(struct eval *E, const struct texture *t)
+{
+	uint64_t k[TEX_WORDS], h = 0;
+	tex_key(t, k);
+	for (int i = 0; i < TEX_WORDS; i++)
+		h = (h ^ k[i]) * 0x9e3779b97f4a7c15u;
+	h ^= h >> 32;
+	/* up to 8 slots from the hash's: a match, else the first free one,
+	 * else the first of them is given to t */
+	size_t at = h % TEX_SEEN;
+	for (int i = 0; i < 8; i++) {
+		size_t j = (h + (uint64_t)i) % TEX_SEEN;
+		if (!E->tex_seen[j]) {
+			at = j;
+			break;
+		}
+		uint64_t s[TEX_WORDS];
+		if (E->tex_hash[j] != h)
+			continue;
+		tex_key(E->tex_seen[j], s);
+		if (memcmp(s, k, sizeof k) == 0)
+			return (struct texture *)E->tex_seen[j];
+	}
+	struct texture *c = NEW(E, struct texture);
+	*c = *t;
+	E->tex_seen[at] = c;
+	E->tex_hash[at] = h;
 	return c;
 }
 
@@ -329,8 +384,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		struct light *l = eval_block(E, n).p.light;
 		scene_add_light(sc, l);
 		if (l->looks_like) { /* the object, moved to the light, casts no shadow */
-			struct object *o = NEW(E, struct object);
-			*o = *l->looks_like;
+			struct object *o = obj_copy(&SC(E)->arena, l->looks_like);
 			struct xform X = xf_translate(l->pos);
 			object_transform(E, o, &X);
 			o->flags |= OF_NO_SHADOW;

@@ -73,6 +73,11 @@ struct node {
 	const struct lazy_body *lazy; /* N_MACRO whose body did not parse: parsed
 	                               * when called (parse_macro_body), as POV-Ray
 	                               * reads a macro's tokens only then */
+	/* The evaluator's memo of what the name of an N_IDENT, N_CALL or
+	 * N_DECLARE resolved to, valid while the scopes are as they were
+	 * (eval/env.c); written through a const node, never read elsewhere. */
+	void *memo;
+	unsigned long memo_gen;
 };
 
 struct node *ast_new(struct arena *a, enum node_kind kind, struct srcloc loc);

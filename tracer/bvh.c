@@ -46,6 +46,7 @@ struct bvh {
 	RTCScene scene;                /* NULL when nothing is bounded */
 	const struct object **prims;   /* bounded leaves, in collection order */
 	int nprims;                    /* entries of prims */
+	bool own_prims;                /* prims is ours to free, not the caller's list */
 	const struct object **unbound; /* unbounded leaves, tested always */
 	int nunbound;                  /* entries of unbound */
 	struct bbox bounds;            /* world bounds of the bounded leaves */
@@ -53,7 +54,7 @@ struct bvh {
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
- * lanes says whether the context is this query (1) or a packet's (8). */
+ * lanes says whether the context is this query (1) or a packet's (16). */
 struct query {
 	struct RTCIntersectContext rc;
 	int lanes;             /* 1 */
@@ -71,11 +72,12 @@ struct query {
 	bool deferred;         /* *h is still to be filled from primitive best */
 };
 
-/* The queries of a packet of rays, lane i in q[i] (rtcIntersect8). */
-struct query8 {
+/* The queries of a packet of rays, lane i in q[i] (rtcIntersect16). */
+struct packet {
 	struct RTCIntersectContext rc;
-	int lanes;             /* 8 */
-	struct query q[8];
+	int lanes;             /* BVH_PACKET */
+	int base;              /* the queries of Embree's lane i are q[base + i] */
+	struct query q[BVH_PACKET];
 };
 
 /* ==== the device ========================================================= */
@@ -83,27 +85,48 @@ struct query8 {
 static RTCDevice device;
 static pthread_once_t device_once = PTHREAD_ONCE_INIT;
 
+static bool native16; /* the CPU walks packets of 16 natively (AVX-512) */
+
 static void make_device(void)
 {
 	device = rtcNewDevice("verbose=0");
+	/* Without AVX-512 Embree emulates rtcIntersect16 and, in the Debian
+	 * build, asserts in it on a packet of ours; two packets of 8 give the
+	 * same hits (the hits do not depend on how Embree walks). */
+	native16 = device && rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED);
 }
 
 /* ==== collecting leaves ================================================== */
 
+/* While every object so far is a bounded leaf, prims is the caller's list
+ * itself (a million spheres need no second array of a million pointers);
+ * the first union or unbounded object makes it a copy of its own. */
 struct builder {
 	struct bvh *t;
+	struct object *const *objs; /* the caller's list */
+	int next;                   /* objs[next] is the next to be collected */
 	int cap, capu;
 };
 
 static void add_leaf(struct builder *B, const struct object *o, struct bbox b)
 {
 	struct bvh *t = B->t;
-	if (t->nprims == B->cap) {
-		B->cap = B->cap ? 2 * B->cap : 64;
-		t->prims = mem_realloc(t->prims, sizeof *t->prims * (size_t)B->cap);
+	t->bounds = bbox_union(t->bounds, b);
+	if (!t->own_prims && t->nprims == B->next && B->objs[B->next] == o) {
+		t->nprims++; /* still the caller's list */
+		return;
+	}
+	if (!t->own_prims || t->nprims == B->cap) {
+		B->cap = B->cap ? 2 * B->cap : t->nprims + 64;
+		const struct object **p = mem_alloc(sizeof *p * (size_t)B->cap);
+		for (int i = 0; i < t->nprims; i++)
+			p[i] = t->prims[i];
+		if (t->own_prims)
+			free(t->prims);
+		t->prims = p;
+		t->own_prims = true;
 	}
 	t->prims[t->nprims++] = o;
-	t->bounds = bbox_union(t->bounds, b);
 }
 
 static void add_unbound(struct builder *B, const struct object *o)
@@ -222,7 +245,7 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct query *q = (struct query *)a->context;
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(q->lanes == 1 ? q : &((struct query8 *)a->context)->q[i], (int)a->primID,
+			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[((struct packet *)a->context)->base + (int)i], (int)a->primID,
 			          a->rayhit, a->N, i, a->geomID);
 }
 
@@ -245,9 +268,10 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 struct bvh *bvh_build(struct object **objs, int n)
 {
 	struct bvh *t = mem_calloc(1, sizeof *t);
-	struct builder B = {t, 0, 0};
+	struct builder B = {t, objs, 0, 0, 0};
 	t->bounds = bbox_empty();
-	for (int i = 0; i < n; i++)
+	t->prims = (const struct object **)objs;
+	for (int i = 0; i < n; i++, B.next++)
 		collect(&B, objs[i]);
 	if (t->nprims == 0)
 		return t;
@@ -281,7 +305,8 @@ void bvh_free(struct bvh *b)
 		return;
 	if (b->scene)
 		rtcReleaseScene(b->scene);
-	free(b->prims);
+	if (b->own_prims)
+		free(b->prims);
 	free(b->unbound);
 	free(b);
 }
@@ -438,14 +463,24 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	return q.found;
 }
 
-void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
-                    unsigned skip, struct hit *h, bool *found)
+/* The packet's hits, completed (finish), and whether each lane hit. */
+static void done(struct packet *Q, int n, bool *found)
 {
-	struct query8 Q;
-	_Alignas(32) struct RTCRayHit8 rh;
-	_Alignas(32) int valid[8];
+	for (int i = 0; i < n; i++) {
+		finish(&Q->q[i]);
+		found[i] = Q->q[i].found;
+	}
+}
+
+void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
+                          unsigned skip, struct hit *h, bool *found)
+{
+	struct packet Q;
+	_Alignas(64) struct RTCRayHit16 rh;
+	_Alignas(64) struct RTCRayHit8 rh8[2];
+	_Alignas(64) int valid[BVH_PACKET];
 	bool any = false;
-	for (int i = 0; i < 8; i++) {
+	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
 		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
@@ -462,20 +497,28 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 		}
 		float row[9];
 		valid[i] = float_ray(q, row) ? -1 : 0;
-		if (valid[i])
-			put_lane((float *)&rh, 8, (unsigned)i, row);
+		if (valid[i] && native16)
+			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
+		else if (valid[i])
+			put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
 		any |= valid[i] != 0;
 	}
-	if (any) {
-		rtcInitIntersectContext(&Q.rc);
-		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-		Q.lanes = 8;
-		rtcIntersect8(valid, b->scene, &Q.rc, &rh);
+	if (!any) {
+		done(&Q, n, found);
+		return;
 	}
-	for (int i = 0; i < n; i++) {
-		finish(&Q.q[i]);
-		found[i] = Q.q[i].found;
+	rtcInitIntersectContext(&Q.rc);
+	Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+	Q.lanes = BVH_PACKET;
+	Q.base = 0;
+	if (native16) {
+		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
+	} else {
+		rtcIntersect8(valid, b->scene, &Q.rc, &rh8[0]);
+		Q.base = 8;
+		rtcIntersect8(valid + 8, b->scene, &Q.rc, &rh8[1]);
 	}
+	done(&Q, n, found);
 }
 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,

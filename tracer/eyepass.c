@@ -677,13 +677,13 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
-	struct ray r[8] = {0};
-	struct hit h[8];
-	struct path pa[8];
-	bool found[8];
+	struct ray r[BVH_PACKET] = {0};
+	struct hit h[BVH_PACKET];
+	struct path pa[BVH_PACKET];
+	bool found[BVH_PACKET];
 	for (int i = 0; i < n; i++)
 		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
-	bvh_intersect8(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
+	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	for (int i = 0; i < n; i++)
 		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], r[i], &h[i], found[i] ? 1 : -1);
 }

@@ -2,6 +2,8 @@
 /* scene.c: scene defaults (POV-Ray 3.7's), list growth, and --dump-scene. */
 #include "scene.h"
 
+#include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "shape.h"
@@ -101,9 +103,51 @@ static void *grow(struct arena *a, void *arr, int n, size_t elem)
 	return b;
 }
 
+size_t obj_size(enum object_kind k)
+{
+	static const struct object o;
+	size_t g;
+	switch (k) {
+	case OBJ_SPHERE: g = sizeof o.g.sphere; break;
+	case OBJ_PLANE: g = sizeof o.g.plane; break;
+	case OBJ_BOX: g = sizeof o.g.box; break;
+	case OBJ_TORUS: g = sizeof o.g.torus; break;
+	case OBJ_SUPERELLIPSOID: g = sizeof o.g.superellipsoid; break;
+	case OBJ_BLOB: case OBJ_MESH: case OBJ_TEXT: case OBJ_PRISM: case OBJ_POLYGON: case OBJ_LATHE:
+	case OBJ_SOR: case OBJ_ISOSURFACE: g = sizeof(void *); break;
+	case OBJ_UNION: case OBJ_INTERSECTION: case OBJ_DIFFERENCE: case OBJ_MERGE: case OBJ_CLIP:
+		g = sizeof o.g.csg;
+		break;
+	default: return sizeof o; /* disc, cylinder, cone, triangle, poly */
+	}
+	return offsetof(struct object, g) + g;
+}
+
+struct object *obj_new(struct arena *a, enum object_kind k)
+{
+	struct object *o = arena_alloc(a, obj_size(k));
+	o->kind = k;
+	return o;
+}
+
+struct object *obj_copy(struct arena *a, const struct object *o)
+{
+	size_t n = obj_size(o->kind);
+	struct object *c = arena_alloc(a, n);
+	memcpy(c, o, n);
+	return c;
+}
+
+/* The top-level list is one malloc'd array (freed by scene_free), not an
+ * arena one: doubling in the arena would keep every smaller copy, 8 MB more
+ * at a million objects. */
 void scene_add_object(struct scene *s, struct object *o)
 {
-	s->objects = grow(&s->arena, s->objects, s->nobjects, sizeof *s->objects);
+	int n = s->nobjects;
+	if (n >= 4 && (n & (n - 1)) == 0)
+		s->objects = mem_realloc(s->objects, sizeof *s->objects * (size_t)n * 2);
+	else if (n == 0)
+		s->objects = mem_alloc(sizeof *s->objects * 4);
 	s->objects[s->nobjects++] = o;
 }
 
@@ -113,7 +157,12 @@ void scene_add_light(struct scene *s, const struct light *l)
 	s->lights[s->nlights++] = *l;
 }
 
-void scene_free(struct scene *s) { arena_free(&s->arena); }
+void scene_free(struct scene *s)
+{
+	free(s->objects);
+	s->objects = NULL;
+	arena_free(&s->arena);
+}
 
 const char *scene_pov_view(const struct scene *s)
 {

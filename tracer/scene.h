@@ -295,12 +295,20 @@ struct isosurface {
 	double accuracy;           /* root tolerance, object units (default 0.001) */
 };
 
-/* The members are ordered so that padding is least: 152 bytes a sphere. */
+/* An object is allocated only as far as its kind's member of the geometry
+ * union reaches (obj_size), so the union comes last: a sphere takes 112
+ * bytes, not the 152 of the largest member. Copy one with obj_copy, never
+ * by assignment. */
 struct object {
 	enum object_kind kind;
 	struct srcloc loc; /* where the object was written */
 	unsigned flags;              /* enum object_flags */
 	bool has_photons;            /* a photons { } block was given */
+	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
+	struct texture *tex;         /* NULL: inherit from parent, else default */
+	struct interior *interior;   /* NULL: inherit from parent, else default */
+	struct illum_spec illum;     /* illum_map { } */
+	struct photon_spec photons;  /* photons { } */
 	union {
 		struct { struct vec3 c; double r; } sphere;
 		struct { struct vec3 n; double d; } plane;        /* n·p = d */
@@ -321,13 +329,14 @@ struct object {
 		struct { const struct sor_shape *s; } sor;
 		struct { const struct isosurface *iso; } isosurface; /* OF_OPEN: no container walls */
 		struct { struct object **kids; int n; } csg;       /* CSG children */
-	} g;
-	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
-	struct texture *tex;         /* NULL: inherit from parent, else default */
-	struct interior *interior;   /* NULL: inherit from parent, else default */
-	struct illum_spec illum;     /* illum_map { } */
-	struct photon_spec photons;  /* photons { } */
+	} g;                         /* last: see obj_size */
 };
+
+/* The bytes an object of kind k takes: up to the end of its geometry. */
+size_t obj_size(enum object_kind k);
+/* A zeroed object of kind k in arena a (kind set), and a copy of o there. */
+struct object *obj_new(struct arena *a, enum object_kind k);
+struct object *obj_copy(struct arena *a, const struct object *o);
 
 /* The object's frame → world transform (the identity when it has none). */
 static inline const struct xform *obj_xf(const struct object *o)

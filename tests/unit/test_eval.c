@@ -116,6 +116,31 @@ static void t_texture_inheritance(void)
 	done();
 }
 
+/* Objects of a loop that make the same texture share one; a block that
+ * writes pigment and finish makes one texture; clipped_by hands the object
+ * its own before the clip node takes a pigment of its own. */
+static void t_texture_sharing(void)
+{
+	CHECK(run("#declare I = 0;\n#while (I < 6)\n"
+	          "  sphere { x * I, 0.4 pigment { rgb <mod(I, 2), 0, 1> } finish { phong 1 } }\n"
+	          "  #declare I = I + 1;\n#end\n"
+	          "sphere { 0, 1 pigment { rgb <1, 0, 0> } clipped_by { plane { y, 0 } } pigment { rgb <0, 1, 0> } }\n"
+	          "#declare S = sphere { 0, 1 pigment { rgb 0.5 } }\n"
+	          "object { S pigment { rgb 0.25 } translate y }\nobject { S }\n") == 0);
+	CHECK(sc.nobjects == 9);
+	struct object **o = sc.objects;
+	CHECK(o[0]->tex == o[2]->tex && o[2]->tex == o[4]->tex);
+	CHECK(o[1]->tex == o[3]->tex && o[0]->tex != o[1]->tex);
+	CHECK(o[0]->tex->pigment.c[0].r == 0 && o[1]->tex->pigment.c[0].r == 1);
+	CHECK(o[0]->tex->finish->phong == 1 && o[1]->tex->finish == o[0]->tex->finish);
+	struct object *clip = o[6];
+	CHECK(clip->kind == OBJ_CLIP && clip->g.csg.kids[0]->tex->pigment.c[0].r == 1);
+	CHECK(clip->tex->pigment.c[0].g == 1 && clip->tex->pigment.c[0].r == 0);
+	CHECK(o[7]->tex->pigment.c[0].r == 0.25 && o[7]->tex->pigment.xf && o[8]->tex->pigment.c[0].r == 0.5);
+	CHECK(o[8]->tex->pigment.xf == NULL);
+	done();
+}
+
 static void t_errors_are_65(void)
 {
 	CHECK(run("#declare X = 1/0;\n") == 65);
@@ -134,6 +159,7 @@ int main(void)
 	RUN(t_transforms_and_camera);
 	RUN(t_camera_look_at_deferred);
 	RUN(t_texture_inheritance);
+	RUN(t_texture_sharing);
 	RUN(t_errors_are_65);
 	srcfile_free_all();
 	return test_done();

@@ -243,7 +243,8 @@ static void round_trips(const struct object *src)
 	int bad = 0, tried = 0;
 	double worst = 0;
 	for (int i = 0; i < 400; i++) {
-		struct object o = *src;
+		struct object o;
+		memcpy(&o, src, obj_size(src->kind));
 		o.xf = xf_keep(rnd_xform(i % 4 == 0, true));
 		double u = rndr(0.01, 0.99), v = rndr(0.01, 0.99), s = 1e-6;
 		struct vec3 p, du, dv, p1, p0;

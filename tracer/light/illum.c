@@ -357,10 +357,7 @@ static const struct tile *node_tile(const struct illum_map *m, long i, long j, i
 /* t (in node spacings) snapped onto the nearest node when within SNAP. */
 static double snap(double t)
 {
-	double r = t; /* nearbyint(t), inline: below 2^52 adding 2^52 rounds to an integer
-	                 (to even, as nearbyint does, symmetrically); from 2^52 on t is one */
-	if (fabs(t) < 0x1p52)
-		r = t >= 0 ? (t + 0x1p52) - 0x1p52 : -((-t + 0x1p52) - 0x1p52);
+	double r = nearbyint(t);
 	return fabs(t - r) < SNAP ? r : t;
 }
 
@@ -383,10 +380,8 @@ static void axis_split(const struct axis *a, double x, long *i0, long *i1, doubl
 		return;
 	}
 	double lo = a->bounded ? 0 : -PLANE_LIMIT, hi = a->bounded ? (double)(a->n - 1) : PLANE_LIMIT;
-	t = !(t >= lo) ? lo : t > hi ? hi : t; /* fmin(fmax(t, lo), hi), inline */
-	long i = (long)t; /* floor: |t| <= 2^30 */
-	if ((double)i > t)
-		i--;
+	t = fmin(fmax(t, lo), hi);
+	long i = (long)floor(t);
 	if (a->bounded && i > a->n - 2)
 		i = a->n - 2;
 	*f = t - (double)i;
@@ -901,9 +896,11 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
 	 * their window entries (without reading the tiles, which are cold) */
 	for (int b = 0; b < nb; b++) {
-		if (m->ntiles + D[b].nmade > m->cap) {
+		long total = m->ntiles + D[b].nmade; /* room for them (a partial
+		                                        map adopted below adds more) */
+		if (total > m->cap) {
 			long cap = m->cap ? m->cap : 8;
-			while (cap < m->ntiles + D[b].nmade)
+			while (cap < total)
 				cap *= 2;
 			m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
 			m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
