@@ -777,10 +777,11 @@ static void run_item(struct worker *w, const struct item *it)
 	bool beam = l->kind == LIGHT_PARALLEL;
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
-	for (long i = it->first; i < it->first + it->count; i++) {
+	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
+	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
-		double sx = ((double)(i % t->side) + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
-		double sy = ((double)(i / t->side) + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
+		double sx = ((double)col + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
+		double sy = ((double)row + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
 		double ph = 2 * M_PI * sy;
 		struct vec3 o = l->pos, d = t->axis;
 		if (beam) {
