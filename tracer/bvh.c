@@ -35,9 +35,12 @@
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "../common/arena.h"
+#include "shapes/prim.h"
 
 struct bvh {
 	RTCScene scene;                /* NULL when nothing is bounded */
@@ -51,7 +54,7 @@ struct bvh {
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
- * lanes says whether the context is this query (1) or a packet's (8). */
+ * lanes says whether the context is this query (1) or a packet's (16). */
 struct query {
 	struct RTCIntersectContext rc;
 	int lanes;             /* 1 */
@@ -61,17 +64,19 @@ struct query {
 	double t0;             /* where the float ray starts along r */
 	unsigned skip;         /* leaves with these flags are ignored */
 	struct hit *h;         /* best hit so far */
+	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
+	double best_t;         /* its t, when deferred */
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
 };
 
-/* The queries of a packet of rays, lane i in q[i] (rtcIntersect8). */
-struct query8 {
+/* The queries of a packet of rays, lane i in q[i] (rtcIntersect16). */
+struct packet {
 	struct RTCIntersectContext rc;
-	int lanes;             /* 8 */
-	struct query q[8];
+	int lanes;             /* BVH_PACKET */
+	struct query q[BVH_PACKET];
 };
 
 /* ==== the device ========================================================= */
@@ -146,8 +151,33 @@ static void collect(struct builder *B, const struct object *o)
 
 /* ==== callbacks ========================================================== */
 
-static float down(double x) { float f = (float)x; return (double)f > x ? nextafterf(f, -INFINITY) : f; }
-static float up(double x) { float f = (float)x; return (double)f < x ? nextafterf(f, INFINITY) : f; }
+/* The next float towards -inf (+inf) from a finite, non-zero float f:
+ * nextafterf, without the call. */
+static float step_float(float f, bool towards_up)
+{
+	uint32_t b;
+	memcpy(&b, &f, sizeof b);
+	b += (f > 0) == towards_up ? 1u : ~0u; /* away from or towards zero */
+	memcpy(&f, &b, sizeof f);
+	return f;
+}
+
+/* x rounded to a float no greater (down) or no less (up) than it. */
+static float down(double x)
+{
+	float f = (float)x;
+	if (!((double)f > x))
+		return f;
+	return f == 0 ? -0x1p-149f : step_float(f, false);
+}
+
+static float up(double x)
+{
+	float f = (float)x;
+	if (!((double)f < x))
+		return f;
+	return f == 0 ? 0x1p-149f : step_float(f, true);
+}
 
 static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 {
@@ -156,6 +186,16 @@ static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 	double p = t->pad;
 	*a->bounds_o = (struct RTCBounds){down(b.lo.x - p), down(b.lo.y - p), down(b.lo.z - p), 0,
 	                                  up(b.hi.x + p), up(b.hi.y + p), up(b.hi.z + p), 0};
+}
+
+/* A sphere's t over (tmin, tmax), as shape_hit_t finds it: inline for the
+ * common sphere without a transform. */
+static inline bool sphere_t(const struct object *o, const struct ray *r, double tmin, double tmax,
+                            double *t)
+{
+	if (!o->xf)
+		return prim_sphere_t(o->g.sphere.c, o->g.sphere.r, r, tmin, tmax, t);
+	return shape_hit_t(o, r, tmin, tmax, t);
 }
 
 /* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
@@ -170,9 +210,10 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 	/* a tie with the best so far is looked at: the lower index wins */
 	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
 	if (o->kind == OBJ_SPHERE) { /* the t alone; traverse fills *h at the end */
-		if (!shape_hit_t(o, q->r, q->tmin, hi, &t))
+		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return;
 		q->deferred = true;
+		q->best_t = t;
 	} else {
 		struct hit tmp;
 		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
@@ -197,7 +238,7 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct query *q = (struct query *)a->context;
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(q->lanes == 1 ? q : &((struct query8 *)a->context)->q[i], (int)a->primID,
+			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[i], (int)a->primID,
 			          a->rayhit, a->N, i, a->geomID);
 }
 
@@ -207,9 +248,11 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 		return;
 	struct query *q = (struct query *)a->context;
 	const struct object *o = q->b->prims[a->primID];
+	double t;
 	if (o->flags & q->skip)
 		return;
-	if (shape_occluded(o, q->r, q->tmin, q->tmax))
+	if (o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
+	                          : shape_occluded(o, q->r, q->tmin, q->tmax))
 		((struct RTCRay *)a->ray)->tfar = -INFINITY;
 }
 
@@ -233,6 +276,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
+
 	t->scene = rtcNewScene(device);
 	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
 	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -296,26 +340,38 @@ static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, 
 	return true;
 }
 
-/* The float ray of query q, written as lane i of a packet of N rays (N = 1:
- * an RTCRayHit): it starts where q's ray enters the padded box of
- * everything bounded, and its interval is rounded outward. False (and no
- * ray) when the ray misses that box within q's interval. */
-static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
+/* The float ray of query q, as the nine rows of an RTCRay (org xyz,
+ * tnear, dir xyz, time, tfar): it starts where q's ray enters the padded
+ * box of everything bounded, and its interval is rounded outward. False
+ * (and no ray) when the ray misses that box within q's interval. */
+static bool float_ray(struct query *q, float row[9])
 {
 	const struct bvh *b = q->b;
 	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
 	                  v_add(b->bounds.hi, v3(b->pad, b->pad, b->pad))};
-	double te;
-	if (!enter(bx, q->r, -INFINITY, INFINITY, &te) || !(te < q->tmax))
+	struct vec3 ro = q->r->o;
+	double te = 0; /* a ray starting inside the box enters it at t <= 0 */
+	bool inside = ro.x >= bx.lo.x && ro.x <= bx.hi.x && ro.y >= bx.lo.y && ro.y <= bx.hi.y &&
+	              ro.z >= bx.lo.z && ro.z <= bx.hi.z;
+	if (!inside && !enter(bx, q->r, -INFINITY, INFINITY, &te))
+		return false;
+	if (!(te < q->tmax))
 		return false;
 	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
 	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
 	double lo = q->tmin - q->t0;
-	/* RTCRayN's rows: org xyz, tnear, dir xyz, time, tfar; then mask, id,
-	 * flags and the hit's geomID as words 9, 10, 11 and 12 + 6 */
-	const float row[9] = {(float)o.x, (float)o.y, (float)o.z, lo > 0 ? down(lo * (1 - 1e-6)) : 0,
-	                      (float)q->r->d.x, (float)q->r->d.y, (float)q->r->d.z, 0,
-	                      isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6))};
+	row[0] = (float)o.x, row[1] = (float)o.y, row[2] = (float)o.z;
+	row[3] = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
+	row[4] = (float)q->r->d.x, row[5] = (float)q->r->d.y, row[6] = (float)q->r->d.z, row[7] = 0;
+	row[8] = isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6));
+	return true;
+}
+
+/* Writes a float ray as lane i of a packet of N rays (N = 1: an RTCRayHit).
+ * RTCRayN's rows: the nine of float_ray, then mask, id, flags and the hit's
+ * geomID as words 9, 10, 11 and 12 + 6. */
+static inline void put_lane(float *f, unsigned N, unsigned i, const float row[9])
+{
 	for (unsigned k = 0; k < 9; k++)
 		f[k * N + i] = row[k];
 	unsigned *u = (unsigned *)f;
@@ -323,7 +379,6 @@ static bool float_ray(struct query *q, float *f, unsigned N, unsigned i)
 	u[10 * N + i] = 0;
 	u[11 * N + i] = 0;
 	u[18 * N + i] = RTC_INVALID_GEOMETRY_ID;
-	return true;
 }
 
 /* The bounded leaves through Embree; q holds the interval and the result. */
@@ -331,8 +386,10 @@ static void walk(struct query *q, bool any)
 {
 	const struct bvh *b = q->b;
 	struct RTCRayHit rh;
-	if (!float_ray(q, (float *)&rh, 1, 0))
+	float row[9];
+	if (!float_ray(q, row))
 		return;
+	put_lane((float *)&rh, 1, 0, row);
 	rtcInitIntersectContext(&q->rc);
 	q->lanes = 1;
 	if (any) {
@@ -380,14 +437,15 @@ static bool unbounded(struct query *q, bool any)
 static void finish(struct query *q)
 {
 	if (q->deferred)
-		shape_intersect(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->h);
+		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
 static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                      unsigned skip, bool any, struct hit *h)
 {
-	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip, .h = h, .best = -1};
+	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV, .h = h,
+	                  .uv = !(skip & BVH_NO_UV), .best = -1};
 	if (unbounded(&q, any) || b->nprims == 0)
 		return q.found;
 	if (b->scene)
@@ -398,17 +456,18 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	return q.found;
 }
 
-void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
-                    unsigned skip, struct hit *h, bool *found)
+void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
+                          unsigned skip, struct hit *h, bool *found)
 {
-	struct query8 Q;
-	_Alignas(32) struct RTCRayHit8 rh;
-	_Alignas(32) int valid[8];
+	struct packet Q;
+	_Alignas(64) struct RTCRayHit16 rh;
+	_Alignas(64) int valid[BVH_PACKET];
 	bool any = false;
-	for (int i = 0; i < 8; i++) {
+	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
-		                    .skip = skip, .h = &h[i < n ? i : 0], .best = -1};
+		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
+		                    .uv = !(skip & BVH_NO_UV), .best = -1};
 		valid[i] = 0;
 		if (i >= n)
 			continue;
@@ -419,14 +478,17 @@ void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin
 			brute(q, false);
 			continue;
 		}
-		valid[i] = float_ray(q, (float *)&rh, 8, (unsigned)i) ? -1 : 0;
+		float row[9];
+		valid[i] = float_ray(q, row) ? -1 : 0;
+		if (valid[i])
+			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
 		any |= valid[i] != 0;
 	}
 	if (any) {
 		rtcInitIntersectContext(&Q.rc);
 		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-		Q.lanes = 8;
-		rtcIntersect8(valid, b->scene, &Q.rc, &rh);
+		Q.lanes = BVH_PACKET;
+		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
 	}
 	for (int i = 0; i < n; i++) {
 		finish(&Q.q[i]);

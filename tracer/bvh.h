@@ -16,6 +16,10 @@
 
 struct bvh;
 
+/* A bit of a query's skip mask that is no object flag: the nearest hit may
+ * come without its (u,v) and partials (NaN and zero; shape_hit_at). */
+#define BVH_NO_UV (1u << 31)
+
 /* Builds the hierarchy over objs[0..n); the objects, and the array objs
  * itself (the hierarchy may use it as its list of leaves), must outlive it. */
 struct bvh *bvh_build(struct object **objs, int n);
@@ -30,11 +34,13 @@ bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, d
                         unsigned skip, struct hit *h);
 bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                        unsigned skip);
-/* The nearest hits of n <= 8 rays at once, as bvh_intersect_skip finds
- * them one by one, bit for bit: Embree walks them as one packet (camera
- * rays of a tile, which stay together). found[i] says whether ray i hit. */
-void bvh_intersect8(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
-                    unsigned skip, struct hit *h, bool *found);
+/* The nearest hits of n <= BVH_PACKET rays at once, as bvh_intersect_skip
+ * finds them one by one, bit for bit: Embree walks them as one packet
+ * (camera rays of a 4×4 block of pixels, which stay together). found[i]
+ * says whether ray i hit. */
+#define BVH_PACKET 16
+void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
+                          unsigned skip, struct hit *h, bool *found);
 /* Leaves after flattening: bounded ones in the tree, and unbounded ones. */
 int bvh_count(const struct bvh *b, int *unbounded);
 /* World bounds of everything bounded in the tree (empty when none). */

@@ -54,7 +54,12 @@ struct surf {
 };
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
+static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
 static double v_maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+
+/* The query flag for hits shaded here: (u,v) are looked at only to read
+ * illumination maps (caustic_at). */
+static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV; }
 
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static double eps_at(struct vec3 p)
@@ -126,7 +131,7 @@ static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p,
 		return bvh_occluded_skip(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW) ? v3(0, 0, 0) : pass;
 	for (int n = 0; n < 64; n++) {
 		struct hit h;
-		if (!bvh_intersect_skip(ctx->bvh, &r, t0, tmax, OF_NO_SHADOW, &h))
+		if (!bvh_intersect_skip(ctx->bvh, &r, t0, tmax, OF_NO_SHADOW | BVH_NO_UV, &h))
 			return pass;
 		struct surf_in si;
 		struct surf_out so;
@@ -286,6 +291,9 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	const struct interior *in = mat_interior(sf->h->obj);
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
+	const struct finish *f = sf->tex->finish;
+	if (!clear && no_colour(f->refl_min) && no_colour(f->refl_max))
+		return v3(0, 0, 0); /* neither reflects nor transmits: R = T = 0 */
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
 	struct surf_in si = {sf->h, sf->tex->finish, sf->pc, in, d, sf->nf,
@@ -514,7 +522,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	pa->rays++;
 	if (pre > 0)
 		h = *pa->pre;
-	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip, &h))) {
+	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), &h))) {
 		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
 		if (s->fog.type)
 			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
@@ -579,15 +587,34 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
 	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0};
-	double jx = jitter ? smp_next(&pa->rng) : 0.5, jy = jitter ? smp_next(&pa->rng) : 0.5;
-	if (jitter && i < m * m) {
-		jx = (i % m + jx) / m;
-		jy = (i / m + jy) / m;
+	double jx = 0.5, jy = 0.5;
+	if (jitter) {
+		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
+		jx = smp_next(&pa->rng), jy = smp_next(&pa->rng);
+		if (i < m * m) {
+			jx = (i % m + jx) / m;
+			jy = (i / m + jy) / m;
+		}
 	}
-	double l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
+	double l1 = 0, l2 = 0; /* the lens sample, drawn only for a lens */
+	if (ctx->cam.aperture > 0)
+		l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
+	else
+		pa->rng.dim += 2; /* the numbers after it stay the same */
 	return cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+}
+
+/* Sample i's path and camera ray: sample 0's as eye_pixels started and
+ * traced it (pa0, r0 and its hit pre), when it did. */
+static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, const struct path *pa0,
+                               struct ray r0, const struct hit *pre, int pre_state, struct path *pa)
+{
+	if (i > 0 || !pa0)
+		return camera_sample(ctx, x, y, i, pa);
+	*pa = *pa0;
+	pa->pre = pre, pa->pre_state = pre_state;
+	return r0;
 }
 
 /* Shades one pixel: spp camera samples averaged with equal weights. The
@@ -597,16 +624,26 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
  * -1: miss) and pre give sample 0's camera hit when it was traced
  * beforehand. */
 static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays,
-                  const struct hit *pre, int pre_state)
+                  const struct path *pa0, struct ray r0, const struct hit *pre, int pre_state)
 {
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
+	if (ctx->beauty_only) { /* the same radiance, without the layers */
+		memset(out, 0, sizeof *out);
+		for (int i = 0; i < ctx->spp; i++) {
+			struct path pa;
+			struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
+			if (v_dot(r.d, r.d) > 0)
+				sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, NULL));
+			*rays += pa.rays;
+		}
+		put3(out->rgb, sum, 1.0 / ctx->spp);
+		return;
+	}
 	for (int i = 0; i < ctx->spp; i++) {
 		struct path pa;
-		struct ray r = camera_sample(ctx, x, y, i, &pa);
-		if (i == 0)
-			pa.pre = pre, pa.pre_state = pre_state;
+		struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
 		struct aov aov = {.z = INFINITY};
 		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
 			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
@@ -634,20 +671,19 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
 {
-	pixel(ctx, x, y, out, rays, NULL, 0);
+	pixel(ctx, x, y, out, rays, NULL, (struct ray){0}, NULL, 0);
 }
 
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
-	struct ray r[8] = {0};
-	struct hit h[8];
-	bool found[8];
-	for (int i = 0; i < n; i++) {
-		struct path pa;
-		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa);
-	}
-	bvh_intersect8(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE, h, found);
+	struct ray r[BVH_PACKET] = {0};
+	struct hit h[BVH_PACKET];
+	struct path pa[BVH_PACKET];
+	bool found[BVH_PACKET];
 	for (int i = 0; i < n; i++)
-		pixel(ctx, x[i], y[i], &out[i], rays, &h[i], found[i] ? 1 : -1);
+		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
+	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
+	for (int i = 0; i < n; i++)
+		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], r[i], &h[i], found[i] ? 1 : -1);
 }

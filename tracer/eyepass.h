@@ -36,6 +36,8 @@ struct eye_ctx {
 	int spp;                       /* camera samples per pixel */
 	struct lp_result *const *caustics; /* light-pass results (one, or one per channel) */
 	int ncaustics;                 /* entries in caustics (0: no light pass) */
+	bool beauty_only;              /* only R G B are kept: the AOV layers are
+	                                  not computed (eye_px holds zeros there) */
 	bool see_through;              /* some object is a straight transmitter: shadow
 	                                  rays look through such objects (surface.h) */
 	bool spectral;                 /* passes spectral: dispersive glass splits a path
@@ -71,8 +73,8 @@ void eye_setup(struct eye_ctx *ctx, const struct scene *s, const struct bvh *b,
 /* Shades pixel (x, y) (row 0 at the top) into *out; adds the rays it traced
  * to *rays. Depends only on ctx and (x, y): any thread gets the same bits. */
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays);
-/* The same for n <= 8 pixels (x[i], y[i]), neighbours best: their first
- * camera rays are traced together as one packet (bvh_intersect8), then
+/* The same for n <= BVH_PACKET pixels (x[i], y[i]), neighbours best: their first
+ * camera rays are traced together as one packet (bvh_intersect_packet), then
  * each pixel is shaded as eye_pixel shades it, to the same bits. */
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays);

@@ -81,15 +81,15 @@ static void do_tile(void *arg, long t, int worker)
 	struct eye_job *j = arg;
 	int x0 = (int)(t % j->tx) * TILE, y0 = (int)(t / j->tx) * TILE;
 	long long rays = 0; /* a local count: the workers' slots share a cache line */
-	/* blocks of 4×2 pixels, whose camera rays Embree traces as one packet */
-	for (int by = y0; by < y0 + TILE && by < j->h; by += 2)
+	/* blocks of 4×4 pixels, whose camera rays Embree traces as one packet */
+	for (int by = y0; by < y0 + TILE && by < j->h; by += 4)
 		for (int bx = x0; bx < x0 + TILE && bx < j->w; bx += 4) {
-			int xs[8], ys[8], n = 0;
-			for (int y = by; y < by + 2 && y < j->h; y++)
+			int xs[BVH_PACKET], ys[BVH_PACKET], n = 0;
+			for (int y = by; y < by + 4 && y < j->h; y++)
 				for (int x = bx; x < bx + 4 && x < j->w; x++)
 					xs[n] = x, ys[n++] = y;
-			int ax[8], ay[8];
-			struct eye_px px[8];
+			int ax[BVH_PACKET], ay[BVH_PACKET];
+			struct eye_px px[BVH_PACKET];
 			for (int i = 0; i < n; i++)
 				ax[i] = j->x0 + xs[i], ay[i] = j->y0 + ys[i];
 			eye_pixels(j->ctx, n, ax, ay, px, &rays);
@@ -343,6 +343,7 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 
 	struct eye_ctx ctx;
 	eye_setup(&ctx, s, b, &mats, o->width, o->height, o->spp);
+	ctx.beauty_only = nplanes == 3;
 	ctx.caustics = maps;
 	ctx.ncaustics = nmaps;
 	ctx.spectral = passes_of(s, o) == PASSES_SPECTRAL;

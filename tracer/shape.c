@@ -28,9 +28,10 @@ static struct ray local_ray(const struct object *o, const struct ray *r)
 	return (struct ray){xf_inv_point(o->xf, r->o), xf_inv_vector(o->xf, r->d)};
 }
 
-/* Fills a world hit from a local one. */
+/* Fills a world hit from a local one; without uv, (u,v) are NaN and the
+ * partials zero. */
 static void to_world(const struct object *o, const struct ray *r, const struct local_hit *lh,
-                     struct hit *h)
+                     bool uv, struct hit *h)
 {
 	const struct xform *x = o->xf;
 	struct vec3 n = v_norm(x ? xf_normal(x, lh->n) : lh->n);
@@ -39,12 +40,17 @@ static void to_world(const struct object *o, const struct ray *r, const struct l
 	h->t = lh->t;
 	h->p = x ? xf_point(x, lh->p) : lh->p;
 	h->n = n;
+	h->obj = o;
+	h->entering = v_dot(r->d, n) < 0;
+	if (!uv) {
+		h->u = h->v = NAN;
+		h->dpdu = h->dpdv = v3(0, 0, 0);
+		return;
+	}
 	h->u = lh->u;
 	h->v = lh->v;
 	h->dpdu = x ? xf_vector(x, lh->dpdu) : lh->dpdu;
 	h->dpdv = x ? xf_vector(x, lh->dpdv) : lh->dpdv;
-	h->obj = o;
-	h->entering = v_dot(r->d, n) < 0;
 }
 
 bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
@@ -57,7 +63,7 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	struct local_hit lh;
 	if (!p->intersect(o, &lr, tmin, tmax, &lh))
 		return false;
-	to_world(o, r, &lh, h);
+	to_world(o, r, &lh, true, h);
 	return true;
 }
 
@@ -71,6 +77,19 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
 	if (!shape_intersect(o, r, tmin, tmax, &h))
 		return false;
 	*t = h.t;
+	return true;
+}
+
+bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
+                  bool uv, struct hit *h)
+{
+	if (o->kind != OBJ_SPHERE)
+		return shape_intersect(o, r, tmin, tmax, h);
+	struct ray lr = local_ray(o, r);
+	struct local_hit lh;
+	if (!sph_hit_at(o, &lr, t, uv, &lh))
+		return false;
+	to_world(o, r, &lh, uv, h);
 	return true;
 }
 

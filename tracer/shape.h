@@ -50,6 +50,11 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 /* The t of that nearest hit alone: the same t shape_intersect finds over the
  * same interval, cheaper where the primitive can skip the rest (spheres). */
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
+/* The hit shape_intersect finds over (tmin, tmax), given the t shape_hit_t
+ * found there; without uv, (u,v) may be NaN and the partials zero (the eye
+ * pass needs them only on a surface with an illumination map). */
+bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
+                  bool uv, struct hit *h);
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
 /* Is the world point strictly inside the solid (OF_INVERSE honoured)? */

@@ -52,6 +52,9 @@ struct prim_ops {
 /* The sphere's nearest root in (tmin, tmax), in its own frame: the t its
  * intersect finds, without the point, normal and (u,v) (shape_hit_t). */
 bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
+/* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
+ * without uv, (u,v) and the partials are left unset (shape_hit_at). */
+bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);
 
 /* ---- helpers shared by the primitives (shape.c) ------------------------- */
 
@@ -98,6 +101,33 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
 	return true;
 }
 
+/* The nearer root in (tmin, tmax) of the ray and the sphere of centre c and
+ * radius rad (> 0), in the sphere's frame. The discriminant is computed as
+ * 4a·(r² − |f⊥|²), f⊥ the part of f = o − c perpendicular to d, which keeps
+ * precision for distant rays (pbrt-v4's formulation). Inline: the sphere
+ * primitive and the hierarchy's sphere leaves (bvh.c) share it. */
+static inline bool prim_sphere_t(struct vec3 c, double rad, const struct ray *r, double tmin,
+                                 double tmax, double *t)
+{
+	if (!(rad > 0))
+		return false;
+	struct vec3 f = v_sub(r->o, c), d = r->d;
+	double a = v_dot(d, d), b = 2 * v_dot(f, d), cc = v_dot(f, f) - rad * rad, t0, t1;
+	if (!(a > 0))
+		return false;
+	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);
+	double lp = v_len(perp);
+	double disc = 4 * a * (rad + lp) * (rad - lp);
+	if (!prim_quadratic(a, b, cc, disc, &t0, &t1))
+		return false;
+	if (t0 > tmin && t0 < tmax)
+		*t = t0;
+	else if (t1 > tmin && t1 < tmax)
+		*t = t1;
+	else
+		return false;
+	return true;
+}
 
 /* Möller–Trumbore in double precision, edges inclusive: the ray meets the
  * triangle p0 + a·e1 + b·e2 at *t, with barycentric (a, b) in *a, *b (no

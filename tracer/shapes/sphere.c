@@ -47,43 +47,16 @@ static void sph_uv(struct vec3 q, double *u, double *v)
 	*v = atan2(sqrt(q.x * q.x + q.z * q.z), -q.y) / M_PI;
 }
 
-/* Ray–sphere roots. The discriminant is computed as 4a·(r² − |f⊥|²), f⊥ the
- * part of (o − c) perpendicular to d, which keeps precision for distant rays
- * (pbrt-v4's formulation). */
-static bool sph_roots(const struct object *o, const struct ray *r, double *t0, double *t1)
-{
-	struct vec3 f = v_sub(r->o, S_C(o)), d = r->d;
-	double a = v_dot(d, d), b = 2 * v_dot(f, d), c = v_dot(f, f) - S_R(o) * S_R(o);
-	if (!(a > 0))
-		return false;
-	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);
-	double rr = S_R(o), lp = v_len(perp);
-	double disc = 4 * a * (rr + lp) * (rr - lp);
-	return prim_quadratic(a, b, c, disc, t0, t1);
-}
-
 /* The nearer root in range (tmin < t < tmax). */
 bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
-	double t0, t1;
-	if (!(S_R(o) > 0) || !sph_roots(o, r, &t0, &t1))
-		return false;
-	if (t0 > tmin && t0 < tmax)
-		*t = t0;
-	else if (t1 > tmin && t1 < tmax)
-		*t = t1;
-	else
-		return false;
-	return true;
+	return prim_sphere_t(S_C(o), S_R(o), r, tmin, tmax, t);
 }
 
-/* The nearer root in range; the point is projected back onto the sphere. */
-static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                          struct local_hit *lh)
+/* The hit at root t (as sph_hit_t found it): the point projected back onto
+ * the sphere and the normal; with uv, its (u,v) and partials too. */
+bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh)
 {
-	double t;
-	if (!sph_hit_t(o, r, tmin, tmax, &t))
-		return false;
 	struct vec3 q = v_sub(ray_at(*r, t), S_C(o));
 	double l = v_len(q);
 	if (!(l > 0))
@@ -92,8 +65,18 @@ static bool sph_intersect(const struct object *o, const struct ray *r, double tm
 	lh->t = t;
 	lh->p = v_madd(S_C(o), q, S_R(o));
 	lh->n = q;
+	if (!uv)
+		return true;
 	sph_uv(q, &lh->u, &lh->v);
 	return sph_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
+}
+
+/* The nearer root in range, in full. */
+static bool sph_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct local_hit *lh)
+{
+	double t;
+	return sph_hit_t(o, r, tmin, tmax, &t) && sph_hit_at(o, r, t, true, lh);
 }
 
 static bool sph_inside(const struct object *o, struct vec3 p)
