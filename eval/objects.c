@@ -200,7 +200,7 @@ struct texture *texture_share(struct eval *E, const struct texture *t)
 		if (memcmp(s, k, sizeof k) == 0)
 			return (struct texture *)E->tex_seen[j];
 	}
-	struct texture *c = NEW(E, struct texture);
+	struct texture *c = arena_alloc8(&SC(E)->arena, sizeof *c); /* beside 8-aligned objects: no gap */
 	*c = *t;
 	E->tex_seen[at] = c;
 	E->tex_hash[at] = h;
