@@ -648,7 +648,8 @@ struct value eval_expr(struct eval *E, const struct node *n)
 	enter(E, n->loc);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
-	check_finite(E, n, &v);
+	if (n->kind != N_VEC) /* a vector's components were checked each */
+		check_finite(E, n, &v);
 	return v;
 }
 
