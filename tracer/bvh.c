@@ -76,6 +76,7 @@ struct query {
 struct packet {
 	struct RTCIntersectContext rc;
 	int lanes;             /* BVH_PACKET */
+	int base;              /* the queries of Embree's lane i are q[base + i] */
 	struct query q[BVH_PACKET];
 };
 
@@ -84,9 +85,15 @@ struct packet {
 static RTCDevice device;
 static pthread_once_t device_once = PTHREAD_ONCE_INIT;
 
+static bool native16; /* the CPU walks packets of 16 natively (AVX-512) */
+
 static void make_device(void)
 {
 	device = rtcNewDevice("verbose=0");
+	/* Without AVX-512 Embree emulates rtcIntersect16 and, in the Debian
+	 * build, asserts in it on a packet of ours; two packets of 8 give the
+	 * same hits (the hits do not depend on how Embree walks). */
+	native16 = device && rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED);
 }
 
 /* ==== collecting leaves ================================================== */
@@ -238,7 +245,7 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct query *q = (struct query *)a->context;
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[i], (int)a->primID,
+			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[((struct packet *)a->context)->base + (int)i], (int)a->primID,
 			          a->rayhit, a->N, i, a->geomID);
 }
 
@@ -456,11 +463,21 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	return q.found;
 }
 
+/* The packet's hits, completed (finish), and whether each lane hit. */
+static void done(struct packet *Q, int n, bool *found)
+{
+	for (int i = 0; i < n; i++) {
+		finish(&Q->q[i]);
+		found[i] = Q->q[i].found;
+	}
+}
+
 void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
                           unsigned skip, struct hit *h, bool *found)
 {
 	struct packet Q;
 	_Alignas(64) struct RTCRayHit16 rh;
+	_Alignas(64) struct RTCRayHit8 rh8[2];
 	_Alignas(64) int valid[BVH_PACKET];
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
@@ -480,20 +497,28 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		}
 		float row[9];
 		valid[i] = float_ray(q, row) ? -1 : 0;
-		if (valid[i])
+		if (valid[i] && native16)
 			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
+		else if (valid[i])
+			put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
 		any |= valid[i] != 0;
 	}
-	if (any) {
-		rtcInitIntersectContext(&Q.rc);
-		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-		Q.lanes = BVH_PACKET;
+	if (!any) {
+		done(&Q, n, found);
+		return;
+	}
+	rtcInitIntersectContext(&Q.rc);
+	Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+	Q.lanes = BVH_PACKET;
+	Q.base = 0;
+	if (native16) {
 		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
+	} else {
+		rtcIntersect8(valid, b->scene, &Q.rc, &rh8[0]);
+		Q.base = 8;
+		rtcIntersect8(valid + 8, b->scene, &Q.rc, &rh8[1]);
 	}
-	for (int i = 0; i < n; i++) {
-		finish(&Q.q[i]);
-		found[i] = Q.q[i].found;
-	}
+	done(&Q, n, found);
 }
 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,

@@ -62,17 +62,21 @@ static const char *const plane_names[NPLANES] = {
 	"emission.B", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z",
 	"Z", NULL};
 
-/* Stores one pixel's result in the planes. */
-static void store(struct eye_job *j, size_t i, const struct eye_px *px)
+/* Where each plane (in plane_names' order) is in a struct eye_px read as
+ * floats. */
+static const unsigned char plane_at[NPLANES - 1] = {
+	0, 1, 2, 25, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24};
+
+/* Stores the results of n pixels (at indices at[i] of the planes), plane by
+ * plane: neighbours land in the same cache lines one after another. */
+static void store(struct eye_job *j, int n, const size_t *at, const struct eye_px *px)
 {
-	const float *src[NPLANES - 1] = {
-		&px->rgb[0], &px->rgb[1], &px->rgb[2], &px->a, &px->direct[0], &px->direct[1],
-		&px->direct[2], &px->caustic[0], &px->caustic[1], &px->caustic[2], &px->specular[0],
-		&px->specular[1], &px->specular[2], &px->emission[0], &px->emission[1],
-		&px->emission[2], &px->albedo[0], &px->albedo[1], &px->albedo[2], &px->n[0], &px->n[1],
-		&px->n[2], &px->p[0], &px->p[1], &px->p[2], &px->z};
-	for (int k = 0; k < j->nplanes; k++)
-		j->pl[k][i] = *src[k];
+	_Static_assert(sizeof(struct eye_px) == (NPLANES - 1) * sizeof(float), "eye_px is floats");
+	for (int k = 0; k < j->nplanes; k++) {
+		float *pl = j->pl[k];
+		for (int i = 0; i < n; i++)
+			pl[at[i]] = ((const float *)&px[i])[plane_at[k]];
+	}
 }
 
 /* Renders tile t (a parallel_for item). */
@@ -93,8 +97,10 @@ static void do_tile(void *arg, long t, int worker)
 			for (int i = 0; i < n; i++)
 				ax[i] = j->x0 + xs[i], ay[i] = j->y0 + ys[i];
 			eye_pixels(j->ctx, n, ax, ay, px, &rays);
+			size_t at[BVH_PACKET];
 			for (int i = 0; i < n; i++)
-				store(j, (size_t)ys[i] * (size_t)j->w + (size_t)xs[i], &px[i]);
+				at[i] = (size_t)ys[i] * (size_t)j->w + (size_t)xs[i];
+			store(j, n, at, px);
 		}
 	j->rays[worker] += rays;
 	atomic_fetch_add(&j->done, 1);

@@ -21,7 +21,20 @@ static double clamp01(double x) { return x > 0 ? (x < 1 ? x : 1) : 0; }
 
 static struct vec3 clamp3(struct vec3 a) { return v3(clamp01(a.x), clamp01(a.y), clamp01(a.z)); }
 
-static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+/* min and max of numbers that are not NaN, inline (fmin and fmax are libm
+ * calls) */
+static double dmin(double a, double b) { return a < b ? a : b; }
+static double maxc(struct vec3 a) { return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z); }
+
+/* clamp3(opt_reflection(…)), its common case (one constant colour, no
+ * Fresnel, no metallic: t = 1) inline, with the same numbers. */
+static struct vec3 reflection(const struct finish *f, struct colour pc, double ci, double n1, double n2)
+{
+	if (!f->refl_fresnel && !f->refl_metallic && f->refl_min.r == f->refl_max.r &&
+	    f->refl_min.g == f->refl_max.g && f->refl_min.b == f->refl_max.b)
+		return clamp3(v_add(opt_rgb(f->refl_min), v_sub(opt_rgb(f->refl_max), opt_rgb(f->refl_min))));
+	return clamp3(opt_reflection(f, pc, ci, n1, n2));
+}
 
 void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 {
@@ -29,13 +42,13 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 	double ior = surf_ior(si->in, b);
 	double n1 = h->entering ? 1 : ior, n2 = h->entering ? ior : 1;
 	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p);
-	struct vec3 R = clamp3(opt_reflection(si->f, si->pc, ci, n1, n2));
+	struct vec3 R = reflection(si->f, si->pc, ci, n1, n2);
 	struct vec3 T = opt_transmission(si->pc), one = v3(1, 1, 1);
 	if (!si->legacy || maxc(T) <= 1) { /* POV-Ray's model lets transmit > 1 amplify */
 		T = clamp3(T);
 		if (si->f->refl_fresnel || si->f->conserve_energy)
 			T = v_mul(T, v_sub(one, R));
-		T = v3(fmin(T.x, 1 - R.x), fmin(T.y, 1 - R.y), fmin(T.z, 1 - R.z)); /* never more out than in */
+		T = v3(dmin(T.x, 1 - R.x), dmin(T.y, 1 - R.y), dmin(T.z, 1 - R.z)); /* never more out than in */
 	}
 	out->tir = false;
 	out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
@@ -51,27 +64,33 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 	out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
 }
 
+/* surf_straight, given o's interior in. */
+static inline bool straight(const struct scene *s, const struct object *o, const struct interior *in)
+{
+	if (!s->legacy_lights)
+		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
+	return !(o->has_photons && o->photons.target && o->photons.refraction);
+}
+
 bool surf_straight(const struct scene *s, const struct object *o)
 {
-	if (!s->legacy_lights) {
-		const struct interior *in = mat_interior(o);
-		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
-	}
-	return !(o->has_photons && o->photons.target && o->photons.refraction);
+	return straight(s, o, mat_interior(o));
 }
 
 void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
                   struct surf_in *si)
 {
-	const struct texture *t = mat_texture_leaf(mc, mat_texture(h->obj), h->p);
+	const struct texture *t = mat_texture(h->obj);
+	if (t->map) /* a texture_map: the texture at the point */
+		t = mat_texture_leaf(mc, t, h->p);
 	si->h = h;
 	si->f = t->finish;
-	si->pc = mat_pigment(mc, &t->pigment, h->p);
+	si->pc = t->pigment.kind == PIG_SOLID ? t->pigment.c[0] : mat_pigment(mc, &t->pigment, h->p);
 	si->in = mat_interior(h->obj);
 	si->d = d;
 	si->nf = v_dot(h->n, d) < 0 ? h->n : v_neg(h->n);
 	si->legacy = s->legacy_lights;
-	si->straight = surf_straight(s, h->obj);
+	si->straight = straight(s, h->obj, si->in);
 }
 
 /* Can o, or a part of it, pass light straight through? */

@@ -78,7 +78,8 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static inline double surf_eps(struct vec3 p)
 {
-	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+	double x = fabs(p.x), y = fabs(p.y), z = fabs(p.z), m = y > z || z != z ? y : z;
+	return 1e-7 * (1 + (x > m || m != m ? x : m)); /* fmax's numbers, without its libm calls */
 }
 
 #endif

@@ -18,7 +18,7 @@
 #             eye_rate_cpu: rays per CPU second of the eye pass (a core's
 #             rate without the wall clock of a shared machine)
 #   scaling   arvo's eye pass at the largest N over the smallest (target <= 3)
-#   threads   eye pass (spheres, N = 100000) and light pass (scene B,
+#   threads   eye pass (spheres, N = 100000, ${TW}x${TH}) and light pass (scene B,
 #             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
 #             threads: time(1) / time(2) (target >= 1.85)
 #   light     light-pass segments/s/core on 2 threads, 1M rays, isolated-
@@ -35,6 +35,8 @@ set -eu
 ARVO=${ARVO:-./arvo}
 POVRAY=${POVRAY:-povray}
 W=${W:-640} H=${H:-480} THREADS=${THREADS:-2} RUNS=${RUNS:-3}
+TW=${TW:-1280} TH=${TH:-960} # the thread-scaling row: 4x the pixels, so a run
+                             # lasts about a second, not a noisy 0.2 s
 SIZES=${SIZES:-1000 10000 100000 1000000}
 FRONT_N=${FRONT_N:-1000000}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -54,14 +56,15 @@ met() { awk -v v="$1" -v op="$2" -v t="$3" 'BEGIN { if (v == "") print ""; else 
 row() { echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"; }
 stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
 
-# arvo_eye N THREADS: median eye-pass seconds; rays of the last run in
+# arvo_eye N THREADS [W H]: median eye-pass seconds; rays of the last run in
 # $tmp/rays; the eye pass's median CPU seconds (all threads, as --stats
 # reports them) in $tmp/acpu
 arvo_eye() {
+	ew=${3:-$W} eh=${4:-$H}
 	: > "$tmp/ac"
 	for i in $(seq "$RUNS"); do
 		"$ARVO" -q --stats --max-objects 2000000 --rays 0 --threads "$2" \
-			--spp 1 --width "$W" --height "$H" -D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
+			--spp 1 --width "$ew" --height "$eh" -D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
 		awk '/eye pass/ { for (i = 1; i <= NF; i++) if ($i == "CPU)") print $(i - 2) }' "$tmp/a.log" >> "$tmp/ac"
 		stat_of "eye pass" "$tmp/a.log"
 	done | median
@@ -132,7 +135,7 @@ g=$(ratio "$last_c" "$first_c")
 row scaling_cpu "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x (CPU)" "<=3x" "$(met "$g" "<=" 3)"
 
 # ---- 1 -> 2 threads ----
-e1=$(arvo_eye 100000 1); e2=$(arvo_eye 100000 2); r=$(ratio "$e1" "$e2")
+e1=$(arvo_eye 100000 1 "$TW" "$TH"); e2=$(arvo_eye 100000 2 "$TW" "$TH"); r=$(ratio "$e1" "$e2")
 row threads "eye pass" 100000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
 l1=$(arvo_light 1); l2=$(arvo_light 2); segs=$(cat "$tmp/segs"); r=$(ratio "$l1" "$l2")
 row threads "light pass" 1000000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"

@@ -81,7 +81,7 @@ static int read_png8(const char *path, unsigned char *buf, int w, int h)
 static void check_png(const char *view, const int want[NPIX][3], int tol)
 {
 	struct framebuffer *fb = make_fb();
-	struct out_png_opts o = {NULL, NULL, view, NULL, NULL, 8};
+	struct out_png_opts o = {NULL, NULL, view, NULL, NULL, 8, 0};
 	const char *path = in_dir("v.png");
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err == NULL);
@@ -115,7 +115,7 @@ static void t_odd_inputs(void)
 	float *r = fb_plane(fb, "R");
 	r[0] = NAN, r[1] = 0.5f;
 	unsigned char enc[6];
-	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 8};
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 8, 0};
 	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
 	CHECK(enc[0] == 0 && enc[3] == 128 && enc[4] == 0 && enc[5] == 0);
 	struct framebuffer *nob = fb_new(2, 1);
@@ -135,7 +135,7 @@ static void t_failures(void)
 		fputs("old", f);
 		fclose(f);
 	}
-	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL, 8};
+	struct out_png_opts o = {NULL, NULL, "Filmic", NULL, NULL, 8, 0};
 	const char *err = MSG(out_png_write(fb, path, &o, TDG));
 	CHECK(err && strstr(err, "Filmic") && strstr(err, "\"Standard\""));
 	o.view = NULL;
@@ -344,7 +344,7 @@ static void t_png16(void)
 	struct framebuffer *fb = fb_new(2, 1);
 	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
 	p[0][0] = 0.5f, p[1][0] = 0.25f, p[2][0] = 2;
-	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 16};
+	struct out_png_opts o = {NULL, NULL, "Raw", NULL, NULL, 16, 0};
 	struct png_facts f;
 	CHECK(MSG(out_png_write(fb, in_dir("d16.png"), &o, TDG)) == NULL);
 	CHECK(read_facts(in_dir("d16.png"), &f));
@@ -364,7 +364,7 @@ static void t_png16(void)
 static void t_colour_chunks(void)
 {
 	struct framebuffer *fb = make_fb();
-	struct out_png_opts o = {NULL, NULL, NULL, NULL, NULL, 8};
+	struct out_png_opts o = {NULL, NULL, NULL, NULL, NULL, 8, 0};
 	struct png_facts f;
 	CHECK(MSG(out_png_write(fb, in_dir("srgb.png"), &o, TDG)) == NULL);
 	CHECK(read_facts(in_dir("srgb.png"), &f));

@@ -36,7 +36,10 @@ struct fx {
 static struct fx fx_from(double d)
 {
 	struct fx r = {0, 0};
-	double m = rint(d * 0x1p96); /* scaling by powers of two is exact here */
+	double m = d * 0x1p96; /* scaling by powers of two is exact here */
+	if (m < 0x1p52) /* rint, inline: below 2^52 adding 2^52 rounds to an integer (to even,
+	                   as rint does); from 2^52 on a double is one already */
+		m = (m + 0x1p52) - 0x1p52;
 	if (!(m > 0))
 		return r;
 	if (!(m < 0x1p128))
@@ -71,6 +74,15 @@ static void fx_add(struct fx *a, struct fx b)
 	}
 	a->lo = lo;
 	a->hi = hi2;
+}
+
+/* *a += b where the sum cannot pass 2^128 (a map whose energy bound is
+ * finite: map_reserve keeps every sum under 2^32 units). */
+static void fx_add_fast(struct fx *a, struct fx b)
+{
+	uint64_t lo = a->lo + b.lo;
+	a->hi += b.hi + (lo < b.lo);
+	a->lo = lo;
 }
 
 /* a − b, given a ≥ b. */
@@ -122,6 +134,7 @@ struct illum_map {
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
 	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
+	struct fx total[3];       /* the energy held, summed by illum_finish (while finished) */
 	int shift;                /* accumulators count units of 2^(shift−96) W (see map_reserve) */
 	double unit, inv_unit;    /* 2^shift and 2^−shift */
 	double bound;             /* energy deposited so far (per channel, at most): bounds every node's sum */
@@ -253,10 +266,32 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	return true;
 }
 
-static int cmp_i32(const void *a, const void *b)
+/* Sorts a[0..n) ascending: a radix sort, two passes of 16 bits (qsort's
+ * comparisons cost ~25 times more on the window's samples). */
+static void sort_i32(int32_t *a, long n)
 {
-	int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-	return x < y ? -1 : x > y;
+	uint32_t *x = (uint32_t *)a, *tmp = mem_alloc(sizeof *tmp * (size_t)(n ? n : 1));
+	long *cnt = mem_alloc(sizeof *cnt * 65536);
+	for (long i = 0; i < n; i++)
+		x[i] ^= 0x80000000u; /* signed order as unsigned */
+	for (int pass = 0; pass < 2; pass++) {
+		uint32_t *src = pass ? tmp : x, *dst = pass ? x : tmp;
+		int sh = 16 * pass;
+		memset(cnt, 0, sizeof *cnt * 65536);
+		for (long i = 0; i < n; i++)
+			cnt[(src[i] >> sh) & 0xffff]++;
+		long at = 0;
+		for (long d = 0; d < 65536; d++) {
+			long c = cnt[d];
+			cnt[d] = at;
+			at += c;
+		}
+		for (long i = 0; i < n; i++)
+			dst[cnt[(src[i] >> sh) & 0xffff]++] = src[i];
+	}
+	for (long i = 0; i < n; i++)
+		x[i] ^= 0x80000000u;
+	free(tmp), free(cnt);
 }
 
 #define WIN_SAMPLE 32768 /* tile coordinates looked at to place the window */
@@ -271,8 +306,8 @@ static double win_fit(struct illum_map *m, int32_t *ti, int32_t *tj, long ns, lo
 	static const double q[] = {0, 0.001, 0.005, 0.02, 0.05};
 	if (ns <= 0)
 		return 0;
-	qsort(ti, (size_t)ns, sizeof *ti, cmp_i32);
-	qsort(tj, (size_t)ns, sizeof *tj, cmp_i32);
+	sort_i32(ti, ns);
+	sort_i32(tj, ns);
 	for (int k = 0; k < 5; k++) {
 		long lo = (long)(q[k] * (double)(ns - 1)), hi = ns - 1 - lo;
 		if (win_grow(m, ti[lo], ti[hi], tj[lo], tj[hi], more))
@@ -547,18 +582,43 @@ static double energy_max(const double e[3])
 	return x;
 }
 
-static void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
+static inline void acc_add(struct acc *n, double w, const double e[3], double inv_unit)
 {
-	struct fx f = {0, 0};
-	float q = 0;
-	for (int c = 0; c < 3; c++) {
-		if (c == 0 || e[c] != e[c - 1]) { /* white light: the same numbers thrice */
-			double x = w * e[c];
+	double x = w * e[0];
+	struct fx f = fx_from(x * inv_unit);
+	float q = (float)(x * x);
+	fx_add(&n->e[0], f);
+	n->sq[0] += q;
+	for (int c = 1; c < 3; c++) {
+		if (e[c] != e[c - 1]) { /* white light: the same numbers thrice */
+			x = w * e[c];
 			f = fx_from(x * inv_unit);
 			q = (float)(x * x);
 		}
 		fx_add(&n->e[c], f);
 		n->sq[c] += q;
+	}
+	n->count += n->count < UINT32_MAX;
+}
+
+/* acc_add where no sum can saturate (fx_add_fast), white light (e[0] =
+ * e[1] = e[2]) taken once: the same result. */
+static inline void acc_add_fast(struct acc *n, double w, const double e[3], bool white, double inv_unit)
+{
+	if (!white) {
+		for (int c = 0; c < 3; c++) {
+			double x = w * e[c];
+			fx_add_fast(&n->e[c], fx_from(x * inv_unit));
+			n->sq[c] += (float)(x * x);
+		}
+	} else {
+		double x = w * e[0];
+		struct fx f = fx_from(x * inv_unit);
+		float q = (float)(x * x);
+		for (int c = 0; c < 3; c++) {
+			fx_add_fast(&n->e[c], f);
+			n->sq[c] += q;
+		}
 	}
 	n->count += n->count < UINT32_MAX;
 }
@@ -665,17 +725,6 @@ struct prep {
 	double fu, fv;      /* the weights of the upper ones */
 };
 
-/* The nodes and weights of p: the same numbers axis_split gave. */
-static void prep_nodes(const struct illum_map *m, const struct prep *p, long iu[2], long iv[2], double wu[2],
-                       double wv[2])
-{
-	const struct axis *a = &m->ax[0], *b = &m->ax[1];
-	iu[0] = p->i, iv[0] = p->j;
-	iu[1] = a->wraps && p->i + 1 == a->n ? 0 : p->i + 1;
-	iv[1] = b->wraps && p->j + 1 == b->n ? 0 : p->j + 1;
-	wu[0] = 1 - p->fu, wu[1] = p->fu, wv[0] = 1 - p->fv, wv[1] = p->fv;
-}
-
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_splat *s;
@@ -683,8 +732,10 @@ struct deposit_job {
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
+	double emax;        /* per chunk: the largest energy_max of its splats */
 	struct arena pool;  /* per band: the tiles it made in the window */
 	struct tile **made; /* per band: those tiles, in order */
+	long *where;        /* per band: their window entries */
 	long nmade, cap;
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
@@ -697,10 +748,12 @@ static void prep_work(void *ctx, long k, int worker)
 	const struct illum_map *m = D->m;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
+	J->emax = 0;
 	for (long q = lo; q < hi; q++) {
 		const struct illum_splat *sp = &D->s[q];
 		struct prep *p = &D->p[q];
-		double e[3];
+		double e[3], x = energy_max(sp->e);
+		J->emax = x > J->emax ? x : J->emax;
 		p->i = INT32_MIN;
 		if (!isfinite(sp->u) || !isfinite(sp->v)) {
 			J->dropped++;
@@ -745,10 +798,14 @@ static struct tile *band_tile(struct deposit_job *B, struct illum_map *m, long t
 			return m->tiles[*w - 1];
 		if (*w < 0)
 			return B->made[-*w - 1];
-		if (B->nmade == B->cap)
-			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)(B->cap = B->cap ? 2 * B->cap : 256));
+		if (B->nmade == B->cap) {
+			B->cap = B->cap ? 2 * B->cap : 256;
+			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)B->cap);
+			B->where = mem_realloc(B->where, sizeof *B->where * (size_t)B->cap);
+		}
 		struct tile *t = ARENA_NEW(&B->pool, struct tile);
 		t->ti = (int32_t)ti, t->tj = (int32_t)tj;
+		B->where[B->nmade] = w - m->win;
 		B->made[B->nmade++] = t;
 		*w = (int32_t)(-B->nmade);
 		return t;
@@ -771,23 +828,43 @@ static void accumulate_work(void *ctx, long k, int worker)
 	(void)worker;
 	struct deposit_job *D = ctx, *B = D + k;
 	struct illum_map *m = D->m;
+	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
+	double inv = m->inv_unit;
+	bool finite = m->bound < 0x1p32 * m->unit; /* no sum can reach 2^128 (map_reserve) */
+	long lti = LONG_MIN, ltj = LONG_MIN; /* the tile of the last node (most splats stay in one) */
+	struct tile *lt = NULL;
 	for (long q = 0; q < D->n; q++) {
-		if (D->p[q].i == INT32_MIN)
+		const struct prep *p = &D->p[q];
+		if (p->i == INT32_MIN)
 			continue;
-		long iu[2], iv[2];
-		double wu[2], wv[2], e[3];
-		prep_nodes(m, &D->p[q], iu, iv, wu, wv);
-		energy_clean(D->s[q].e, e);
-		for (int b = 0; b < 2; b++) {
-			if (D->nb > 1 && band_of(iv[b], D->nb) != (int)k)
+		long iv[2] = {p->j, ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1};
+		bool mine[2] = {true, true};
+		if (D->nb > 1) {
+			mine[0] = band_of(iv[0], D->nb) == (int)k;
+			mine[1] = band_of(iv[1], D->nb) == (int)k;
+			if (!mine[0] && !mine[1])
 				continue;
+		}
+		long iu[2] = {p->i, ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1};
+		double wu[2] = {1 - p->fu, p->fu}, wv[2] = {1 - p->fv, p->fv}, e[3];
+		energy_clean(D->s[q].e, e);
+		bool white = e[0] == e[1] && e[1] == e[2];
+		for (int b = 0; b < 2; b++) {
+			if (!mine[b])
+				continue;
+			long tj = floordiv(iv[b]);
 			for (int a = 0; a < 2; a++) {
 				double w = wu[a] * wv[b];
 				if (!(w > 0))
 					continue;
-				long ti = floordiv(iu[a]), tj = floordiv(iv[b]);
-				struct tile *t = band_tile(B, m, ti, tj);
-				acc_add(&t->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)], w, e, m->inv_unit);
+				long ti = floordiv(iu[a]);
+				if (ti != lti || tj != ltj)
+					lt = band_tile(B, m, ti, tj), lti = ti, ltj = tj;
+				struct acc *n = &lt->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)];
+				if (finite)
+					acc_add_fast(n, w, e, white, inv);
+				else
+					acc_add(n, w, e, inv);
 			}
 		}
 	}
@@ -798,10 +875,6 @@ static void accumulate_work(void *ctx, long k, int worker)
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
-	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
-	for (long i = 0; i < n; i++)
-		emax = fmax(emax, energy_max(s[i].e));
-	map_reserve(m, (double)n * emax);
 	if (n <= 0)
 		return;
 	if (n < 8192)
@@ -811,18 +884,34 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 	D[0] = (struct deposit_job){.m = m, .s = s, .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n,
 	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
+	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
+	for (long k = 0; k < nchunks; k++)
+		emax = D[k].emax > emax ? D[k].emax : emax;
+	map_reserve(m, (double)n * emax);
 	prep_window(D, nchunks);
 	for (int b = 0; b < nb; b++)
-		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].part = NULL;
+		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
+		D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
-	/* step 4: the bands' tiles join the map (bands hold disjoint tiles) */
+	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
+	 * their window entries (without reading the tiles, which are cold) */
 	for (int b = 0; b < nb; b++) {
+		long total = m->ntiles + D[b].nmade; /* room for them (a partial
+		                                        map adopted below adds more) */
+		if (total > m->cap) {
+			long cap = m->cap ? m->cap : 8;
+			while (cap < total)
+				cap *= 2;
+			m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
+			m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
+			m->cap = cap;
+		}
 		for (long k = 0; k < D[b].nmade; k++) {
-			*win_slot(m, D[b].made[k]->ti, D[b].made[k]->tj) = 0;
-			tile_insert(m, D[b].made[k]);
+			m->win[D[b].where[k]] = (int32_t)(m->ntiles + 1);
+			m->tiles[m->ntiles++] = D[b].made[k];
 		}
 		arena_adopt(&m->pool, &D[b].pool);
-		free(D[b].made);
+		free(D[b].made), free(D[b].where);
 		if (D[b].part)
 			adopt(m, D[b].part);
 	}
@@ -1419,7 +1508,40 @@ struct finish_job {
 	long k0, k1;      /* tiles [k0, k1) */
 	bool discard;
 	struct fx rem[3]; /* energy the isolated rule removed (exact) */
+	struct fx tot[3]; /* energy its tiles hold (exact) */
 };
+
+static uint64_t tile_count(const struct tile *t)
+{
+	uint64_t c = 0;
+	for (int q = 0; q < TN; q++)
+		c += t->n[q].count;
+	return c;
+}
+
+/* Do the 5×5 neighbourhoods of tile (ti,tj)'s nodes stay in the 3×3 tiles
+ * around it? Not where a wrapping axis's neighbourhood crosses its seam
+ * (node_isolated then reaches the tiles on the other side). */
+static bool near_closed(const struct illum_map *m, long ti, long tj)
+{
+	for (int a = 0; a < 2; a++) {
+		long lo = (a ? tj : ti) * ILLUM_TILE - 2, hi = (a ? tj : ti) * ILLUM_TILE + ILLUM_TILE - 1 + 2;
+		if (m->ax[a].wraps && (lo < 0 || hi > m->ax[a].n - 1))
+			return false;
+	}
+	return true;
+}
+
+/* The deposit count of the 3×3 tiles nb holds, stopping past 4. */
+static uint64_t near_count(const struct near *nb)
+{
+	uint64_t c = 0;
+	for (int b = 0; b < 3 && c <= 4; b++)
+		for (int a = 0; a < 3; a++)
+			if (nb->t[b][a])
+				c += tile_count(nb->t[b][a]);
+	return c;
+}
 
 /* Job k of the array at ctx (a parallel_for item). */
 static void finish_work(void *ctx, long job, int worker)
@@ -1429,15 +1551,19 @@ static void finish_work(void *ctx, long job, int worker)
 	const struct illum_map *m = J->m;
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
-		uint64_t tile_count = 0;
 		for (int q = 0; q < TN; q++)
-			tile_count += t->n[q].count;
+			for (int c = 0; c < 3; c++)
+				fx_add(&J->tot[c], t->n[q].e[c]);
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = J->discard && tile_count <= 4;
+		bool check = J->discard && tile_count(t) <= 4, all = false;
 		struct near nb = {.ti = 0};
-		if (check)
+		if (check) {
 			near_fill(m, &nb, t->ti, t->tj);
+			/* at most one splat in the tiles around: every node with a
+			 * deposit is isolated (its neighbourhood is among them) */
+			all = near_closed(m, t->ti, t->tj) && near_count(&nb) <= 4;
+		}
 		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
 			if (t->area)
@@ -1448,7 +1574,7 @@ static void finish_work(void *ctx, long job, int worker)
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			if (t->area)
 				t->area[q] = node_area(m, i, j);
-			if (check && node_isolated(m, &nb, i, j, t->n[q].count)) {
+			if (check && (all || node_isolated(m, &nb, i, j, t->n[q].count))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
 					fx_add(&J->rem[c], t->n[q].e[c]);
@@ -1480,12 +1606,13 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	struct finish_job jobs[64];
 	for (int b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
-		                              {{0, 0}, {0, 0}, {0, 0}}};
+		                              {{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
 	parallel_for(nb, nb, finish_work, jobs);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
+	memset(m->total, 0, sizeof m->total);
 	for (int b = 0; b < nb; b++) {
 		for (int c = 0; c < 3; c++)
-			fx_add(&rem[c], jobs[b].rem[c]);
+			fx_add(&rem[c], jobs[b].rem[c]), fx_add(&m->total[c], jobs[b].tot[c]);
 	}
 	if (removed)
 		for (int c = 0; c < 3; c++)
@@ -1534,7 +1661,9 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 void illum_total(const struct illum_map *m, double out[3])
 {
 	struct fx s[3] = {{0, 0}, {0, 0}, {0, 0}};
-	for (long k = 0; k < m->ntiles; k++)
+	if (m->finished) /* summed by illum_finish (sums saturate alike in any order) */
+		memcpy(s, m->total, sizeof s);
+	for (long k = 0; k < m->ntiles && !m->finished; k++)
 		for (int q = 0; q < TN; q++)
 			for (int c = 0; c < 3; c++)
 				fx_add(&s[c], m->tiles[k]->n[q].e[c]);

@@ -301,8 +301,10 @@ static unsigned chart(const struct hit *h)
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
 
-static void record(struct worker *w, const struct hit *h, const double e[3], uint64_t sig)
+static void record(struct worker *w, struct hit *h, const struct ray *r, const double e[3], uint64_t sig)
 {
+	if (isnan(h->u)) /* traced without its (u,v) (BVH_NO_UV): a deposit needs them */
+		shape_hit_at(h->obj, r, 0, INFINITY, h->t, true, h);
 	if (w->corners) {
 		land(w, h, e, sig_mix(sig, h->obj, 16 + chart(h)));
 		return;
@@ -321,6 +323,14 @@ static void add3(double acc[3], const double e[3], double k)
 		acc[c] += e[c] * k;
 }
 
+/* The largest of three numbers that are not NaN, inline (fmax is a libm
+ * call on the hot path). */
+static double max3(double a, double b, double c)
+{
+	double m = b > c ? b : c;
+	return a > m ? a : m;
+}
+
 /* Follows one light ray; nspec counts its specular bounces so far (a
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
@@ -331,7 +341,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	if (!bvh_intersect(J->b, &r, 0, INFINITY, &h)) {
+	if (!bvh_intersect_skip(J->b, &r, 0, INFINITY, BVH_NO_UV, &h)) {
 		add3(w->escaped, e, 1);
 		return;
 	}
@@ -365,27 +375,31 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	double rest[3];
 	for (int c = 0; c < 3; c++)
 		rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
-	if (si.f->diffuse > 0 && opacity > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
-		record(w, &h, e, sig);
+	bool diffuse = si.f->diffuse > 0 && opacity > 0;
+	if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
+		record(w, &h, &r, e, sig);
 		add3(w->deposited, rest, 1);
-	} else if (si.f->diffuse > 0 && opacity > 0 && nspec == 0) {
+	} else if (diffuse && nspec == 0) {
 		add3(w->direct, rest, 1);
 	} else {
 		add3(w->absorbed, rest, 1);
 	}
+	double tmax = max3(so.T.x, so.T.y, so.T.z), rmax = max3(so.R.x, so.R.y, so.R.z);
+	if (!(tmax > 0) && !(rmax > 0))
+		return;
 	bool more = depth < J->o->max_depth;
 	bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
 	bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
-	double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
-	double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
-	if (maxc(so.T) > 0) {
-		if (refract && fmax(te[0], fmax(te[1], te[2])) > cutoff)
+	if (tmax > 0) {
+		double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
+		if (refract && max3(te[0], te[1], te[2]) > cutoff)
 			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1, sig_mix(sig, h.obj, 1));
 		else
 			add3(w->cut, te, 1);
 	}
-	if (maxc(so.R) > 0) {
-		if (reflect && fmax(re[0], fmax(re[1], re[2])) > cutoff)
+	if (rmax > 0) {
+		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
+		if (reflect && max3(re[0], re[1], re[2]) > cutoff)
 			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1, sig_mix(sig, h.obj, 2));
 		else
 			add3(w->cut, re, 1);

@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <pthread.h>
 #include <setjmp.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,7 @@
 #include <png.h>
 
 #include "../../common/arena.h"
+#include "../../common/pool.h"
 #include "exrout.h"
 #include "ocio_shim.h"
 #include "tmpfile.h"
@@ -202,6 +204,49 @@ struct png_tags {
 };
 
 /* pack → OCIO display/view; rgb gets w*h*3 display values (free it). */
+/* The OCIO transform over the image in chunks of pixels on several
+ * threads: each pixel is transformed alone, so the result is the same for
+ * any split. */
+#define OCIO_CHUNK 16384
+struct ocio_job {
+	const struct ocio_proc *proc;
+	float *rgb;
+	long npix;
+	atomic_int failed;
+	char msg[512];
+	pthread_mutex_t lock; /* guards msg */
+};
+
+static void ocio_chunk(void *arg, long i, int worker)
+{
+	(void)worker;
+	struct ocio_job *j = arg;
+	long at = i * OCIO_CHUNK, n = j->npix - at < OCIO_CHUNK ? j->npix - at : OCIO_CHUNK;
+	char msg[512];
+	if (ocio_proc_apply_rgb(j->proc, j->rgb + 3 * at, n, msg, sizeof msg) != 0) {
+		pthread_mutex_lock(&j->lock);
+		if (!atomic_load(&j->failed))
+			snprintf(j->msg, sizeof j->msg, "%s", msg);
+		atomic_store(&j->failed, 1);
+		pthread_mutex_unlock(&j->lock);
+	}
+}
+
+static int apply_parallel(const struct ocio_proc *proc, float *rgb, long npix, int threads, char *err,
+                          size_t errsz)
+{
+	struct ocio_job j = {.proc = proc, .rgb = rgb, .npix = npix};
+	atomic_init(&j.failed, 0);
+	pthread_mutex_init(&j.lock, NULL);
+	parallel_for((npix + OCIO_CHUNK - 1) / OCIO_CHUNK, pool_threads(threads), ocio_chunk, &j);
+	pthread_mutex_destroy(&j.lock);
+	if (atomic_load(&j.failed)) {
+		snprintf(err, errsz, "%s", j.msg);
+		return -1;
+	}
+	return 0;
+}
+
 static int encode_float(const struct framebuffer *fb, const struct out_png_opts *o, float **rgb,
                         struct png_tags *tags, struct diag *dg)
 {
@@ -216,7 +261,7 @@ static int encode_float(const struct framebuffer *fb, const struct out_png_opts 
 		char msg[512];
 		size_t n = (size_t)fb->w * (size_t)fb->h;
 		*rgb = pack_rgb(fb, n);
-		if (ocio_proc_apply_rgb(proc, *rgb, (long)n, msg, sizeof msg) != 0) {
+		if (apply_parallel(proc, *rgb, (long)n, o->threads, msg, sizeof msg) != 0) {
 			err = diag_fail(dg, FAIL_INPUT, srcloc_none(), "OCIO: %s", msg);
 			free(*rgb);
 			*rgb = NULL;
@@ -235,7 +280,7 @@ static int encode_float(const struct framebuffer *fb, const struct out_png_opts 
 int out_png_encode(const struct framebuffer *fb, const struct out_png_opts *opts, unsigned char *rgb8,
                    struct diag *dg)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8, 0};
 	float *rgb;
 	int err = encode_float(fb, opts ? opts : &defaults, &rgb, NULL, dg);
 	for (size_t i = 0; !err && i < 3 * (size_t)fb->w * (size_t)fb->h; i++)
@@ -381,7 +426,7 @@ static int write_png_fd(int fd, const char *path, const unsigned char *px, int w
 int out_png_write(const struct framebuffer *fb, const char *path, const struct out_png_opts *opts,
                   struct diag *dg)
 {
-	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8};
+	static const struct out_png_opts defaults = {NULL, NULL, NULL, NULL, NULL, 8, 0};
 	const struct out_png_opts *o = opts ? opts : &defaults;
 	int depth = o->depth == 16 ? 16 : 8;
 	size_t n = (size_t)fb->w * (size_t)fb->h * 3;

@@ -25,6 +25,7 @@ struct out_png_opts {
 	const char *source;      /* colour space of the pixels; NULL: the scene_linear role */
 	const char *scene_view;  /* the scene's view when view is NULL, if the display has it */
 	int depth;               /* bits per channel: 16, else 8 */
+	int threads;             /* threads for the OCIO transform (0: the machine's) */
 };
 
 /* How a PNG says what its values mean, from the OCIO display and view. */
