@@ -881,7 +881,7 @@ static int render_and_write(const struct options *o, const struct scene *scene, 
 		if (output_kind(outputs[i]) == 'e') {
 			static struct out_exr_meta meta;
 			exr_meta(o, scene, &meta);
-			struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta};
+			struct out_exr_opts eo = {o->half, o->compression, scene->name, &meta, o->threads};
 			rc = out_exr_write(fb, outputs[i], &eo, dg);
 		} else {
 			struct out_png_opts po = {o->ocio_config, o->display, o->view, NULL, scene_pov_view(scene),

@@ -181,11 +181,12 @@ size_t arena_bytes(const struct arena *a)
 	return n;
 }
 
-void *arena_alloc(struct arena *a, size_t n)
+/* n bytes aligned to align (8 or 16; n a multiple of it). */
+static void *alloc_aligned(struct arena *a, size_t n, size_t align)
 {
-	n = (n + 15) & ~(size_t)15;
 	struct arena_block *b = a->head;
-	if (!b || b->size - b->used < n) {
+	size_t at = b ? (b->used + align - 1) & ~(align - 1) : 0; /* past what an 8-aligned one left */
+	if (!b || at > b->size || b->size - at < n) {
 		size_t want = a->block ? a->block : 65536, size = n > want ? n : want;
 		a->block = want < ((size_t)1 << 20) ? 2 * want : want;
 		b = mem_alloc(sizeof *b + size);
@@ -193,13 +194,18 @@ void *arena_alloc(struct arena *a, size_t n)
 		b->used = 0;
 		b->next = a->head;
 		a->head = b;
+		at = 0;
 	}
-	void *p = b->data + b->used;
-	b->used += n;
+	void *p = b->data + at;
+	b->used = at + n;
 	a->used += n;
 	memset(p, 0, n);
 	return p;
 }
+
+void *arena_alloc(struct arena *a, size_t n) { return alloc_aligned(a, (n + 15) & ~(size_t)15, 16); }
+
+void *arena_alloc8(struct arena *a, size_t n) { return alloc_aligned(a, (n + 7) & ~(size_t)7, 8); }
 
 char *arena_strndup(struct arena *a, const char *s, size_t n)
 {

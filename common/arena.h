@@ -54,6 +54,8 @@ void arena_init_sized(struct arena *a, size_t first);
 size_t arena_bytes(const struct arena *a);
 /* Zeroed, 16-byte aligned memory that lives until arena_free/arena_reset. */
 void *arena_alloc(struct arena *a, size_t n);
+/* The same, 8-byte aligned: no padding to 16 (a million objects of 104 bytes). */
+void *arena_alloc8(struct arena *a, size_t n);
 char *arena_strndup(struct arena *a, const char *s, size_t n);
 /* Moves everything src holds into dst (same lifetime from now on); src is
  * left empty. */

@@ -631,11 +631,15 @@ bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 			eval_fail(E, n->loc, "%s() takes %d argument%s, %d given", b->name, b->min, b->min == 1 ? "" : "s", n->nkids);
 		eval_fail(E, n->loc, "%s() takes %d to %d arguments, %d given", b->name, b->min, b->max, n->nkids);
 	}
-	struct call c = {.E = E, .n = n, .argc = n->nkids};
+	struct call c; /* the arguments not given are V_NONE (not the whole array: a call per sin()) */
+	c.E = E, c.n = n, c.argc = n->nkids;
+	for (int i = n->nkids; i < b->max && i < (int)(sizeof c.a / sizeof c.a[0]); i++)
+		c.a[i] = val_none();
 	for (int i = 0; i < n->nkids; i++) {
 		if (!n->kids[i])
 			eval_fail(E, n->loc, "argument %d of %s() is empty", i + 1, b->name);
 		if (b->fn == f_trace && i == 3) { /* trace's normal: a variable it sets */
+			c.a[i] = val_none();
 			if (n->kids[3]->kind != N_IDENT)
 				eval_fail(E, n->kids[3]->loc, "trace()'s fourth argument is a variable to set to the normal");
 			continue;

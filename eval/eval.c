@@ -63,12 +63,13 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 }
 
 static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v);
+static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
 
 double eval_float(struct eval *E, const struct node *n)
 {
 	double f;
 	struct value v;
-	if (eval_num(E, n, &f, &v))
+	if (leaf_num(E, n, &f) || eval_num(E, n, &f, &v))
 		return f;
 	return val_want_float(E, &v, n->loc);
 }
@@ -541,6 +542,30 @@ static bool num_or_value(struct eval *E, const struct node *n, struct value *v, 
 	return true;
 }
 
+/* A number, or a name whose value is a float, evaluated in place (the
+ * commonest operands, without a call of eval_num): true and the float in
+ * *f; false, having done nothing, for anything else. */
+static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
+{
+	double r;
+	if (n->kind == N_NUM) {
+		r = n->num;
+	} else if (n->kind == N_IDENT) {
+		const struct value *p = env_lookup_node(E, n); /* no side effect but the memo */
+		if (!p || p->kind != V_FLOAT)
+			return false;
+		r = p->v[0];
+	} else {
+		return false;
+	}
+	enter(E, n->loc);
+	E->depth--;
+	if (!isfinite(r))
+		not_finite(E, n, r);
+	*f = r;
+	return true;
+}
+
 /* eval_expr for the expressions that are mostly floats (numbers, names,
  * operators: a loop's test, arithmetic, a vector's components): the same
  * checks, counts and order of evaluation, but a float comes back in *f
@@ -578,7 +603,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		break;
 	case N_BINARY: {
 		enter(E, n->loc);
-		bool fa = eval_num(E, n->a, &x, &a);
+		bool fa = leaf_num(E, n->a, &x) || eval_num(E, n->a, &x, &a);
 		if (n->op == TK_AMP || n->op == TK_PIPE) {
 			if (!fa)
 				x = val_want_float(E, &a, n->a->loc);
@@ -587,7 +612,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 			r = n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0);
 			break;
 		}
-		bool fb = eval_num(E, n->b, &y, &b);
+		bool fb = leaf_num(E, n->b, &y) || eval_num(E, n->b, &y, &b);
 		if (!fa || !fb) {
 			if (fa)
 				a = val_float(x);
@@ -623,7 +648,8 @@ struct value eval_expr(struct eval *E, const struct node *n)
 	enter(E, n->loc);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
-	check_finite(E, n, &v);
+	if (n->kind != N_VEC) /* a vector's components were checked each */
+		check_finite(E, n, &v);
 	return v;
 }
 

@@ -34,24 +34,26 @@ enum sink_kind {
 
 #define SINK_MAX_PARAMS 8
 
+/* sink_init zeroes the members up to params; the arrays after it are read
+ * only as far as they were written (nparams, nresults, pending). */
 struct sink {
 	enum sink_kind kind;
 	enum tok kw;               /* the block's keyword (TK_SPHERE, TK_PIGMENT…) */
 	struct srcloc loc;         /* where the block starts */
 	void *target;              /* what is being built (struct object *, …) */
-	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
-	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
 	int nparams;
 	struct outline_build *ob;  /* SK_OBJECT: text/prism/polygon/lathe/sor's lists (outlines.c) */
 	int modified;              /* a modifier was applied (params must come first) */
 	unsigned pending;          /* SK_CAMERA: look_at/angle/transforms to apply at the end */
-	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
 	struct texture *own_tex;   /* SK_OBJECT: object_block's scratch texture, which the
 	                            * object's pigment, finish … are written into
 	                            * (texture_share makes it a scene texture at the end) */
 	struct object *own_obj;    /* the object whose texture the scratch is (NULL: none) */
-	struct value result;       /* SK_VALUE: the value produced */
 	int nresults;              /* SK_VALUE: how many values were produced */
+	struct value params[SINK_MAX_PARAMS]; /* positional values so far */
+	struct srcloc ploc[SINK_MAX_PARAMS];  /* and where each came from */
+	struct xform pending_xf;   /* SK_CAMERA: the transforms, in order */
+	struct value result;       /* SK_VALUE: the value produced */
 };
 
 struct eval {

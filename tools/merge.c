@@ -147,7 +147,7 @@ int tool_merge(int argc, char **argv)
 	if (rc < 0)
 		rc = assemble(parts, n, &fb, &info);
 	if (rc < 0) {
-		struct out_exr_opts eo = {info.half_but_z, info.compression, info.scene[0] ? info.scene : NULL, &info.meta};
+		struct out_exr_opts eo = {info.half_but_z, info.compression, info.scene[0] ? info.scene : NULL, &info.meta, 0};
 		const char *err = QUIET(out_exr_write(fb, output, &eo, &quiet));
 		if (err)
 			fprintf(stderr, "arvo merge: error: %s\n", err);

@@ -150,7 +150,7 @@ static void collect(struct builder *B, const struct object *o)
 	struct bbox b = shape_bounds(o);
 	if (b.lo.x > b.hi.x || b.lo.y > b.hi.y || b.lo.z > b.hi.z)
 		return; /* empty: nothing to hit */
-	if (!shape_bounded(o))
+	if (!bbox_finite(b)) /* shape_bounded(o), from the box in hand */
 		add_unbound(B, o);
 	else
 		add_leaf(B, o, b);

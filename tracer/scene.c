@@ -125,15 +125,15 @@ size_t obj_size(enum object_kind k)
 
 struct object *obj_new(struct arena *a, enum object_kind k)
 {
-	struct object *o = arena_alloc(a, obj_size(k));
-	o->kind = k;
+	struct object *o = arena_alloc8(a, obj_size(k));
+	o->kind = (uint8_t)k;
 	return o;
 }
 
 struct object *obj_copy(struct arena *a, const struct object *o)
 {
 	size_t n = obj_size(o->kind);
-	struct object *c = arena_alloc(a, n);
+	struct object *c = arena_alloc8(a, n);
 	memcpy(c, o, n);
 	return c;
 }

@@ -9,6 +9,7 @@
 #define ARVO_SCENE_H
 
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "../common/arena.h"
@@ -296,14 +297,14 @@ struct isosurface {
 };
 
 /* An object is allocated only as far as its kind's member of the geometry
- * union reaches (obj_size), so the union comes last: a sphere takes 112
- * bytes, not the 152 of the largest member. Copy one with obj_copy, never
+ * union reaches (obj_size), so the union comes last: a sphere takes 104
+ * bytes, not the 144 of the largest member. Copy one with obj_copy, never
  * by assignment. */
 struct object {
-	enum object_kind kind;
-	struct srcloc loc; /* where the object was written */
-	unsigned flags;              /* enum object_flags */
+	uint8_t kind;                /* enum object_kind */
 	bool has_photons;            /* a photons { } block was given */
+	uint16_t flags;              /* enum object_flags */
+	struct srcloc loc; /* where the object was written */
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */

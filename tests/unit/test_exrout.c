@@ -127,7 +127,7 @@ static void t_float_all_compressions(void)
 {
 	static const char *const comp[] = {"zip", "none", "zips", "piz", "rle"};
 	for (int c = 0; c < 5; c++) {
-		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test", NULL};
+		struct out_exr_opts o = {0, OUT_EXR_ZIP, "float test", NULL, 0};
 		char file[32];
 		CHECK(out_exr_compression_parse(comp[c], &o.compression) == 0);
 		CHECK((int)o.compression == c);
@@ -140,7 +140,7 @@ static void t_float_all_compressions(void)
 
 static void t_half(void)
 {
-	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_PIZ, NULL, NULL, 0};
 	roundtrip(&o, "h_piz.exr");
 	o.compression = OUT_EXR_ZIP;
 	roundtrip(&o, "h_zip.exr");
@@ -154,7 +154,7 @@ static void t_half_rgb(void)
 	float *p[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
 	for (int i = 0; i < 15; i++)
 		p[0][i] = 0.5f * (float)i, p[1][i] = 0.1f, p[2][i] = -1.0f / 3.0f;
-	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL, NULL};
+	struct out_exr_opts o = {1, OUT_EXR_ZIP, NULL, NULL, 0};
 	struct out_exr_info info;
 	CHECK(MSG(out_exr_write(fb, in_dir("rgb_half.exr"), &o, TDG)) == NULL);
 	CHECK(MSG(out_exr_read(in_dir("rgb_half.exr"), &rd, &info, TDG)) == NULL);
@@ -186,7 +186,7 @@ static void t_small_sizes(void)
 							for (int i = 0; i < w * h; i++)
 								p[i] = (float)((i * 37 + k * 11 + w) % 17) * 0.125f - 0.5f;
 						}
-						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL, NULL};
+						struct out_exr_opts o = {half, (enum out_exr_compression)c, NULL, NULL, 0};
 						runs++;
 						if (out_exr_write(fb, in_dir("s.exr"), &o, TDG) ||
 						    out_exr_read(in_dir("s.exr"), &rd, NULL, TDG)) {
@@ -260,7 +260,7 @@ static void t_failed_write_midway(void)
 	lim.rlim_cur = 4096;
 	signal(SIGXFSZ, SIG_IGN);
 	setrlimit(RLIMIT_FSIZE, &lim);
-	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL, NULL};
+	struct out_exr_opts o = {0, OUT_EXR_NONE, NULL, NULL, 0};
 	const char *err = MSG(out_exr_write(fb, path, &o, TDG));
 	setrlimit(RLIMIT_FSIZE, &old);
 	CHECK(err != NULL);
@@ -329,7 +329,7 @@ static void t_region_and_meta(void)
 		m.world_to_camera[i] = (float)i, m.world_to_ndc[i] = (float)(i * 2), m.camera_to_world[i] = (float)-i;
 	out_meta_add(&m, "arvo:spp", "%d", 4);
 	out_meta_add(&m, "arvo:method", "%s", "shaft");
-	struct out_exr_opts o = {0, OUT_EXR_ZIP, "s.scn", &m};
+	struct out_exr_opts o = {0, OUT_EXR_ZIP, "s.scn", &m, 0};
 	struct framebuffer *rd = NULL;
 	static struct out_exr_info info;
 	CHECK(MSG(out_exr_write(fb, in_dir("region.exr"), &o, TDG)) == NULL);

@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@
 #include <openexr.h>
 
 #include "../../common/arena.h"
+#include "../../common/pool.h"
 #include "tmpfile.h"
 
 /* ================= OpenEXRCore plumbing ================= */
@@ -176,8 +178,23 @@ static exr_result_t bind_planes(exr_encode_pipeline_t *enc, const struct framebu
 	return EXR_ERR_SUCCESS;
 }
 
-/* The library's compress routine, wrapped by compress_fixed (per thread). */
-static _Thread_local exr_result_t (*core_compress)(exr_encode_pipeline_t *);
+/* One encoder per worker thread: its pipeline, the library's compress
+ * routine (wrapped by compress_fixed), and the chunk it encodes now. */
+struct encoder {
+	exr_encode_pipeline_t enc;
+	bool inited;
+	exr_result_t (*core_compress)(exr_encode_pipeline_t *);
+	struct chunk *out;
+};
+
+/* A chunk encoded, waiting its turn to be written. */
+struct chunk {
+	int y;              /* its first row, in the file's coordinates */
+	exr_chunk_info_t ci;
+	void *data;         /* the bytes to write (malloc'd) */
+	uint64_t size;
+	exr_result_t rv;
+};
 
 /* OpenEXRCore 3.1.5 stores the compressed bytes when they are exactly as
  * long as the raw data, but readers take a chunk of raw length as raw
@@ -186,7 +203,8 @@ static _Thread_local exr_result_t (*core_compress)(exr_encode_pipeline_t *);
  * raw, as the file format requires. */
 static exr_result_t compress_fixed(exr_encode_pipeline_t *enc)
 {
-	exr_result_t rv = core_compress(enc);
+	const struct encoder *e = enc->encoding_user_data;
+	exr_result_t rv = e->core_compress(enc);
 	if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes >= enc->packed_bytes &&
 	    enc->compressed_buffer != enc->packed_buffer &&
 	    enc->compressed_alloc_size >= enc->packed_bytes) {
@@ -196,45 +214,103 @@ static exr_result_t compress_fixed(exr_encode_pipeline_t *enc)
 	return rv;
 }
 
-/* Picks the library's routines, then interposes compress_fixed. */
-static exr_result_t choose_routines(exr_context_t ctx, exr_encode_pipeline_t *enc)
+/* In place of the library's write: keeps the chunk's bytes for write_pixels
+ * to write in order. */
+static exr_result_t keep_chunk(exr_encode_pipeline_t *enc)
 {
-	exr_result_t rv = exr_encoding_choose_default_routines(ctx, 0, enc);
-	if (rv == EXR_ERR_SUCCESS && enc->compress_fn) {
-		core_compress = enc->compress_fn;
-		enc->compress_fn = compress_fixed;
-	}
-	return rv;
+	struct chunk *c = ((struct encoder *)enc->encoding_user_data)->out;
+	c->data = malloc(enc->compressed_bytes ? enc->compressed_bytes : 1);
+	if (!c->data)
+		return EXR_ERR_OUT_OF_MEMORY;
+	memcpy(c->data, enc->compressed_buffer, enc->compressed_bytes);
+	c->size = enc->compressed_bytes;
+	return EXR_ERR_SUCCESS;
 }
 
-/* Encodes and writes every scanline chunk. */
-static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb)
+/* No waiting for the chunks before: they are written in order afterwards. */
+static exr_result_t no_wait(exr_encode_pipeline_t *enc)
 {
-	exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+	(void)enc;
+	return EXR_ERR_SUCCESS;
+}
+
+/* The encoding of a batch of chunks, one parallel_for item each. */
+struct encode_job {
+	exr_context_t ctx;
+	const struct framebuffer *fb;
+	struct encoder *workers;
+	struct chunk *chunks;
+};
+
+static void encode_chunk(void *arg, long k, int worker)
+{
+	struct encode_job *J = arg;
+	struct encoder *e = &J->workers[worker];
+	struct chunk *c = &J->chunks[k];
+	exr_result_t rv = e->inited ? exr_encoding_update(J->ctx, 0, &c->ci, &e->enc)
+	                            : exr_encoding_initialize(J->ctx, 0, &c->ci, &e->enc);
+	if (rv == EXR_ERR_SUCCESS) {
+		e->enc.encoding_user_data = e;
+		rv = bind_planes(&e->enc, J->fb, c->y - J->fb->y0);
+	}
+	if (rv == EXR_ERR_SUCCESS && !e->inited) {
+		rv = exr_encoding_choose_default_routines(J->ctx, 0, &e->enc);
+		if (rv == EXR_ERR_SUCCESS && e->enc.compress_fn) {
+			e->core_compress = e->enc.compress_fn;
+			e->enc.compress_fn = compress_fixed;
+		}
+		e->enc.write_fn = keep_chunk;
+		e->enc.yield_until_ready_fn = no_wait;
+	}
+	if (rv == EXR_ERR_SUCCESS || e->inited)
+		e->inited = true;
+	e->out = c;
+	if (rv == EXR_ERR_SUCCESS)
+		rv = exr_encoding_run(J->ctx, 0, &e->enc);
+	c->rv = rv;
+}
+
+/* Encodes every scanline chunk on the given threads, a batch at a time,
+ * and writes the batch's chunks in order: the same file for any number of
+ * threads (each chunk is compressed alone). */
+static exr_result_t write_pixels(exr_context_t ctx, const struct framebuffer *fb, int threads)
+{
 	exr_result_t rv = EXR_ERR_SUCCESS;
-	int lpc = 1, inited = 0;
+	int lpc = 1;
 	if ((rv = exr_get_scanlines_per_chunk(ctx, 0, &lpc)) != EXR_ERR_SUCCESS)
 		return rv;
-	for (int y = 0; y < fb->h && rv == EXR_ERR_SUCCESS; y += lpc) {
-		exr_chunk_info_t ci;
-		rv = exr_write_scanline_chunk_info(ctx, 0, fb->y0 + y, &ci);
+	int nt = pool_threads(threads);
+	long n = (fb->h + lpc - 1) / lpc, batch = 8L * nt;
+	struct encode_job J = {ctx, fb, mem_calloc((size_t)nt, sizeof *J.workers),
+	                       mem_calloc((size_t)batch, sizeof *J.chunks)};
+	for (int w = 0; w < nt; w++)
+		J.workers[w].enc = (exr_encode_pipeline_t)EXR_ENCODE_PIPELINE_INITIALIZER;
+	for (long k0 = 0; k0 < n && rv == EXR_ERR_SUCCESS; k0 += batch) {
+		long m = n - k0 < batch ? n - k0 : batch;
+		for (long k = 0; k < m && rv == EXR_ERR_SUCCESS; k++) {
+			struct chunk *c = &J.chunks[k];
+			*c = (struct chunk){.y = fb->y0 + (int)((k0 + k) * lpc)};
+			rv = exr_write_scanline_chunk_info(ctx, 0, c->y, &c->ci);
+		}
 		if (rv == EXR_ERR_SUCCESS)
-			rv = inited ? exr_encoding_update(ctx, 0, &ci, &enc)
-			            : exr_encoding_initialize(ctx, 0, &ci, &enc);
-		if (rv != EXR_ERR_SUCCESS)
-			break;
-		inited = 1;
-		rv = bind_planes(&enc, fb, y);
-		if (rv == EXR_ERR_SUCCESS && y == 0)
-			rv = choose_routines(ctx, &enc);
-		if (rv == EXR_ERR_SUCCESS)
-			rv = exr_encoding_run(ctx, 0, &enc);
+			parallel_for(m, nt, encode_chunk, &J);
+		for (long k = 0; k < m; k++) {
+			struct chunk *c = &J.chunks[k];
+			if (rv == EXR_ERR_SUCCESS)
+				rv = c->rv;
+			if (rv == EXR_ERR_SUCCESS)
+				rv = exr_write_scanline_chunk(ctx, 0, c->y, c->data, c->size);
+			free(c->data);
+			c->data = NULL;
+		}
 	}
-	if (inited) {
-		exr_result_t rd = exr_encoding_destroy(ctx, &enc);
+	for (int w = 0; w < nt; w++) {
+		exr_result_t rd = J.workers[w].inited ? exr_encoding_destroy(ctx, &J.workers[w].enc) : EXR_ERR_SUCCESS;
 		if (rv == EXR_ERR_SUCCESS)
 			rv = rd;
 	}
+	free(J.workers);
+	free(J.chunks);
 	return rv;
 }
 
@@ -251,7 +327,7 @@ static int write_file(struct io *io, const char *path, const struct framebuffer 
 	if (rv == EXR_ERR_SUCCESS)
 		rv = write_header(ctx, fb, o);
 	if (rv == EXR_ERR_SUCCESS)
-		rv = write_pixels(ctx, fb);
+		rv = write_pixels(ctx, fb, o->threads);
 	if (ctx) {
 		exr_result_t rf = exr_finish(&ctx);
 		if (rv == EXR_ERR_SUCCESS)
@@ -266,7 +342,7 @@ static int write_file(struct io *io, const char *path, const struct framebuffer 
 int out_exr_write(const struct framebuffer *fb, const char *path, const struct out_exr_opts *opts,
                   struct diag *dg)
 {
-	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL, NULL};
+	static const struct out_exr_opts defaults = {0, OUT_EXR_ZIP, NULL, NULL, 0};
 	const struct out_exr_opts *o = opts ? opts : &defaults;
 	struct srcloc none = srcloc_none();
 	if (!fb || fb->count == 0)

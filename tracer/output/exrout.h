@@ -44,6 +44,7 @@ struct out_exr_opts {
 	enum out_exr_compression compression; /* OUT_EXR_ZIP when zero-initialised */
 	const char *scene;                    /* "arvo:scene" string attribute, or NULL for none */
 	const struct out_exr_meta *meta;      /* more attributes, or NULL */
+	int threads;                          /* threads compressing (0: the machine's) */
 };
 
 /* What out_exr_read found in the header besides the pixels. */
