@@ -1047,6 +1047,28 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 	free(pp), free(ps);
 }
 
+/* One surface's records gathered for its map: segment g's records go to
+ * [off[g], off[g+1]) (a parallel_for item). */
+struct gather {
+	const struct seg *sg;
+	const long *off;
+	struct vec3 *pts;
+	double *psz;
+	struct illum_splat *sp;
+};
+
+static void gather_work(void *ctx, long g, int worker)
+{
+	(void)worker;
+	const struct gather *G = ctx;
+	for (long i = 0, at = G->off[g]; i < G->sg[g].nr; i++, at++) {
+		const struct rec *rc = &G->sg[g].r[i];
+		G->pts[at] = rc->p;
+		G->psz[at] = rc->size;
+		G->sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
+	}
+}
+
 /* Gives every surface reached a map and deposits the records into it: the
  * distinct surfaces through a hash, then the records grouped per surface
  * (a counting sort, keeping their order), so the work is O(records) whatever
@@ -1101,10 +1123,18 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	for (int k = 0; k < n; k++)
 		start[k + 1] += start[k], pstart[k + 1] += pstart[k];
 	t = 0;
-	for (long g = 0; g < nseg; g++)
+	if (!ki) { /* one surface: the segments' records in order, on the threads */
+		long *off = mem_alloc(sizeof *off * (size_t)(nseg + 1));
+		off[0] = 0;
+		for (long g = 0; g < nseg; g++)
+			off[g + 1] = off[g] + sg[g].nr;
+		parallel_for(nseg, o->threads, gather_work, &(struct gather){sg, off, pts, psz, sp});
+		free(off);
+	}
+	for (long g = 0; g < nseg && ki; g++)
 		for (long i = 0; i < sg[g].nr; i++, t++) {
 			const struct rec *rc = &sg[g].r[i];
-			int k = ki ? ki[t] : 0;
+			int k = ki[t];
 			long at = start[k] + fill[k]++;
 			pts[at] = rc->p;
 			psz[at] = rc->size;
