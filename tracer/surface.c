@@ -41,7 +41,7 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 	const struct hit *h = si->h;
 	double ior = surf_ior(si->in, b);
 	double n1 = h->entering ? 1 : ior, n2 = h->entering ? ior : 1;
-	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p);
+	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p); /* the offset of spawned rays */
 	struct vec3 R = reflection(si->f, si->pc, ci, n1, n2);
 	struct vec3 T = opt_transmission(si->pc), one = v3(1, 1, 1);
 	if (!si->legacy || maxc(T) <= 1) { /* POV-Ray's model lets transmit > 1 amplify */
@@ -51,17 +51,21 @@ void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 		T = v3(dmin(T.x, 1 - R.x), dmin(T.y, 1 - R.y), dmin(T.z, 1 - R.z)); /* never more out than in */
 	}
 	out->tir = false;
-	out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
-	if (maxc(T) > 0 && !si->straight && !opt_refract(si->d, si->nf, n1 / n2, &out->trans.d)) {
-		/* total internal reflection: the share that would pass is reflected
-		 * (POV-Ray's legacy model reflects everything, as POV-Ray does) */
-		out->tir = true;
-		R = si->legacy ? one : v_add(R, T);
-		T = v3(0, 0, 0);
+	if (maxc(T) > 0) {
+		out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
+		if (!si->straight && !opt_refract(si->d, si->nf, n1 / n2, &out->trans.d)) {
+			/* total internal reflection: the share that would pass is
+			 * reflected (POV-Ray's legacy model reflects everything, as
+			 * POV-Ray does) */
+			out->tir = true;
+			R = si->legacy ? one : v_add(R, T);
+			T = v3(0, 0, 0);
+		}
 	}
 	out->R = R;
 	out->T = T;
-	out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
+	if (maxc(R) > 0)
+		out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
 }
 
 /* surf_straight, given o's interior in. */

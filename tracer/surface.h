@@ -52,7 +52,8 @@ struct surf_in {
 /* What leaves the surface: weights per channel and the rays to follow. */
 struct surf_out {
 	struct vec3 R, T;            /* reflected and transmitted weights, R+T ≤ 1 */
-	struct ray refl, trans;      /* the spawned rays (offset off the surface) */
+	struct ray refl, trans;      /* the spawned rays (offset off the surface); refl is
+	                                set only where some R > 0, trans where some T > 0 */
 	bool tir;                    /* total internal reflection took T into R */
 };
 

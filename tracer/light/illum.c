@@ -357,7 +357,10 @@ static const struct tile *node_tile(const struct illum_map *m, long i, long j, i
 /* t (in node spacings) snapped onto the nearest node when within SNAP. */
 static double snap(double t)
 {
-	double r = nearbyint(t);
+	double r = t; /* nearbyint(t), inline: below 2^52 adding 2^52 rounds to an integer
+	                 (to even, as nearbyint does, symmetrically); from 2^52 on t is one */
+	if (fabs(t) < 0x1p52)
+		r = t >= 0 ? (t + 0x1p52) - 0x1p52 : -((-t + 0x1p52) - 0x1p52);
 	return fabs(t - r) < SNAP ? r : t;
 }
 
@@ -380,8 +383,10 @@ static void axis_split(const struct axis *a, double x, long *i0, long *i1, doubl
 		return;
 	}
 	double lo = a->bounded ? 0 : -PLANE_LIMIT, hi = a->bounded ? (double)(a->n - 1) : PLANE_LIMIT;
-	t = fmin(fmax(t, lo), hi);
-	long i = (long)floor(t);
+	t = !(t >= lo) ? lo : t > hi ? hi : t; /* fmin(fmax(t, lo), hi), inline */
+	long i = (long)t; /* floor: |t| <= 2^30 */
+	if ((double)i > t)
+		i--;
 	if (a->bounded && i > a->n - 2)
 		i = a->n - 2;
 	*f = t - (double)i;
