@@ -750,7 +750,7 @@ static __attribute__((noinline)) void exec_for(struct eval *E, const struct node
 		eval_fail(E, n->kids[2]->loc, "#for step must not be zero");
 	*env_declare(E, n->str, true) = val_float(start);
 	for (;;) {
-		struct value *var = env_lookup(E, n->str);
+		struct value *var = env_lookup_node(E, n);
 		double v = var ? val_want_float(E, var, n->loc) : start;
 		if (step > 0 ? v > end : v < end)
 			break;
@@ -760,7 +760,7 @@ static __attribute__((noinline)) void exec_for(struct eval *E, const struct node
 			E->breaking = 0;
 			break;
 		}
-		var = env_lookup(E, n->str);
+		var = env_lookup_node(E, n);
 		if (!var)
 			eval_fail(E, n->loc, "loop variable '%s' was undefined inside the loop", n->str);
 		*var = val_float(val_want_float(E, var, n->loc) + step);

@@ -301,15 +301,18 @@ struct isosurface {
  * bytes, not the 144 of the largest member. Copy one with obj_copy, never
  * by assignment. */
 struct object {
-	uint8_t kind;                /* enum object_kind */
-	bool has_photons;            /* a photons { } block was given */
-	uint16_t flags;              /* enum object_flags */
-	struct srcloc loc; /* where the object was written */
-	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
+	/* what shading and the light pass read */
 	struct texture *tex;         /* NULL: inherit from parent, else default */
 	struct interior *interior;   /* NULL: inherit from parent, else default */
 	struct illum_spec illum;     /* illum_map { } */
 	struct photon_spec photons;  /* photons { } */
+	struct srcloc loc;           /* where the object was written */
+	/* what a ray's candidate test reads, together just before the
+	 * geometry: one or two cache lines for a sphere, not two or three */
+	uint8_t kind;                /* enum object_kind */
+	bool has_photons;            /* a photons { } block was given */
+	uint16_t flags;              /* enum object_flags */
+	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	union {
 		struct { struct vec3 c; double r; } sphere;
 		struct { struct vec3 n; double d; } plane;        /* n·p = d */

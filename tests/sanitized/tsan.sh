@@ -8,7 +8,7 @@ set -u
 cd "$(dirname "$0")/../.." || exit 2
 TSAN_BUILD=${TSAN_BUILD:-build/${MODE:-release}-tsan}
 ARVO=$TSAN_BUILD/arvo
-export TSAN_OPTIONS=halt_on_error=1:exitcode=99
+export TSAN_OPTIONS="halt_on_error=1:exitcode=99:suppressions=$PWD/tests/sanitized/tsan.supp"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/arvo-tsan.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT INT TERM
 n=0
@@ -34,3 +34,6 @@ render "tolerance, 2 threads" --threads 2 --width 24 --height 18 --tolerance 0.2
 render "mirror, 2 threads" --threads 2 --width 32 --height 24 --rays 20000 tests/render/mirror_a.scn
 render "glass, 300000 rays, 64x48, 2 threads" --threads 2 --width 64 --height 48 --rays 300000 tests/render/g_glass.scn
 render "fig3 lenses, 2 threads" --threads 2 --width 48 --height 36 --rays 200000 stdlib-scenes/fig3-lenses.scn
+# several EXR chunks and OCIO chunks, each compressed or transformed on its own thread
+render "EXR and PNG output, 200x120, 2 threads" --threads 2 --width 200 --height 120 --rays 0 -o "$tmp/out.png" \
+	tests/render/g_lights.scn
