@@ -67,6 +67,8 @@ struct query {
 	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
 	double best_t;         /* its t, when deferred */
+	int ubest;             /* an unbounded winner found by its t alone, or -1 */
+	double ubest_hi;       /* the interval's end its test used */
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
@@ -433,8 +435,13 @@ static bool unbounded(struct query *q, bool any)
 			continue;
 		if (any && shape_occluded(o, q->r, q->tmin, q->tmax))
 			return q->found = true;
-		if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp))
-			*q->h = tmp, q->tmax = tmp.t, q->found = true;
+		double t;
+		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
+			if (shape_hit_t(o, q->r, q->tmin, q->tmax, &t))
+				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
+			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
+		}
 	}
 	return false;
 }
@@ -445,6 +452,8 @@ static void finish(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
+	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t */
+		shape_intersect(q->b->unbound[q->ubest], q->r, q->tmin, q->ubest_hi, q->h);
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
@@ -452,9 +461,13 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
                      unsigned skip, bool any, struct hit *h)
 {
 	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV, .h = h,
-	                  .uv = !(skip & BVH_NO_UV), .best = -1};
-	if (unbounded(&q, any) || b->nprims == 0)
+	                  .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+	if (unbounded(&q, any))
 		return q.found;
+	if (b->nprims == 0) {
+		finish(&q);
+		return q.found;
+	}
 	if (b->scene)
 		walk(&q, any);
 	else
@@ -484,7 +497,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		struct query *q = &Q.q[i];
 		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
 		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
-		                    .uv = !(skip & BVH_NO_UV), .best = -1};
+		                    .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
 		valid[i] = 0;
 		if (i >= n)
 			continue;

@@ -70,9 +70,9 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
 	struct hit h;
-	if (o->kind == OBJ_SPHERE) {
+	if (o->kind == OBJ_SPHERE || o->kind == OBJ_PLANE) {
 		struct ray lr = local_ray(o, r);
-		return sph_hit_t(o, &lr, tmin, tmax, t);
+		return o->kind == OBJ_SPHERE ? sph_hit_t(o, &lr, tmin, tmax, t) : pl_hit_t(o, &lr, tmin, tmax, t);
 	}
 	if (!shape_intersect(o, r, tmin, tmax, &h))
 		return false;

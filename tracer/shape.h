@@ -48,7 +48,8 @@ struct uv_range {
 bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                      struct hit *h);
 /* The t of that nearest hit alone: the same t shape_intersect finds over the
- * same interval, cheaper where the primitive can skip the rest (spheres). */
+ * same interval, cheaper where the primitive can skip the rest (spheres,
+ * planes). */
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
 /* The hit shape_intersect finds over (tmin, tmax), given the t shape_hit_t
  * found there; without uv, (u,v) may be NaN and the partials zero (the eye

@@ -48,18 +48,31 @@ static bool pl_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
+/* The root t in (tmin, tmax) of the ray and the plane n̂·p = d. */
+static bool pl_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax, double *t)
+{
+	double den = v_dot(n, r->d);
+	if (den == 0)
+		return false;
+	*t = (d - v_dot(n, r->o)) / den;
+	return *t > tmin && *t < tmax;
+}
+
+bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
+{
+	double l = v_len(o->g.plane.n); /* as pl_frame, without the in-plane axes */
+	if (!(l > 0))
+		return false;
+	return pl_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
+}
+
 /* One root; the hit is rebuilt from its (u,v) so it lies in the plane. */
 static bool pl_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
 	struct pframe f;
-	if (!pl_frame(o, &f))
-		return false;
-	double den = v_dot(f.n, r->d);
-	if (den == 0)
-		return false;
-	double t = (f.d - v_dot(f.n, r->o)) / den;
-	if (!(t > tmin && t < tmax))
+	double t;
+	if (!pl_frame(o, &f) || !pl_root(f.n, f.d, r, tmin, tmax, &t))
 		return false;
 	struct vec3 p = ray_at(*r, t);
 	lh->t = t;

@@ -52,6 +52,9 @@ struct prim_ops {
 /* The sphere's nearest root in (tmin, tmax), in its own frame: the t its
  * intersect finds, without the point, normal and (u,v) (shape_hit_t). */
 bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
+/* The plane's root in (tmin, tmax), in its own frame: the t its intersect
+ * finds, without its frame, point and (u,v) (shape_hit_t). */
+bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
 /* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
  * without uv, (u,v) and the partials are left unset (shape_hit_at). */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);
