@@ -91,6 +91,17 @@ done
 cmp "$tmp/b1.png" "$tmp/b7.png" >> "$tmp/log" 2>&1 || st=1
 cmp "$tmp/b1.png" "$tmp/b2.png" >> "$tmp/log" 2>&1 || st=1
 check "a PNG alone is bit-identical to one written beside an EXR, for --threads 1 and 7" $st
+st=0 # 200x304: 19 EXR chunks of 16 rows (batches of 8 per thread) and 4 OCIO chunks of 16384 pixels
+for t in 1 2 7; do
+	"$ARVO" -q --threads $t --rays 0 --width 200 --height 304 -o "$tmp/big$t.exr" -o "$tmp/big$t.png" \
+		"$T/g_lights.scn" > "$tmp/log" 2>&1 || st=1
+done
+for t in 2 7; do
+	cmp "$tmp/big1.exr" "$tmp/big$t.exr" >> "$tmp/log" 2>&1 || st=1
+	cmp "$tmp/big1.png" "$tmp/big$t.png" >> "$tmp/log" 2>&1 || st=1
+done
+oiiotool "$tmp/big1.exr" --ch R --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000' && st=1
+check "output compressed and colour-managed on threads: EXR and PNG bit-identical for --threads 1, 2, 7" $st
 st=0
 for t in 1 2 7; do
 	"$ARVO" -q --threads $t --rays 200000 --width 33 --height 21 -o "$tmp/cau$t.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1 || st=1
