@@ -245,10 +245,10 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
+	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(q->lanes == 1 ? q : &((struct packet *)a->context)->q[((struct packet *)a->context)->base + (int)i], (int)a->primID,
-			          a->rayhit, a->N, i, a->geomID);
+			test_lane(P ? &P->q[P->base + (int)i] : q, (int)a->primID, a->rayhit, a->N, i, a->geomID);
 }
 
 static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
@@ -456,12 +456,20 @@ static void finish(struct query *q)
 		shape_intersect(q->b->unbound[q->ubest], q->r, q->tmin, q->ubest_hi, q->h);
 }
 
+/* A query over (tmin, tmax) for ray r, its result into *h: skip's object
+ * flags, and BVH_NO_UV as the uv flag. */
+static struct query new_query(const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                              unsigned skip, struct hit *h)
+{
+	return (struct query){.lanes = 1, .b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV,
+	                      .h = h, .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+}
+
 /* The query shared by both kinds: with any set, stops at the first hit. */
 static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                      unsigned skip, bool any, struct hit *h)
 {
-	struct query q = {.b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV, .h = h,
-	                  .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+	struct query q = new_query(b, r, tmin, tmax, skip, h);
 	if (unbounded(&q, any))
 		return q.found;
 	if (b->nprims == 0) {
@@ -495,9 +503,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
-		*q = (struct query){.lanes = 1, .b = b, .r = &r[i < n ? i : 0], .tmin = tmin, .tmax = tmax,
-		                    .skip = skip & ~BVH_NO_UV, .h = &h[i < n ? i : 0],
-		                    .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+		*q = new_query(b, &r[i < n ? i : 0], tmin, tmax, skip, &h[i < n ? i : 0]);
 		valid[i] = 0;
 		if (i >= n)
 			continue;

@@ -182,7 +182,8 @@ static exr_result_t bind_planes(exr_encode_pipeline_t *enc, const struct framebu
  * routine (wrapped by compress_fixed), and the chunk it encodes now. */
 struct encoder {
 	exr_encode_pipeline_t enc;
-	bool inited;
+	bool inited;  /* enc was initialised (and is to be destroyed) */
+	bool ready;   /* its routines are chosen: keep_chunk writes nothing itself */
 	exr_result_t (*core_compress)(exr_encode_pipeline_t *);
 	struct chunk *out;
 };
@@ -247,13 +248,18 @@ static void encode_chunk(void *arg, long k, int worker)
 	struct encode_job *J = arg;
 	struct encoder *e = &J->workers[worker];
 	struct chunk *c = &J->chunks[k];
-	exr_result_t rv = e->inited ? exr_encoding_update(J->ctx, 0, &c->ci, &e->enc)
-	                            : exr_encoding_initialize(J->ctx, 0, &c->ci, &e->enc);
+	exr_result_t rv;
+	if (e->inited) { /* routines chosen on the worker's first chunk stay */
+		rv = e->ready ? exr_encoding_update(J->ctx, 0, &c->ci, &e->enc) : EXR_ERR_INVALID_ARGUMENT;
+	} else {
+		rv = exr_encoding_initialize(J->ctx, 0, &c->ci, &e->enc);
+		e->inited = rv == EXR_ERR_SUCCESS; /* write_pixels destroys it */
+	}
 	if (rv == EXR_ERR_SUCCESS) {
 		e->enc.encoding_user_data = e;
 		rv = bind_planes(&e->enc, J->fb, c->y - J->fb->y0);
 	}
-	if (rv == EXR_ERR_SUCCESS && !e->inited) {
+	if (rv == EXR_ERR_SUCCESS && !e->ready) { /* after bind: packing follows the channels' types */
 		rv = exr_encoding_choose_default_routines(J->ctx, 0, &e->enc);
 		if (rv == EXR_ERR_SUCCESS && e->enc.compress_fn) {
 			e->core_compress = e->enc.compress_fn;
@@ -261,9 +267,8 @@ static void encode_chunk(void *arg, long k, int worker)
 		}
 		e->enc.write_fn = keep_chunk;
 		e->enc.yield_until_ready_fn = no_wait;
+		e->ready = rv == EXR_ERR_SUCCESS;
 	}
-	if (rv == EXR_ERR_SUCCESS || e->inited)
-		e->inited = true;
 	e->out = c;
 	if (rv == EXR_ERR_SUCCESS)
 		rv = exr_encoding_run(J->ctx, 0, &e->enc);
