@@ -334,8 +334,8 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
-	if (sf.tex->normal) /* as POV-Ray: the normal facing the eye is perturbed */
-		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
+	if (tex_normal(sf.tex)) /* as POV-Ray: the normal facing the eye is perturbed */
+		sf.nf = pattern_perturb(tex_normal(sf.tex), h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
 		sf.opacity = fmin(1, fmax(0, sf.opacity));
@@ -386,17 +386,19 @@ static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct 
 static struct vec3 shade_average(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
                                  int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
 {
+	const struct tex_entry *m = tex_map(t);
+	int nmap = tex_nmap(t);
 	double total = 0;
-	for (int i = 0; i < t->nmap; i++)
-		total += t->map[i].pos;
+	for (int i = 0; i < nmap; i++)
+		total += m[i].pos;
 	struct vec3 out = v3(0, 0, 0);
 	if (total == 0)
 		return out;
 	struct aov start = aov ? *aov : (struct aov){0}, sum = start;
-	for (int i = 0; i < t->nmap; i++) {
-		double w = t->map[i].pos / total;
+	for (int i = 0; i < nmap; i++) {
+		double w = m[i].pos / total;
 		struct aov a = start;
-		struct vec3 c = shade_map(pa, h, t->map[i].tex, d, depth, weight * fabs(w), skip, aov ? &a : NULL,
+		struct vec3 c = shade_map(pa, h, m[i].tex, d, depth, weight * fabs(w), skip, aov ? &a : NULL,
 		                          level + 1, upper);
 		out = v_madd(out, c, w);
 		if (aov) {
@@ -415,24 +417,26 @@ static struct vec3 shade_average(struct path *pa, const struct hit *h, const str
 static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
                              int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
 {
-	if (t->below && level <= 16) { /* layered: this layer, then what shows through it */
+	if (tex_below(t) && level <= 16) { /* layered: this layer, then what shows through it */
 		struct colour pc = mat_pigment(pa->ctx->mats, &t->pigment, h->p);
 		struct vec3 through = v_add(v_scale(col3(pc), pc.f), v3(pc.t, pc.t, pc.t));
 		struct texture self = *t; /* the layer alone */
-		self.below = NULL;
+		struct tex_ext alone = *t->ext;
+		alone.below = NULL;
+		self.ext = &alone;
 		struct vec3 out = shade_map(pa, h, &self, d, depth, weight, skip, aov, level + 1, true);
 		if (v_maxc(through) <= 0)
 			return out;
 		struct aov under;
 		if (aov)
 			under = *aov;
-		struct vec3 b = shade_map(pa, h, t->below, d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
+		struct vec3 b = shade_map(pa, h, tex_below(t), d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
 		                          level + 1, false);
 		if (aov)
 			aov_blend(aov, &under, 1, v_maxc(through));
 		return v_add(out, v_mul(through, b));
 	}
-	if (!t->map || level > 16)
+	if (!tex_map(t) || level > 16)
 		return shade_tex(pa, h, t, d, depth, weight, skip, aov, upper);
 	if (t->pigment.kind == PIG_PATTERN && pig_pattern(&t->pigment)->pattern == PAT_AVERAGE)
 		return shade_average(pa, h, t, d, depth, weight, skip, aov, level, upper);

@@ -85,7 +85,7 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
                   struct surf_in *si)
 {
 	const struct texture *t = mat_texture(h->obj);
-	if (t->map) /* a texture_map: the texture at the point */
+	if (tex_map(t)) /* a texture_map: the texture at the point */
 		t = mat_texture_leaf(mc, t, h->p);
 	si->h = h;
 	si->f = t->finish;
