@@ -107,7 +107,7 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 		else if (n->op == TK_NORMAL)
 			tex_set_normal(E, o->tex, normal_block(E, n));
 		else
-			finish_block(E, n, &o->tex->finish);
+			tex_set_finish(E, o->tex, finish_block(E, n, tex_finish(o->tex)));
 	} else if (n->op == TK_INTERIOR) {
 		struct interior *in = NEW(E, struct interior);
 		*in = o->interior ? *o->interior : scene_default_interior();

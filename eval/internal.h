@@ -194,6 +194,7 @@ struct texture *texture_share(struct eval *E, const struct texture *t);
 void tex_ext_set(struct eval *E, struct texture *t, const struct tex_ext *x);
 /* One part of t's record changed, by tex_ext_set. */
 void tex_set_loc(struct eval *E, struct texture *t, struct srcloc loc);
+void tex_set_finish(struct eval *E, struct texture *t, const struct finish *f);
 void tex_set_normal(struct eval *E, struct texture *t, const struct tnormal *n);
 void tex_set_below(struct eval *E, struct texture *t, const struct texture *below);
 void tex_set_map(struct eval *E, struct texture *t, const struct tex_entry *map, int nmap);
@@ -202,9 +203,9 @@ void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void
 /* A transform old (NULL: identity) followed by X, in a slot of its own, since
  * copied objects and textures may share old; NULL when it is the identity. */
 const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X);
-/* A finish { } block n on a texture's finish *f: it changes a copy, since
- * textures share finishes (the default one, a declared texture's). */
-void finish_block(struct eval *E, const struct node *n, const struct finish **f);
+/* A finish { } block n on a texture's finish f: the changed finish, a copy,
+ * since textures share finishes (the default one, a declared texture's). */
+const struct finish *finish_block(struct eval *E, const struct node *n, const struct finish *f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
 /* A fresh texture: top (and the layers under it) layered over bottom. */

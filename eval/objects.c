@@ -155,7 +155,7 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 
 static bool ext_equal(const struct tex_ext *a, const struct tex_ext *b)
 {
-	return a->normal == b->normal && a->map == b->map && a->below == b->below && a->nmap == b->nmap &&
+	return a->finish == b->finish && a->normal == b->normal && a->map == b->map && a->below == b->below && a->nmap == b->nmap &&
 	       a->loc.file == b->loc.file && a->loc.line == b->loc.line && a->loc.col == b->loc.col;
 }
 
@@ -165,11 +165,15 @@ void tex_ext_set(struct eval *E, struct texture *t, const struct tex_ext *x)
 		t->ext = NULL;
 		return;
 	}
-	for (int i = 0; i < EXT_SEEN; i++)
-		if (E->ext_seen[i] && ext_equal(E->ext_seen[i], x)) {
-			t->ext = E->ext_seen[i];
+	for (int i = 1; i <= EXT_SEEN; i++) { /* the latest first */
+		const struct tex_ext *r = E->ext_seen[(E->ext_next + EXT_SEEN - i) % EXT_SEEN];
+		if (!r)
+			break;
+		if (ext_equal(r, x)) {
+			t->ext = r;
 			return;
 		}
+	}
 	struct tex_ext *c = NEW(E, struct tex_ext);
 	*c = *x;
 	E->ext_seen[E->ext_next] = t->ext = c;
@@ -180,6 +184,13 @@ void tex_set_loc(struct eval *E, struct texture *t, struct srcloc loc)
 {
 	struct tex_ext x = *tex_x(t);
 	x.loc = loc;
+	tex_ext_set(E, t, &x);
+}
+
+void tex_set_finish(struct eval *E, struct texture *t, const struct finish *f)
+{
+	struct tex_ext x = *tex_x(t);
+	x.finish = f;
 	tex_ext_set(E, t, &x);
 }
 
@@ -219,7 +230,7 @@ static void tex_key(const struct texture *t, uint64_t k[TEX_WORDS])
 	k[7] = (uint64_t)(uintptr_t)t->pigment.xf;
 	const struct tex_ext *x = tex_x(t); /* by content: equal records may be two */
 	k[8] = (uint64_t)(uintptr_t)x->normal;
-	k[9] = (uint64_t)(uintptr_t)t->finish;
+	k[9] = (uint64_t)(uintptr_t)x->finish;
 	k[10] = (uint64_t)(uintptr_t)x->map;
 	k[11] = (uint64_t)(uintptr_t)x->below;
 	k[12] = (uint64_t)(uint32_t)x->loc.file << 32 | (uint32_t)x->loc.line;
@@ -297,18 +308,16 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 	return xf_is_identity(x) ? NULL : x;
 }
 
-void finish_block(struct eval *E, const struct node *n, const struct finish **f)
+const struct finish *finish_block(struct eval *E, const struct node *n, const struct finish *f)
 {
 	struct sink sub;
-	struct finish c = **f;
+	struct finish c = *f;
 	run_block(E, n, SK_FINISH, &c, &sub);
-	if (E->last_finish && memcmp(E->last_finish, &c, sizeof c) == 0) {
-		*f = E->last_finish; /* a loop writing the same finish shares one */
-		return;
-	}
+	if (E->last_finish && memcmp(E->last_finish, &c, sizeof c) == 0)
+		return E->last_finish; /* a loop writing the same finish shares one */
 	struct finish *k = NEW(E, struct finish);
 	*k = c;
-	*f = E->last_finish = k;
+	return E->last_finish = k;
 }
 
 /* Evaluates a block's items into a fresh sink of the given kind. */
@@ -357,7 +366,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 	case TK_FINISH:
 		v.kind = V_FINISH;
 		v.p.fin = NEW(E, struct finish);
-		*v.p.fin = *scene_default_texture().finish;
+		*v.p.fin = *tex_ext_none.finish;
 		run_block(E, blk, SK_FINISH, v.p.fin, &s);
 		return v;
 	case TK_INTERIOR:
@@ -493,7 +502,7 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		finish_block(E, n, &t->finish);
+		tex_set_finish(E, t, finish_block(E, n, tex_finish(t)));
 	else if (n->op == TK_NORMAL) {
 		E->in_default++;
 		tex_set_normal(E, t, normal_block(E, n));

@@ -413,7 +413,7 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		finish_block(E, n, &t->finish);
+		tex_set_finish(E, t, finish_block(E, n, tex_finish(t)));
 	else
 		misplaced(E, s, n);
 }

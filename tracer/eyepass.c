@@ -193,7 +193,7 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
                               struct vec3 q, double w, bool test, struct vec3 *E, struct vec3 *H)
 {
 	const struct scene *s = pa->ctx->scene;
-	const struct finish *f = sf->tex->finish;
+	const struct finish *f = tex_finish(sf->tex);
 	struct vec3 L;
 	double dist = towards(l, sf->h->p, q, &L), c = v_dot(sf->nf, L);
 	if (c <= 0)
@@ -291,12 +291,12 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	const struct interior *in = mat_interior(sf->h->obj);
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
-	const struct finish *f = sf->tex->finish;
+	const struct finish *f = tex_finish(sf->tex);
 	if (!clear && no_colour(f->refl_min) && no_colour(f->refl_max))
 		return v3(0, 0, 0); /* neither reflects nor transmits: R = T = 0 */
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
-	struct surf_in si = {sf->h, sf->tex->finish, sf->pc, in, d, sf->nf,
+	struct surf_in si = {sf->h, tex_finish(sf->tex), sf->pc, in, d, sf->nf,
 	                     pa->ctx->scene->legacy_lights, false};
 	struct surf_out so;
 	surf_scatter(&si, pa->band, &so);
@@ -339,7 +339,7 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
 		sf.opacity = fmin(1, fmax(0, sf.opacity));
-	const struct finish *f = sf.tex->finish;
+	const struct finish *f = tex_finish(sf.tex);
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0), H = v3(0, 0, 0), lit = v3(0, 0, 0);
 	struct vec3 emis = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
 	                                   col3(f->emission)));

@@ -52,12 +52,11 @@ struct texture scene_default_texture(void)
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
-	t.finish = &default_finish;
 	t.ext = NULL; /* tex_ext_none */
 	return t;
 }
 
-const struct tex_ext tex_ext_none = {.loc = {-1, 0, 0}};
+const struct tex_ext tex_ext_none = {.finish = &default_finish, .loc = {-1, 0, 0}};
 
 struct interior scene_default_interior(void)
 {
@@ -354,7 +353,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 		const struct tex_ext *x = tex_x(ob->tex);
 		fprintf(o, "texture @%d:%d\n", x->loc.line, x->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
-		dump_finish(o, ob->tex->finish, d + 2);
+		dump_finish(o, x->finish, d + 2);
 		if (x->normal)
 			dump_normal(o, x->normal, d + 2);
 		for (int i = 0; i < x->nmap; i++) {
@@ -362,7 +361,7 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 			indent(o, d + 2);
 			fprintf(o, "[%.6g texture\n", x->map[i].pos);
 			dump_pigment(o, &k->pigment, d + 3);
-			dump_finish(o, k->finish, d + 3);
+			dump_finish(o, tex_finish(k), d + 3);
 			if (tex_normal(k))
 				dump_normal(o, tex_normal(k), d + 3);
 		}

@@ -132,7 +132,7 @@ static void t_texture_sharing(void)
 	CHECK(o[0]->tex == o[2]->tex && o[2]->tex == o[4]->tex);
 	CHECK(o[1]->tex == o[3]->tex && o[0]->tex != o[1]->tex);
 	CHECK(o[0]->tex->pigment.c[0].r == 0 && o[1]->tex->pigment.c[0].r == 1);
-	CHECK(o[0]->tex->finish->phong == 1 && o[1]->tex->finish == o[0]->tex->finish);
+	CHECK(tex_finish(o[0]->tex)->phong == 1 && tex_finish(o[1]->tex) == tex_finish(o[0]->tex));
 	struct object *clip = o[6];
 	CHECK(clip->kind == OBJ_CLIP && clip->g.csg.kids[0]->tex->pigment.c[0].r == 1);
 	CHECK(clip->tex->pigment.c[0].g == 1 && clip->tex->pigment.c[0].r == 0);
@@ -141,13 +141,13 @@ static void t_texture_sharing(void)
 	done();
 }
 
-/* A texture keeps its normal, maps, layers and location in a shared record:
- * the distinct textures of a loop share one, which holds the place they
- * were written; a normal or a layer makes another; a plain texture is
- * 80 bytes. */
+/* A texture keeps its finish, normal, maps, layers and location in a shared
+ * record: the distinct textures of a loop share one, which holds the place
+ * they were written; a normal or a layer makes another; a texture is its
+ * pigment and that pointer, 72 bytes. */
 static void t_texture_records(void)
 {
-	CHECK(sizeof(struct texture) == 80);
+	CHECK(sizeof(struct texture) == 72);
 	CHECK(run("#declare I = 0;\n#while (I < 4)\n"
 	          "  sphere { x * I, 0.4 pigment { rgb <I / 4, 0, 1> } }\n"
 	          "  #declare I = I + 1;\n#end\n"
@@ -164,6 +164,7 @@ static void t_texture_records(void)
 	CHECK(below && below->pigment.c[0].r == 1 && below->pigment.c[0].b == 1 && tex_below(below) == NULL);
 	CHECK(o[5]->tex->pigment.c[0].t == 0.5 && tex_loc(o[5]->tex).line == 7 && tex_loc(o[5]->tex).col == 45);
 	CHECK(o[6]->tex->ext == NULL && tex_loc(o[6]->tex).file == -1 && tex_nmap(o[6]->tex) == 0);
+	CHECK(tex_finish(o[6]->tex) == tex_finish(o[0]->tex) && tex_finish(o[0]->tex)->diffuse == 0.6);
 	done();
 }
 
