@@ -231,8 +231,7 @@ void list_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */
-void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
-               const struct object *parent);
+void propagate(struct eval *E, struct object *o, struct texture *tex);
 
 /* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
 /* Takes a positional value or a leading keyword (linear_spline, conic_sweep,

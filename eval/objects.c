@@ -442,7 +442,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		/* the #default in force now is the one this object gets */
 		if (!E->default_shared)
 			E->default_shared = texture_copy(E, &E->default_tex);
-		propagate(o, E->default_shared, NULL, 0, NULL);
+		propagate(E, o, E->default_shared);
 		scene_add_object(sc, o);
 		return;
 	}
@@ -457,7 +457,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 			o->flags |= OF_NO_SHADOW;
 			if (!E->default_shared)
 				E->default_shared = texture_copy(E, &E->default_tex);
-			propagate(o, E->default_shared, NULL, 0, NULL);
+			propagate(E, o, E->default_shared);
 			scene_add_object(sc, o);
 			eval_count_object(E, n->loc);
 		}

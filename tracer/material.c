@@ -123,7 +123,8 @@ const struct texture *mat_texture(const struct object *o)
 const struct interior *mat_interior(const struct object *o)
 {
 	static const struct interior def = {1, 1, 7, 0, 0, {0, 0, 0, 0, 0}, 0};
-	return o->interior ? o->interior : &def;
+	const struct interior *in = obj_interior(o);
+	return in ? in : &def;
 }
 
 /* ==== patterns =========================================================== */

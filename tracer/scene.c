@@ -139,6 +139,14 @@ struct object *obj_copy(struct arena *a, const struct object *o)
 	return c;
 }
 
+struct obj_extra *obj_extra_w(struct arena *a, struct object *o)
+{
+	struct obj_extra *x = arena_alloc8(a, sizeof *x);
+	*x = o->ext ? *o->ext : (struct obj_extra){0};
+	o->ext = x;
+	return x;
+}
+
 /* The top-level list is one malloc'd array (freed by scene_free), not an
  * arena one: doubling in the arena would keep every smaller copy, 8 MB more
  * at a million objects. */
@@ -366,20 +374,21 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 				dump_normal(o, tex_normal(k), d + 3);
 		}
 	}
-	if (ob->interior) {
-		const struct interior *in = ob->interior;
+	if (obj_interior(ob)) {
+		const struct interior *in = obj_interior(ob);
 		indent(o, d + 1);
 		fprintf(o, "interior ior %.6g dispersion %.6g dispersion_samples %d fade_distance %.6g fade_power %.6g fade_color ",
 		        in->ior, in->dispersion, in->dispersion_samples, in->fade_distance, in->fade_power);
 		pc(o, in->fade_color);
 		fputc('\n', o);
 	}
-	if (ob->illum.resolution || ob->illum.cell) {
+	struct illum_spec il = obj_illum(ob);
+	if (il.resolution || il.cell) {
 		indent(o, d + 1);
-		fprintf(o, "illum_map resolution %d cell %.6g\n", ob->illum.resolution, ob->illum.cell);
+		fprintf(o, "illum_map resolution %d cell %.6g\n", il.resolution, il.cell);
 	}
-	if (ob->has_photons) {
-		const struct photon_spec *p = &ob->photons;
+	if (obj_photons(ob)) {
+		const struct photon_spec *p = obj_photons(ob);
 		indent(o, d + 1);
 		fprintf(o, "photons target %d spacing %.6g refraction %d reflection %d collect %d pass_through %d\n",
 		        p->target, p->spacing, p->refraction, p->reflection, p->collect, p->pass_through);

@@ -73,7 +73,8 @@ static inline bool straight(const struct scene *s, const struct object *o, const
 {
 	if (!s->legacy_lights)
 		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
-	return !(o->has_photons && o->photons.target && o->photons.refraction);
+	const struct photon_spec *ph = obj_photons(o);
+	return !(ph && ph->target && ph->refraction);
 }
 
 bool surf_straight(const struct scene *s, const struct object *o)

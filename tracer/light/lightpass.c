@@ -184,7 +184,7 @@ bool lp_dispersive(const struct scene *s)
 		stack[n++] = s->objects[i];
 		while (n > 0) {
 			const struct object *o = stack[--n];
-			if (o->interior && o->interior->dispersion != 1)
+			if (obj_interior(o) && obj_interior(o)->dispersion != 1)
 				return true;
 			if (o->kind >= OBJ_FIRST_CSG)
 				for (int k = 0; k < o->g.csg.n && n < 64; k++)
@@ -348,7 +348,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	/* POV-Ray's photons { } on the object: pass_through lets light by
 	 * untouched, collect off keeps it off the maps, and a target with
 	 * refraction or reflection off does not bend light that way */
-	const struct photon_spec *ph = h.obj->has_photons ? &h.obj->photons : NULL;
+	const struct photon_spec *ph = obj_photons(h.obj);
 	if (ph && ph->pass_through) {
 		if (depth < J->o->max_depth)
 			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
@@ -899,8 +899,9 @@ static int cmp_double(const void *a, const void *b)
  * land far away do not inflate it. */
 static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k, double per_node)
 {
-	if (o->illum.resolution > 0 || o->illum.cell > 0)
-		return o->illum;
+	struct illum_spec own = obj_illum(o);
+	if (own.resolution > 0 || own.cell > 0)
+		return own;
 	double *c = mem_alloc(sizeof *c * (size_t)(k ? k : 1)), ex[3];
 	for (int axis = 0; axis < 3; axis++) {
 		for (long i = 0; i < k; i++)
@@ -932,8 +933,9 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
                                     long k, const struct lp_opts *opt)
 {
-	if (o->illum.resolution > 0 || o->illum.cell > 0)
-		return o->illum;
+	struct illum_spec own = obj_illum(o);
+	if (own.resolution > 0 || own.cell > 0)
+		return own;
 	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
