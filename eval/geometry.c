@@ -100,14 +100,14 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 			o->tex = s->own_tex;
 			s->own_obj = o;
 		}
-		if (o->tex->loc.file < 0)
-			o->tex->loc = n->loc;
+		if (tex_loc(o->tex).file < 0)
+			tex_set_loc(E, o->tex, n->loc);
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
 		else if (n->op == TK_NORMAL)
-			o->tex->normal = normal_block(E, n);
+			tex_set_normal(E, o->tex, normal_block(E, n));
 		else
-			finish_block(E, n, &o->tex->finish);
+			tex_set_finish(E, o->tex, finish_block(E, n, tex_finish(o->tex)));
 	} else if (n->op == TK_INTERIOR) {
 		struct interior *in = NEW(E, struct interior);
 		*in = obj_interior(o) ? *obj_interior(o) : scene_default_interior();

@@ -52,10 +52,11 @@ struct texture scene_default_texture(void)
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
-	t.finish = &default_finish;
-	t.loc = (struct srcloc){-1, 0, 0};
+	t.ext = NULL; /* tex_ext_none */
 	return t;
 }
+
+const struct tex_ext tex_ext_none = {.finish = &default_finish, .loc = {-1, 0, 0}};
 
 struct interior scene_default_interior(void)
 {
@@ -357,18 +358,20 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 	}
 	if (ob->tex) {
 		indent(o, d + 1);
-		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
+		const struct tex_ext *x = tex_x(ob->tex);
+		fprintf(o, "texture @%d:%d\n", x->loc.line, x->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
-		dump_finish(o, ob->tex->finish, d + 2);
-		if (ob->tex->normal)
-			dump_normal(o, ob->tex->normal, d + 2);
-		for (int i = 0; i < ob->tex->nmap; i++) {
+		dump_finish(o, x->finish, d + 2);
+		if (x->normal)
+			dump_normal(o, x->normal, d + 2);
+		for (int i = 0; i < x->nmap; i++) {
+			const struct texture *k = x->map[i].tex;
 			indent(o, d + 2);
-			fprintf(o, "[%.6g texture\n", ob->tex->map[i].pos);
-			dump_pigment(o, &ob->tex->map[i].tex->pigment, d + 3);
-			dump_finish(o, ob->tex->map[i].tex->finish, d + 3);
-			if (ob->tex->map[i].tex->normal)
-				dump_normal(o, ob->tex->map[i].tex->normal, d + 3);
+			fprintf(o, "[%.6g texture\n", x->map[i].pos);
+			dump_pigment(o, &k->pigment, d + 3);
+			dump_finish(o, tex_finish(k), d + 3);
+			if (tex_normal(k))
+				dump_normal(o, tex_normal(k), d + 3);
 		}
 	}
 	if (obj_interior(ob)) {

@@ -174,15 +174,39 @@ struct tex_entry {
 	const struct texture *tex;  /* the texture there */
 };
 
-struct texture {
-	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
+/* A texture's parts beside its pigment, in a record of their own so that
+ * the common texture (a pigment of its own) stays small: shared by every
+ * texture that has the same, never written through (a change makes a new
+ * record; docs/design.md §1, "A lean scene model"). */
+struct tex_ext {
+	const struct finish *finish;  /* shared: never NULL, never written through */
 	const struct tnormal *normal; /* NULL: none */
-	const struct finish *finish; /* shared: never NULL, never written through */
-	struct srcloc loc; /* where the texture was written */
-	int nmap;                     /* entries in map (beside loc: no padding) */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
 	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
+	struct srcloc loc;            /* where the texture was written */
+	int nmap;                     /* entries in map (beside loc: no padding) */
 };
+
+struct texture {
+	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
+	const struct tex_ext *ext;    /* shared: never written through; NULL: tex_ext_none */
+};
+
+/* The record of a texture with the default finish, no normal, map or
+ * layer and no location. */
+extern const struct tex_ext tex_ext_none;
+
+/* The parts of t kept in its record (tex_ext_none when it has none). */
+static inline const struct tex_ext *tex_x(const struct texture *t)
+{
+	return t->ext ? t->ext : &tex_ext_none;
+}
+static inline const struct finish *tex_finish(const struct texture *t) { return tex_x(t)->finish; }
+static inline const struct tnormal *tex_normal(const struct texture *t) { return tex_x(t)->normal; }
+static inline const struct tex_entry *tex_map(const struct texture *t) { return tex_x(t)->map; }
+static inline int tex_nmap(const struct texture *t) { return tex_x(t)->nmap; }
+static inline const struct texture *tex_below(const struct texture *t) { return tex_x(t)->below; }
+static inline struct srcloc tex_loc(const struct texture *t) { return tex_x(t)->loc; }
 
 /* ---- objects ------------------------------------------------------------ */
 

@@ -169,7 +169,7 @@ static bool is_specular(const struct scene *s, const struct object *o)
 		return false;
 	}
 	const struct texture *t = mat_texture(o);
-	const struct finish *f = t->finish;
+	const struct finish *f = tex_finish(t);
 	const struct pigment *p = &t->pigment;
 	bool refl = maxc(opt_rgb(f->refl_min)) > 0 || maxc(opt_rgb(f->refl_max)) > 0;
 	bool trans = p->kind == PIG_SOLID ? p->c[0].f + p->c[0].t > 0 : true;
