@@ -55,7 +55,7 @@ struct surf {
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
 static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
-static double v_maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+static double v_maxc(struct vec3 a) { return d_max(a.x, d_max(a.y, a.z)); }
 
 /* The query flag for hits shaded here: (u,v) are looked at only to read
  * illumination maps (caustic_at). */
@@ -64,7 +64,7 @@ static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : B
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static double eps_at(struct vec3 p)
 {
-	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+	return 1e-7 * (1 + d_max(fabs(p.x), d_max(fabs(p.y), fabs(p.z))));
 }
 
 /* ==== lights ============================================================= */
