@@ -633,8 +633,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
-	if (ctx->beauty_only) { /* the same radiance, without the layers */
-		memset(out, 0, sizeof *out);
+	if (ctx->beauty_only) { /* the same radiance, without the layers (left unset) */
 		for (int i = 0; i < ctx->spp; i++) {
 			struct path pa;
 			struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
