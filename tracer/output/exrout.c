@@ -145,6 +145,10 @@ static exr_result_t write_header(exr_context_t ctx, const struct framebuffer *fb
 	centre.x = 0, centre.y = 0;
 	TRY(exr_initialize_required_attr(ctx, part, &disp, &data, 1.0f, &centre, 1.0f,
 	                                 EXR_LINEORDER_INCREASING_Y, core_compression(o->compression)));
+	/* zlib level 4, OpenEXR's default since 3.2 (3.1 uses 6): a 1280x960
+	 * render's 27 layers compress in 28 % less time, 2.6 % larger */
+	if (o->compression == OUT_EXR_ZIP || o->compression == OUT_EXR_ZIPS)
+		TRY(exr_set_zip_compression_level(ctx, part, EXR_ZIP_LEVEL));
 	for (int i = 0; i < fb->count; i++) {
 		const char *name = fb->planes[i].name;
 		int half = o->half && strcmp(name, "Z") != 0;

@@ -66,6 +66,9 @@ void out_meta_add(struct out_exr_meta *m, const char *key, const char *fmt, ...)
 #endif
     ;
 
+/* The zlib level of ZIP and ZIPS files (exrout.c). */
+#define EXR_ZIP_LEVEL 4
+
 /* Parses "none" "zip" "zips" "piz" "rle" into *out; returns 0, or -1 when the
  * name is unknown (out untouched). */
 int out_exr_compression_parse(const char *name, enum out_exr_compression *out);
