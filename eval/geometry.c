@@ -100,19 +100,19 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 			o->tex = s->own_tex;
 			s->own_obj = o;
 		}
-		if (o->tex->loc.file < 0)
-			o->tex->loc = n->loc;
+		if (tex_loc(o->tex).file < 0)
+			tex_set_loc(E, o->tex, n->loc);
 		if (n->op == TK_PIGMENT)
 			run_block(E, n, SK_PIGMENT, &o->tex->pigment, &sub);
 		else if (n->op == TK_NORMAL)
-			o->tex->normal = normal_block(E, n);
+			tex_set_normal(E, o->tex, normal_block(E, n));
 		else
-			finish_block(E, n, &o->tex->finish);
+			tex_set_finish(E, o->tex, finish_block(E, n, tex_finish(o->tex)));
 	} else if (n->op == TK_INTERIOR) {
 		struct interior *in = NEW(E, struct interior);
-		*in = o->interior ? *o->interior : scene_default_interior();
+		*in = obj_interior(o) ? *obj_interior(o) : scene_default_interior();
 		run_block(E, n, SK_INTERIOR, in, &sub);
-		o->interior = in;
+		obj_extra_w(&SC(E)->arena, o)->interior = in;
 	} else if (n->op == TK_TEXTURE) {
 		struct value v = eval_block(E, n);
 		if (s->pending & 1) { /* a second texture in the block: a layer on top */
@@ -128,7 +128,7 @@ static void object_material_block(struct eval *E, struct sink *s, struct object 
 		if (v.p.mat->tex)
 			o->tex = v.p.mat->tex;
 		if (v.p.mat->interior)
-			o->interior = v.p.mat->interior;
+			obj_extra_w(&SC(E)->arena, o)->interior = v.p.mat->interior;
 	}
 	(void)s;
 }
@@ -624,16 +624,18 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	case TK_PHOTONS: {
 		struct sink sub;
-		o->has_photons = true;
-		o->photons = (struct photon_spec){.spacing = 1, .collect = true};
-		sink_init(&sub, SK_PHOTONS, TK_OBJECT, n->loc, &o->photons);
+		struct obj_extra *x = obj_extra_w(&SC(E)->arena, o);
+		x->has_photons = true;
+		x->photons = (struct photon_spec){.spacing = 1, .collect = true};
+		sink_init(&sub, SK_PHOTONS, TK_OBJECT, n->loc, &x->photons);
 		eval_items(E, n, &sub);
 		return;
 	}
 	case TK_ILLUM_MAP: {
 		struct sink sub;
-		run_block(E, n, SK_ILLUM_MAP, &o->illum, &sub);
-		if (o->illum.resolution && o->illum.cell)
+		struct obj_extra *x = obj_extra_w(&SC(E)->arena, o);
+		run_block(E, n, SK_ILLUM_MAP, &x->illum, &sub);
+		if (x->illum.resolution && x->illum.cell)
 			eval_fail(E, n->loc, "illum_map takes 'resolution' or 'cell', not both");
 		return;
 	}
@@ -1007,22 +1009,46 @@ struct value object_block(struct eval *E, const struct node *blk)
 	return v;
 }
 
-/* Children without their own texture, interior or photons { } take the
- * parent's; the visibility flags pass down too. */
-void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
-               const struct object *parent)
+/* The last extra record propagate made: siblings that had the same one
+ * (none, mostly) share its result instead of a copy each. */
+struct prop_memo {
+	const struct obj_extra *from, *parent_ext, *to;
+	const struct interior *in;
+};
+
+static void prop(struct eval *E, struct object *o, struct texture *tex, struct interior *in, unsigned flags,
+                 const struct obj_extra *pext, struct prop_memo *m)
 {
 	const unsigned inherit = OF_NO_SHADOW | OF_NO_IMAGE | OF_NO_REFLECTION | OF_DOUBLE_ILLUM;
 	if (!o->tex)
 		o->tex = tex;
-	if (!o->interior)
-		o->interior = in;
 	o->flags |= flags & inherit;
-	if (parent && parent->has_photons && !o->has_photons) {
-		o->photons = parent->photons;
-		o->has_photons = true;
+	bool need_in = in && !obj_interior(o);
+	bool need_ph = pext && pext->has_photons && !obj_photons(o);
+	if (need_in || need_ph) {
+		if (m->to && m->from == o->ext && m->in == in && m->parent_ext == pext) {
+			o->ext = m->to;
+		} else {
+			const struct obj_extra *from = o->ext;
+			struct obj_extra *x = obj_extra_w(&SC(E)->arena, o);
+			if (need_in)
+				x->interior = in;
+			if (need_ph) {
+				x->photons = pext->photons;
+				x->has_photons = true;
+			}
+			*m = (struct prop_memo){from, pext, x, in};
+		}
 	}
 	if (o->kind >= OBJ_FIRST_CSG)
 		for (int i = 0; i < o->g.csg.n; i++)
-			propagate(o->g.csg.kids[i], o->tex, o->interior, o->flags, o);
+			prop(E, o->g.csg.kids[i], o->tex, obj_interior(o), o->flags, o->ext, m);
+}
+
+/* Children without their own texture, interior or photons { } take the
+ * parent's; the visibility flags pass down too. */
+void propagate(struct eval *E, struct object *o, struct texture *tex)
+{
+	struct prop_memo m = {0};
+	prop(E, o, tex, NULL, 0, NULL, &m);
 }

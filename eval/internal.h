@@ -18,6 +18,7 @@
 #define MAX_SCOPES 512        /* scope stack */
 #define MAX_EVAL_DEPTH 2000   /* evaluator recursion: item lists and expressions */
 #define TEX_SEEN 1024         /* textures texture_share remembers */
+#define EXT_SEEN 8            /* texture records tex_ext_set remembers */
 
 struct scope;
 struct entry;
@@ -96,6 +97,8 @@ struct eval {
 	struct inc_cache *includes; /* files already parsed, by real path */
 	const struct texture *tex_seen[TEX_SEEN]; /* texture_share's recent textures, by hash */
 	uint64_t tex_hash[TEX_SEEN]; /* and their hashes */
+	const struct tex_ext *ext_seen[EXT_SEEN]; /* tex_ext_set's recent records */
+	int ext_next;              /* the slot the next new record takes */
 	int missing;               /* a file the scene names is missing or unreadable (exit 66) */
 };
 
@@ -184,14 +187,25 @@ struct texture *texture_copy(struct eval *E, const struct texture *t);
 /* A scene texture equal to *t: one made before when it is among the recent
  * ones (at most TEX_SEEN, by content), else a fresh copy. */
 struct texture *texture_share(struct eval *E, const struct texture *t);
+/* Gives t the record *x (its normal, map, layer and location): one of the
+ * EXT_SEEN recent records when equal, so that the textures a loop writes at
+ * one place share one; else a fresh scene copy; NULL when x is
+ * tex_ext_none. Records are never written through. */
+void tex_ext_set(struct eval *E, struct texture *t, const struct tex_ext *x);
+/* One part of t's record changed, by tex_ext_set. */
+void tex_set_loc(struct eval *E, struct texture *t, struct srcloc loc);
+void tex_set_finish(struct eval *E, struct texture *t, const struct finish *f);
+void tex_set_normal(struct eval *E, struct texture *t, const struct tnormal *n);
+void tex_set_below(struct eval *E, struct texture *t, const struct texture *below);
+void tex_set_map(struct eval *E, struct texture *t, const struct tex_entry *map, int nmap);
 /* Evaluates a block's items into a fresh sink of the given kind. */
 void run_block(struct eval *E, const struct node *blk, enum sink_kind kind, void *target, struct sink *out);
 /* A transform old (NULL: identity) followed by X, in a slot of its own, since
  * copied objects and textures may share old; NULL when it is the identity. */
 const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X);
-/* A finish { } block n on a texture's finish *f: it changes a copy, since
- * textures share finishes (the default one, a declared texture's). */
-void finish_block(struct eval *E, const struct node *n, const struct finish **f);
+/* A finish { } block n on a texture's finish f: the changed finish, a copy,
+ * since textures share finishes (the default one, a declared texture's). */
+const struct finish *finish_block(struct eval *E, const struct node *n, const struct finish *f);
 /* p's pattern settings, made its own to be written (pigments share them). */
 struct pattern *pat_w(struct eval *E, struct pigment *p);
 /* A fresh texture: top (and the layers under it) layered over bottom. */
@@ -217,8 +231,7 @@ void list_value(struct eval *E, struct sink *s, const struct value *v, struct sr
 struct value object_block(struct eval *E, const struct node *blk);
 /* Children without their own texture, interior or photons { } take the
  * parent's; the visibility flags pass down too. */
-void propagate(struct object *o, struct texture *tex, struct interior *in, unsigned flags,
-               const struct object *parent);
+void propagate(struct eval *E, struct object *o, struct texture *tex);
 
 /* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
 /* Takes a positional value or a leading keyword (linear_spline, conic_sweep,

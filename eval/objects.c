@@ -153,6 +153,69 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 	return c;
 }
 
+static bool ext_equal(const struct tex_ext *a, const struct tex_ext *b)
+{
+	return a->finish == b->finish && a->normal == b->normal && a->map == b->map && a->below == b->below && a->nmap == b->nmap &&
+	       a->loc.file == b->loc.file && a->loc.line == b->loc.line && a->loc.col == b->loc.col;
+}
+
+void tex_ext_set(struct eval *E, struct texture *t, const struct tex_ext *x)
+{
+	if (ext_equal(x, &tex_ext_none)) {
+		t->ext = NULL;
+		return;
+	}
+	for (int i = 1; i <= EXT_SEEN; i++) { /* the latest first */
+		const struct tex_ext *r = E->ext_seen[(E->ext_next + EXT_SEEN - i) % EXT_SEEN];
+		if (!r)
+			break;
+		if (ext_equal(r, x)) {
+			t->ext = r;
+			return;
+		}
+	}
+	struct tex_ext *c = NEW(E, struct tex_ext);
+	*c = *x;
+	E->ext_seen[E->ext_next] = t->ext = c;
+	E->ext_next = (E->ext_next + 1) % EXT_SEEN;
+}
+
+void tex_set_loc(struct eval *E, struct texture *t, struct srcloc loc)
+{
+	struct tex_ext x = *tex_x(t);
+	x.loc = loc;
+	tex_ext_set(E, t, &x);
+}
+
+void tex_set_finish(struct eval *E, struct texture *t, const struct finish *f)
+{
+	struct tex_ext x = *tex_x(t);
+	x.finish = f;
+	tex_ext_set(E, t, &x);
+}
+
+void tex_set_normal(struct eval *E, struct texture *t, const struct tnormal *n)
+{
+	struct tex_ext x = *tex_x(t);
+	x.normal = n;
+	tex_ext_set(E, t, &x);
+}
+
+void tex_set_below(struct eval *E, struct texture *t, const struct texture *below)
+{
+	struct tex_ext x = *tex_x(t);
+	x.below = below;
+	tex_ext_set(E, t, &x);
+}
+
+void tex_set_map(struct eval *E, struct texture *t, const struct tex_entry *map, int nmap)
+{
+	struct tex_ext x = *tex_x(t);
+	x.map = map;
+	x.nmap = nmap;
+	tex_ext_set(E, t, &x);
+}
+
 /* The fields of a texture as words, bit for bit (padding left out), for
  * sharing. */
 #define TEX_WORDS 14
@@ -165,12 +228,13 @@ static void tex_key(const struct texture *t, uint64_t k[TEX_WORDS])
 	k[5] = (uint64_t)t->pigment.kind;
 	k[6] = (uint64_t)(uintptr_t)t->pigment.pat;
 	k[7] = (uint64_t)(uintptr_t)t->pigment.xf;
-	k[8] = (uint64_t)(uintptr_t)t->normal;
-	k[9] = (uint64_t)(uintptr_t)t->finish;
-	k[10] = (uint64_t)(uintptr_t)t->map;
-	k[11] = (uint64_t)(uintptr_t)t->below;
-	k[12] = (uint64_t)(uint32_t)t->loc.file << 32 | (uint32_t)t->loc.line;
-	k[13] = (uint64_t)(uint32_t)t->loc.col << 32 | (uint32_t)t->nmap;
+	const struct tex_ext *x = tex_x(t); /* by content: equal records may be two */
+	k[8] = (uint64_t)(uintptr_t)x->normal;
+	k[9] = (uint64_t)(uintptr_t)x->finish;
+	k[10] = (uint64_t)(uintptr_t)x->map;
+	k[11] = (uint64_t)(uintptr_t)x->below;
+	k[12] = (uint64_t)(uint32_t)x->loc.file << 32 | (uint32_t)x->loc.line;
+	k[13] = (uint64_t)(uint32_t)x->loc.col << 32 | (uint32_t)x->nmap;
 }
 
 /* A loop that makes the same texture over and over (a colour of a few, a
@@ -210,26 +274,30 @@ struct texture *texture_share(struct eval *E, const struct texture *t)
 void texture_transform(struct eval *E, struct texture *t, const struct xform *X)
 {
 	t->pigment.xf = xform_then(E, t->pigment.xf, X);
-	if (t->below) { /* and the layers under it */
-		struct texture *b = texture_copy(E, t->below);
+	if (!t->ext)
+		return;
+	struct tex_ext x = *t->ext;
+	if (x.below) { /* and the layers under it */
+		struct texture *b = texture_copy(E, x.below);
 		texture_transform(E, b, X);
-		t->below = b;
+		x.below = b;
 	}
-	if (t->map) { /* a texture_map's textures move with it */
-		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap);
-		for (int i = 0; i < t->nmap; i++) {
-			struct texture *c = texture_copy(E, t->map[i].tex);
+	if (x.map) { /* a texture_map's textures move with it */
+		struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, x.nmap);
+		for (int i = 0; i < x.nmap; i++) {
+			struct texture *c = texture_copy(E, x.map[i].tex);
 			texture_transform(E, c, X);
-			m[i] = (struct tex_entry){t->map[i].pos, c};
+			m[i] = (struct tex_entry){x.map[i].pos, c};
 		}
-		t->map = m;
+		x.map = m;
 	}
-	if (t->normal) {
+	if (x.normal) {
 		struct tnormal *nr = NEW(E, struct tnormal);
-		*nr = *t->normal;
+		*nr = *x.normal;
 		nr->pat.xf = xform_then(E, nr->pat.xf, X);
-		t->normal = nr;
+		x.normal = nr;
 	}
+	tex_ext_set(E, t, &x);
 }
 
 const struct xform *xform_then(struct eval *E, const struct xform *old, const struct xform *X)
@@ -240,18 +308,16 @@ const struct xform *xform_then(struct eval *E, const struct xform *old, const st
 	return xf_is_identity(x) ? NULL : x;
 }
 
-void finish_block(struct eval *E, const struct node *n, const struct finish **f)
+const struct finish *finish_block(struct eval *E, const struct node *n, const struct finish *f)
 {
 	struct sink sub;
-	struct finish c = **f;
+	struct finish c = *f;
 	run_block(E, n, SK_FINISH, &c, &sub);
-	if (E->last_finish && memcmp(E->last_finish, &c, sizeof c) == 0) {
-		*f = E->last_finish; /* a loop writing the same finish shares one */
-		return;
-	}
+	if (E->last_finish && memcmp(E->last_finish, &c, sizeof c) == 0)
+		return E->last_finish; /* a loop writing the same finish shares one */
 	struct finish *k = NEW(E, struct finish);
 	*k = c;
-	*f = E->last_finish = k;
+	return E->last_finish = k;
 }
 
 /* Evaluates a block's items into a fresh sink of the given kind. */
@@ -286,7 +352,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 	case TK_TEXTURE:
 		v.kind = V_TEXTURE;
 		v.p.tex = texture_copy(E, NULL);
-		v.p.tex->loc = blk->loc;
+		tex_set_loc(E, v.p.tex, blk->loc);
 		run_block(E, blk, SK_TEXTURE, v.p.tex, &s);
 		if (blk->c) /* texture { A } texture { B }: B layered over A */
 			v.p.tex = texture_layered(E, v.p.tex, eval_block(E, blk->c).p.tex);
@@ -300,7 +366,7 @@ struct value eval_block(struct eval *E, const struct node *blk)
 	case TK_FINISH:
 		v.kind = V_FINISH;
 		v.p.fin = NEW(E, struct finish);
-		*v.p.fin = *scene_default_texture().finish;
+		*v.p.fin = *tex_ext_none.finish;
 		run_block(E, blk, SK_FINISH, v.p.fin, &s);
 		return v;
 	case TK_INTERIOR:
@@ -376,7 +442,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 		/* the #default in force now is the one this object gets */
 		if (!E->default_shared)
 			E->default_shared = texture_copy(E, &E->default_tex);
-		propagate(o, E->default_shared, NULL, 0, NULL);
+		propagate(E, o, E->default_shared);
 		scene_add_object(sc, o);
 		return;
 	}
@@ -391,7 +457,7 @@ static void scene_keyword(struct eval *E, struct sink *s, const struct node *n)
 			o->flags |= OF_NO_SHADOW;
 			if (!E->default_shared)
 				E->default_shared = texture_copy(E, &E->default_tex);
-			propagate(o, E->default_shared, NULL, 0, NULL);
+			propagate(E, o, E->default_shared);
 			scene_add_object(sc, o);
 			eval_count_object(E, n->loc);
 		}
@@ -436,10 +502,10 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		finish_block(E, n, &t->finish);
+		tex_set_finish(E, t, finish_block(E, n, tex_finish(t)));
 	else if (n->op == TK_NORMAL) {
 		E->in_default++;
-		t->normal = normal_block(E, n);
+		tex_set_normal(E, t, normal_block(E, n));
 		E->in_default--;
 	} else {
 		misplaced(E, s, n);

@@ -351,7 +351,7 @@ static void tex_entry_cb(struct eval *E, void *out, const struct node *n)
 		eval_fail(E, n->loc, "a texture_map entry is [position texture]");
 	e->pos = entry_pos(E, n, &first);
 	struct texture *t = texture_copy(E, NULL);
-	t->loc = n->loc;
+	tex_set_loc(E, t, n->loc);
 	struct sink s;
 	sink_init(&s, SK_TEXTURE, TK_TEXTURE_MAP, n->loc, t);
 	for (int i = first; i < n->nkids; i++)
@@ -382,8 +382,7 @@ void texture_map_block(struct eval *E, struct texture *t, const struct node *n)
 {
 	void *arr;
 	int k = map_entries(E, n, sizeof(struct tex_entry), &arr, tex_entry_cb, "texture_map");
-	t->map = arr;
-	t->nmap = k;
+	tex_set_map(E, t, arr, k);
 }
 
 void normal_map_block(struct eval *E, struct tnormal *t, const struct node *n)
@@ -437,6 +436,5 @@ void tiles_block(struct eval *E, struct texture *t, const struct node *n)
 	m[1] = (struct tex_entry){1, tile[0]};
 	t->pigment = scene_default_texture().pigment;
 	t->pigment.kind = PIG_CHECKER;
-	t->map = m;
-	t->nmap = 2;
+	tex_set_map(E, t, m, 2);
 }

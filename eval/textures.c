@@ -335,40 +335,39 @@ void texture_layer(struct eval *E, struct texture *t, const struct texture *top)
 	struct texture *below = texture_copy(E, t);
 	const struct texture *bottom = top;
 	int depth = 0;
-	while (bottom->below && depth++ < 64) /* top may be layered itself */
-		bottom = bottom->below;
+	while (tex_below(bottom) && depth++ < 64) /* top may be layered itself */
+		bottom = tex_below(bottom);
 	if (depth >= 64)
 		eval_fail(E, E->stmt, "more than 64 texture layers");
 	if (bottom == top) {
 		*t = *top;
-		t->below = below;
+		tex_set_below(E, t, below);
 		return;
 	}
 	/* copy top's chain, its last layer resting on below */
 	struct texture *k = t;
 	*t = *top;
-	while (k->below) {
-		struct texture *next = texture_copy(E, k->below);
-		k->below = next;
+	while (tex_below(k)) {
+		struct texture *next = texture_copy(E, tex_below(k));
+		tex_set_below(E, k, next);
 		k = next;
 	}
-	k->below = below;
+	tex_set_below(E, k, below);
 }
 
 /* The next texture of checker, hexagon or brick texture t. */
 static void texture_entry(struct eval *E, struct texture *t, const struct texture *k, struct srcloc loc)
 {
 	enum pigment_kind pk = t->pigment.kind;
-	int most = pk == PIG_HEXAGON ? 3 : 2;
-	if (t->nmap >= most)
+	int most = pk == PIG_HEXAGON ? 3 : 2, n = tex_nmap(t);
+	if (n >= most)
 		eval_fail(E, loc, "%s takes %d textures, found more",
 		          pk == PIG_HEXAGON ? "hexagon" : pk == PIG_BRICK ? "brick" : "checker", most);
-	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, t->nmap + 1);
-	if (t->nmap)
-		memcpy(m, t->map, sizeof *m * (size_t)t->nmap);
-	m[t->nmap] = (struct tex_entry){t->nmap, k};
-	t->map = m;
-	t->nmap++;
+	struct tex_entry *m = ARENA_ARRAY(&SC(E)->arena, struct tex_entry, n + 1);
+	if (n)
+		memcpy(m, tex_map(t), sizeof *m * (size_t)n);
+	m[n] = (struct tex_entry){n, k};
+	tex_set_map(E, t, m, n + 1);
 }
 
 void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
@@ -410,11 +409,11 @@ void texture_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	if (n->op == TK_NORMAL)
-		t->normal = normal_block(E, n);
+		tex_set_normal(E, t, normal_block(E, n));
 	else if (n->op == TK_PIGMENT)
 		run_block(E, n, SK_PIGMENT, &t->pigment, &sub);
 	else if (n->op == TK_FINISH)
-		finish_block(E, n, &t->finish);
+		tex_set_finish(E, t, finish_block(E, n, tex_finish(t)));
 	else
 		misplaced(E, s, n);
 }

@@ -193,7 +193,7 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
                               struct vec3 q, double w, bool test, struct vec3 *E, struct vec3 *H)
 {
 	const struct scene *s = pa->ctx->scene;
-	const struct finish *f = sf->tex->finish;
+	const struct finish *f = tex_finish(sf->tex);
 	struct vec3 L;
 	double dist = towards(l, sf->h->p, q, &L), c = v_dot(sf->nf, L);
 	if (c <= 0)
@@ -291,12 +291,12 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	const struct interior *in = mat_interior(sf->h->obj);
 	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
-	const struct finish *f = sf->tex->finish;
+	const struct finish *f = tex_finish(sf->tex);
 	if (!clear && no_colour(f->refl_min) && no_colour(f->refl_max))
 		return v3(0, 0, 0); /* neither reflects nor transmits: R = T = 0 */
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
-	struct surf_in si = {sf->h, sf->tex->finish, sf->pc, in, d, sf->nf,
+	struct surf_in si = {sf->h, tex_finish(sf->tex), sf->pc, in, d, sf->nf,
 	                     pa->ctx->scene->legacy_lights, false};
 	struct surf_out so;
 	surf_scatter(&si, pa->band, &so);
@@ -334,12 +334,12 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
-	if (sf.tex->normal) /* as POV-Ray: the normal facing the eye is perturbed */
-		sf.nf = pattern_perturb(sf.tex->normal, h->p, sf.nf);
+	if (tex_normal(sf.tex)) /* as POV-Ray: the normal facing the eye is perturbed */
+		sf.nf = pattern_perturb(tex_normal(sf.tex), h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
 		sf.opacity = fmin(1, fmax(0, sf.opacity));
-	const struct finish *f = sf.tex->finish;
+	const struct finish *f = tex_finish(sf.tex);
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0), H = v3(0, 0, 0), lit = v3(0, 0, 0);
 	struct vec3 emis = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
 	                                   col3(f->emission)));
@@ -386,17 +386,19 @@ static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct 
 static struct vec3 shade_average(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
                                  int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
 {
+	const struct tex_entry *m = tex_map(t);
+	int nmap = tex_nmap(t);
 	double total = 0;
-	for (int i = 0; i < t->nmap; i++)
-		total += t->map[i].pos;
+	for (int i = 0; i < nmap; i++)
+		total += m[i].pos;
 	struct vec3 out = v3(0, 0, 0);
 	if (total == 0)
 		return out;
 	struct aov start = aov ? *aov : (struct aov){0}, sum = start;
-	for (int i = 0; i < t->nmap; i++) {
-		double w = t->map[i].pos / total;
+	for (int i = 0; i < nmap; i++) {
+		double w = m[i].pos / total;
 		struct aov a = start;
-		struct vec3 c = shade_map(pa, h, t->map[i].tex, d, depth, weight * fabs(w), skip, aov ? &a : NULL,
+		struct vec3 c = shade_map(pa, h, m[i].tex, d, depth, weight * fabs(w), skip, aov ? &a : NULL,
 		                          level + 1, upper);
 		out = v_madd(out, c, w);
 		if (aov) {
@@ -415,24 +417,26 @@ static struct vec3 shade_average(struct path *pa, const struct hit *h, const str
 static struct vec3 shade_map(struct path *pa, const struct hit *h, const struct texture *t, struct vec3 d,
                              int depth, double weight, unsigned skip, struct aov *aov, int level, bool upper)
 {
-	if (t->below && level <= 16) { /* layered: this layer, then what shows through it */
+	if (tex_below(t) && level <= 16) { /* layered: this layer, then what shows through it */
 		struct colour pc = mat_pigment(pa->ctx->mats, &t->pigment, h->p);
 		struct vec3 through = v_add(v_scale(col3(pc), pc.f), v3(pc.t, pc.t, pc.t));
 		struct texture self = *t; /* the layer alone */
-		self.below = NULL;
+		struct tex_ext alone = *t->ext;
+		alone.below = NULL;
+		self.ext = &alone;
 		struct vec3 out = shade_map(pa, h, &self, d, depth, weight, skip, aov, level + 1, true);
 		if (v_maxc(through) <= 0)
 			return out;
 		struct aov under;
 		if (aov)
 			under = *aov;
-		struct vec3 b = shade_map(pa, h, t->below, d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
+		struct vec3 b = shade_map(pa, h, tex_below(t), d, depth, weight * v_maxc(through), skip, aov ? &under : NULL,
 		                          level + 1, false);
 		if (aov)
 			aov_blend(aov, &under, 1, v_maxc(through));
 		return v_add(out, v_mul(through, b));
 	}
-	if (!t->map || level > 16)
+	if (!tex_map(t) || level > 16)
 		return shade_tex(pa, h, t, d, depth, weight, skip, aov, upper);
 	if (t->pigment.kind == PIG_PATTERN && pig_pattern(&t->pigment)->pattern == PAT_AVERAGE)
 		return shade_average(pa, h, t, d, depth, weight, skip, aov, level, upper);

@@ -59,10 +59,10 @@ static int load_pigment(struct mat_cache *c, const struct pigment *pg, const cha
 static int load_texture(struct mat_cache *c, const struct texture *t, const char *ocio, struct diag *dg, int depth)
 {
 	int err = depth > 32 ? 0 : load_pigment(c, &t->pigment, ocio, dg, depth);
-	for (int i = 0; !err && depth <= 32 && i < t->nmap; i++)
-		err = load_texture(c, t->map[i].tex, ocio, dg, depth + 1);
-	if (!err && depth <= 32 && t->below)
-		err = load_texture(c, t->below, ocio, dg, depth + 1);
+	for (int i = 0; !err && depth <= 32 && i < tex_nmap(t); i++)
+		err = load_texture(c, tex_map(t)[i].tex, ocio, dg, depth + 1);
+	if (!err && depth <= 32 && tex_below(t))
+		err = load_texture(c, tex_below(t), ocio, dg, depth + 1);
 	return err;
 }
 
@@ -123,7 +123,8 @@ const struct texture *mat_texture(const struct object *o)
 const struct interior *mat_interior(const struct object *o)
 {
 	static const struct interior def = {1, 1, 7, 0, 0, {0, 0, 0, 0, 0}, 0};
-	return o->interior ? o->interior : &def;
+	const struct interior *in = obj_interior(o);
+	return in ? in : &def;
 }
 
 /* ==== patterns =========================================================== */
@@ -308,8 +309,8 @@ struct colour mat_pigment(const struct mat_cache *c, const struct pigment *pg, s
 int mat_texture_pick(const struct mat_cache *c, const struct texture *t, struct vec3 p,
                      const struct texture *out[2], double w[2])
 {
-	const struct tex_entry *m = t->map;
-	int n = t->nmap, i = 0;
+	const struct tex_entry *m = tex_map(t);
+	int n = tex_nmap(t), i = 0;
 	double v = value_at(c, &t->pigment, pattern_point(&t->pigment, p), 0);
 	w[0] = 1, w[1] = 0;
 	if (v >= m[n - 1].pos) {
@@ -329,7 +330,7 @@ int mat_texture_pick(const struct mat_cache *c, const struct texture *t, struct 
 
 const struct texture *mat_texture_leaf(const struct mat_cache *c, const struct texture *t, struct vec3 p)
 {
-	for (int depth = 0; t->map && depth < 16; depth++) {
+	for (int depth = 0; tex_map(t) && depth < 16; depth++) {
 		const struct texture *k[2];
 		double w[2];
 		int n = mat_texture_pick(c, t, p, k, w);

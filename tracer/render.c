@@ -157,10 +157,11 @@ static long photon_rays(const struct scene *s)
 		return 1000000;
 	for (int i = 0; i < s->nobjects; i++) {
 		const struct object *o = s->objects[i];
-		if (!o->has_photons || !o->photons.target || !shape_bounded(o))
+		const struct photon_spec *ph = obj_photons(o);
+		if (!ph || !ph->target || !shape_bounded(o))
 			continue;
 		struct bbox bb = shape_bounds(o);
-		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)), sp = S * o->photons.spacing;
+		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)), sp = S * ph->spacing;
 		n += M_PI * r * r / (sp * sp);
 	}
 	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 1000000;

@@ -52,10 +52,11 @@ struct texture scene_default_texture(void)
 	memset(&t, 0, sizeof t);
 	t.pigment.kind = PIG_SOLID;
 	t.pigment.xf = NULL;
-	t.finish = &default_finish;
-	t.loc = (struct srcloc){-1, 0, 0};
+	t.ext = NULL; /* tex_ext_none */
 	return t;
 }
+
+const struct tex_ext tex_ext_none = {.finish = &default_finish, .loc = {-1, 0, 0}};
 
 struct interior scene_default_interior(void)
 {
@@ -136,6 +137,14 @@ struct object *obj_copy(struct arena *a, const struct object *o)
 	struct object *c = arena_alloc8(a, n);
 	memcpy(c, o, n);
 	return c;
+}
+
+struct obj_extra *obj_extra_w(struct arena *a, struct object *o)
+{
+	struct obj_extra *x = arena_alloc8(a, sizeof *x);
+	*x = o->ext ? *o->ext : (struct obj_extra){0};
+	o->ext = x;
+	return x;
 }
 
 /* The top-level list is one malloc'd array (freed by scene_free), not an
@@ -349,34 +358,37 @@ static void dump_object(FILE *o, const struct object *ob, int d)
 	}
 	if (ob->tex) {
 		indent(o, d + 1);
-		fprintf(o, "texture @%d:%d\n", ob->tex->loc.line, ob->tex->loc.col);
+		const struct tex_ext *x = tex_x(ob->tex);
+		fprintf(o, "texture @%d:%d\n", x->loc.line, x->loc.col);
 		dump_pigment(o, &ob->tex->pigment, d + 2);
-		dump_finish(o, ob->tex->finish, d + 2);
-		if (ob->tex->normal)
-			dump_normal(o, ob->tex->normal, d + 2);
-		for (int i = 0; i < ob->tex->nmap; i++) {
+		dump_finish(o, x->finish, d + 2);
+		if (x->normal)
+			dump_normal(o, x->normal, d + 2);
+		for (int i = 0; i < x->nmap; i++) {
+			const struct texture *k = x->map[i].tex;
 			indent(o, d + 2);
-			fprintf(o, "[%.6g texture\n", ob->tex->map[i].pos);
-			dump_pigment(o, &ob->tex->map[i].tex->pigment, d + 3);
-			dump_finish(o, ob->tex->map[i].tex->finish, d + 3);
-			if (ob->tex->map[i].tex->normal)
-				dump_normal(o, ob->tex->map[i].tex->normal, d + 3);
+			fprintf(o, "[%.6g texture\n", x->map[i].pos);
+			dump_pigment(o, &k->pigment, d + 3);
+			dump_finish(o, tex_finish(k), d + 3);
+			if (tex_normal(k))
+				dump_normal(o, tex_normal(k), d + 3);
 		}
 	}
-	if (ob->interior) {
-		const struct interior *in = ob->interior;
+	if (obj_interior(ob)) {
+		const struct interior *in = obj_interior(ob);
 		indent(o, d + 1);
 		fprintf(o, "interior ior %.6g dispersion %.6g dispersion_samples %d fade_distance %.6g fade_power %.6g fade_color ",
 		        in->ior, in->dispersion, in->dispersion_samples, in->fade_distance, in->fade_power);
 		pc(o, in->fade_color);
 		fputc('\n', o);
 	}
-	if (ob->illum.resolution || ob->illum.cell) {
+	struct illum_spec il = obj_illum(ob);
+	if (il.resolution || il.cell) {
 		indent(o, d + 1);
-		fprintf(o, "illum_map resolution %d cell %.6g\n", ob->illum.resolution, ob->illum.cell);
+		fprintf(o, "illum_map resolution %d cell %.6g\n", il.resolution, il.cell);
 	}
-	if (ob->has_photons) {
-		const struct photon_spec *p = &ob->photons;
+	if (obj_photons(ob)) {
+		const struct photon_spec *p = obj_photons(ob);
 		indent(o, d + 1);
 		fprintf(o, "photons target %d spacing %.6g refraction %d reflection %d collect %d pass_through %d\n",
 		        p->target, p->spacing, p->refraction, p->reflection, p->collect, p->pass_through);

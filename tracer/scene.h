@@ -174,15 +174,39 @@ struct tex_entry {
 	const struct texture *tex;  /* the texture there */
 };
 
-struct texture {
-	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
+/* A texture's parts beside its pigment, in a record of their own so that
+ * the common texture (a pigment of its own) stays small: shared by every
+ * texture that has the same, never written through (a change makes a new
+ * record; docs/design.md §1, "A lean scene model"). */
+struct tex_ext {
+	const struct finish *finish;  /* shared: never NULL, never written through */
 	const struct tnormal *normal; /* NULL: none */
-	const struct finish *finish; /* shared: never NULL, never written through */
-	struct srcloc loc; /* where the texture was written */
-	int nmap;                     /* entries in map (beside loc: no padding) */
 	const struct tex_entry *map;  /* texture_map: blended by the pattern (NULL: none) */
 	const struct texture *below;  /* layered textures: the layer under this one (NULL: none) */
+	struct srcloc loc;            /* where the texture was written */
+	int nmap;                     /* entries in map (beside loc: no padding) */
 };
+
+struct texture {
+	struct pigment pigment;       /* the colour; with a texture_map, the pattern */
+	const struct tex_ext *ext;    /* shared: never written through; NULL: tex_ext_none */
+};
+
+/* The record of a texture with the default finish, no normal, map or
+ * layer and no location. */
+extern const struct tex_ext tex_ext_none;
+
+/* The parts of t kept in its record (tex_ext_none when it has none). */
+static inline const struct tex_ext *tex_x(const struct texture *t)
+{
+	return t->ext ? t->ext : &tex_ext_none;
+}
+static inline const struct finish *tex_finish(const struct texture *t) { return tex_x(t)->finish; }
+static inline const struct tnormal *tex_normal(const struct texture *t) { return tex_x(t)->normal; }
+static inline const struct tex_entry *tex_map(const struct texture *t) { return tex_x(t)->map; }
+static inline int tex_nmap(const struct texture *t) { return tex_x(t)->nmap; }
+static inline const struct texture *tex_below(const struct texture *t) { return tex_x(t)->below; }
+static inline struct srcloc tex_loc(const struct texture *t) { return tex_x(t)->loc; }
 
 /* ---- objects ------------------------------------------------------------ */
 
@@ -300,17 +324,24 @@ struct isosurface {
  * union reaches (obj_size), so the union comes last: a sphere takes 104
  * bytes, not the 144 of the largest member. Copy one with obj_copy, never
  * by assignment. */
-struct object {
-	/* what shading and the light pass read */
-	struct texture *tex;         /* NULL: inherit from parent, else default */
+/* What few objects set, kept out of struct object (a million spheres carry
+ * none): behind one pointer, shared by an object's copies and never written
+ * once set (obj_extra_w makes a fresh copy to write). */
+struct obj_extra {
 	struct interior *interior;   /* NULL: inherit from parent, else default */
 	struct illum_spec illum;     /* illum_map { } */
 	struct photon_spec photons;  /* photons { } */
+	bool has_photons;            /* a photons { } block was given */
+};
+
+struct object {
+	/* what shading and the light pass read */
+	struct texture *tex;         /* NULL: inherit from parent, else default */
+	const struct obj_extra *ext; /* NULL: no interior, illum_map or photons */
 	struct srcloc loc;           /* where the object was written */
 	/* what a ray's candidate test reads, together just before the
 	 * geometry: one or two cache lines for a sphere, not two or three */
 	uint8_t kind;                /* enum object_kind */
-	bool has_photons;            /* a photons { } block was given */
 	uint16_t flags;              /* enum object_flags */
 	const struct xform *xf;      /* object frame → world; NULL: identity (obj_xf) */
 	union {
@@ -341,6 +372,24 @@ size_t obj_size(enum object_kind k);
 /* A zeroed object of kind k in arena a (kind set), and a copy of o there. */
 struct object *obj_new(struct arena *a, enum object_kind k);
 struct object *obj_copy(struct arena *a, const struct object *o);
+
+/* The object's own interior (NULL: none given), photons { } (NULL: none)
+ * and illum_map { } (zero: none). */
+static inline struct interior *obj_interior(const struct object *o)
+{
+	return o->ext ? o->ext->interior : NULL;
+}
+static inline const struct photon_spec *obj_photons(const struct object *o)
+{
+	return o->ext && o->ext->has_photons ? &o->ext->photons : NULL;
+}
+static inline struct illum_spec obj_illum(const struct object *o)
+{
+	return o->ext ? o->ext->illum : (struct illum_spec){0, 0};
+}
+/* A fresh copy of o's extra record (zero when it has none), made o's, to
+ * write: records already set may be shared with o's copies. */
+struct obj_extra *obj_extra_w(struct arena *a, struct object *o);
 
 /* The object's frame → world transform (the identity when it has none). */
 static inline const struct xform *obj_xf(const struct object *o)

@@ -73,7 +73,8 @@ static inline bool straight(const struct scene *s, const struct object *o, const
 {
 	if (!s->legacy_lights)
 		return !(in->ior > 0 && in->ior != 1) && !(in->dispersion > 0 && in->dispersion != 1);
-	return !(o->has_photons && o->photons.target && o->photons.refraction);
+	const struct photon_spec *ph = obj_photons(o);
+	return !(ph && ph->target && ph->refraction);
 }
 
 bool surf_straight(const struct scene *s, const struct object *o)
@@ -85,10 +86,10 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
                   struct surf_in *si)
 {
 	const struct texture *t = mat_texture(h->obj);
-	if (t->map) /* a texture_map: the texture at the point */
+	if (tex_map(t)) /* a texture_map: the texture at the point */
 		t = mat_texture_leaf(mc, t, h->p);
 	si->h = h;
-	si->f = t->finish;
+	si->f = tex_finish(t);
 	si->pc = t->pigment.kind == PIG_SOLID ? t->pigment.c[0] : mat_pigment(mc, &t->pigment, h->p);
 	si->in = mat_interior(h->obj);
 	si->d = d;

@@ -8,8 +8,10 @@
 # Uses ${ARVO:-./arvo} and ${POVRAY:-povray}; builds nothing. Every figure is
 # the median of $RUNS runs (default 3). The machine may be shared: compare
 # the ratios, which come from runs made side by side, and the CPU times.
-#   eye       bench/eye/spheres.scn (.pov) with N in $SIZES, ${W}x${H}, $THREADS
-#             threads: arvo's eye-pass time (--stats) against POV-Ray's
+#   eye       each bench/eye scene in $SCENES with N in $SIZES, ${W}x${H},
+#             $THREADS threads: spheres.scn (.pov), N spheres at random in a
+#             box, and grid.scn (.pov), N spheres on a cubic grid in the same
+#             box (the layout issue 13's Embree figures were measured on); arvo's eye-pass time (--stats) against POV-Ray's
 #             "Trace Time" (no start-up, parsing or bounding); ratio =
 #             povray / arvo (target >= 3); and arvo's rays/s/core (target
 #             >= 5e6 at 100k spheres); eye_cpu: the same in CPU seconds
@@ -17,7 +19,8 @@
 #             --stats prints them), steadier than wall time on a busy machine
 #             eye_rate_cpu: rays per CPU second of the eye pass (a core's
 #             rate without the wall clock of a shared machine)
-#   scaling   arvo's eye pass at the largest N over the smallest (target <= 3)
+#   scaling   arvo's eye pass at the largest N over the smallest, per scene
+#             (target <= 3)
 #   threads   eye pass (spheres, N = 100000, ${TW}x${TH}) and light pass (scene B,
 #             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
 #             threads: time(1) / time(2) (target >= 1.85)
@@ -38,6 +41,7 @@ W=${W:-640} H=${H:-480} THREADS=${THREADS:-2} RUNS=${RUNS:-3}
 TW=${TW:-1280} TH=${TH:-960} # the thread-scaling row: 4x the pixels, so a run
                              # lasts about a second, not a noisy 0.2 s
 SIZES=${SIZES:-1000 10000 100000 1000000}
+SCENES=${SCENES:-spheres grid}
 FRONT_N=${FRONT_N:-1000000}
 here=$(cd "$(dirname "$0")" && pwd)
 root=$here/../..
@@ -56,15 +60,15 @@ met() { awk -v v="$1" -v op="$2" -v t="$3" 'BEGIN { if (v == "") print ""; else 
 row() { echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"; }
 stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
 
-# arvo_eye N THREADS [W H]: median eye-pass seconds; rays of the last run in
+# arvo_eye N THREADS [W H [SCENE]]: median eye-pass seconds; rays of the last run in
 # $tmp/rays; the eye pass's median CPU seconds (all threads, as --stats
 # reports them) in $tmp/acpu
 arvo_eye() {
-	ew=${3:-$W} eh=${4:-$H}
+	ew=${3:-$W} eh=${4:-$H} es=${5:-spheres}
 	: > "$tmp/ac"
 	for i in $(seq "$RUNS"); do
 		"$ARVO" -q --stats --max-objects 2000000 --rays 0 --threads "$2" \
-			--spp 1 --width "$ew" --height "$eh" -D N="$1" -o "$tmp/a.png" "$root/bench/eye/spheres.scn" 2> "$tmp/a.log"
+			--spp 1 --width "$ew" --height "$eh" -D N="$1" -o "$tmp/a.png" "$root/bench/eye/$es.scn" 2> "$tmp/a.log"
 		awk '/eye pass/ { for (i = 1; i <= NF; i++) if ($i == "CPU)") print $(i - 2) }' "$tmp/a.log" >> "$tmp/ac"
 		stat_of "eye pass" "$tmp/a.log"
 	done | median
@@ -72,11 +76,11 @@ arvo_eye() {
 	median < "$tmp/ac" > "$tmp/acpu"
 }
 
-# pov_trace N: median "Trace Time" seconds; its median CPU seconds in $tmp/pcpu
+# pov_trace N [SCENE]: median "Trace Time" seconds; its median CPU seconds in $tmp/pcpu
 pov_trace() {
 	: > "$tmp/pc"
 	for i in $(seq "$RUNS"); do
-		(cd "$tmp" && "$POVRAY" +I"$root/bench/eye/spheres.pov" +O"$tmp/p.png" +FN +W"$W" +H"$H" -A -D \
+		(cd "$tmp" && "$POVRAY" +I"$root/bench/eye/${2:-spheres}.pov" +O"$tmp/p.png" +FN +W"$W" +H"$H" -A -D \
 			+WT"$THREADS" Declare=N="$1" > /dev/null 2> "$tmp/p.log")
 		awk '/Trace Time:/ { getline; for (i = 1; i <= NF; i++) if ($i == "CPU-seconds") print $(i - 1); exit }' \
 			"$tmp/p.log" >> "$tmp/pc"
@@ -106,33 +110,35 @@ col_median() { awk -v c="$2" '{ print $c }' "$1" | median; }
 echo "section,name,objects,threads,arvo,povray,ratio,unit,target,met" > "$csv"
 
 # ---- eye pass against POV-Ray's trace time ----
+for sc in $SCENES; do
 first= last= first_c= last_c=
 for n in $SIZES; do
-	a=$(arvo_eye "$n" "$THREADS"); rays=$(cat "$tmp/rays")
+	a=$(arvo_eye "$n" "$THREADS" "$W" "$H" "$sc"); rays=$(cat "$tmp/rays")
 	p=
-	[ "$have_pov" = 1 ] && p=$(pov_trace "$n")
+	[ "$have_pov" = 1 ] && p=$(pov_trace "$n" "$sc")
 	r=$(ratio "$p" "$a")
-	row eye spheres "$n" "$THREADS" "$a" "$p" "$r" s ">=3x" "$(met "$r" ">=" 3)"
+	row eye "$sc" "$n" "$THREADS" "$a" "$p" "$r" s ">=3x" "$(met "$r" ">=" 3)"
 	ac=$(cat "$tmp/acpu") pc=
 	[ "$have_pov" = 1 ] && pc=$(cat "$tmp/pcpu")
 	r=$(ratio "$pc" "$ac")
-	row eye_cpu spheres "$n" "$THREADS" "$ac" "$pc" "$r" "CPU s" ">=3x" "$(met "$r" ">=" 3)"
+	row eye_cpu "$sc" "$n" "$THREADS" "$ac" "$pc" "$r" "CPU s" ">=3x" "$(met "$r" ">=" 3)"
 	rate=$(awk -v r="$rays" -v t="$a" -v n="$THREADS" 'BEGIN { printf "%.0f", r / t / n }')
 	crate=$(awk -v r="$rays" -v t="$ac" 'BEGIN { if (t > 0) printf "%.0f", r / t }')
 	if [ "$n" = 100000 ]; then
-		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" ">=5e6" "$(met "$rate" ">=" 5000000)"
-		row eye_rate_cpu spheres "$n" "$THREADS" "$crate" "" "" "rays/CPU s" ">=5e6" "$(met "$crate" ">=" 5000000)"
+		row eye_rate "$sc" "$n" "$THREADS" "$rate" "" "" "rays/s/core" ">=5e6" "$(met "$rate" ">=" 5000000)"
+		row eye_rate_cpu "$sc" "$n" "$THREADS" "$crate" "" "" "rays/CPU s" ">=5e6" "$(met "$crate" ">=" 5000000)"
 	else
-		row eye_rate spheres "$n" "$THREADS" "$rate" "" "" "rays/s/core" "" ""
-		row eye_rate_cpu spheres "$n" "$THREADS" "$crate" "" "" "rays/CPU s" "" ""
+		row eye_rate "$sc" "$n" "$THREADS" "$rate" "" "" "rays/s/core" "" ""
+		row eye_rate_cpu "$sc" "$n" "$THREADS" "$crate" "" "" "rays/CPU s" "" ""
 	fi
 	[ -n "$first" ] || first=$a first_c=$ac
 	last=$a last_c=$ac
 done
 g=$(ratio "$last" "$first")
-row scaling "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x" "<=3x" "$(met "$g" "<=" 3)"
+row scaling "$sc $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x" "<=3x" "$(met "$g" "<=" 3)"
 g=$(ratio "$last_c" "$first_c")
-row scaling_cpu "spheres $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x (CPU)" "<=3x" "$(met "$g" "<=" 3)"
+row scaling_cpu "$sc $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x (CPU)" "<=3x" "$(met "$g" "<=" 3)"
+done
 
 # ---- 1 -> 2 threads ----
 e1=$(arvo_eye 100000 1 "$TW" "$TH"); e2=$(arvo_eye 100000 2 "$TW" "$TH"); r=$(ratio "$e1" "$e2")
@@ -166,17 +172,18 @@ row frontend "loop1m memory" "$FRONT_N" "$THREADS" "$am" "$pm" "$(ratio "$pm" "$
 cat "$res/speed.txt"
 
 if command -v gnuplot > /dev/null 2>&1; then
-	awk -F, '$1 == "eye" { print $3, $5, ($6 == "" ? "?" : $6) }' "$csv" > "$tmp/eye.dat"
+	for sc in $SCENES; do
+		awk -F, -v sc="$sc" '$1 == "eye" && $2 == sc { print $3, $5, ($6 == "" ? "?" : $6) }' "$csv" > "$tmp/eye-$sc.dat"
+	done
 	gnuplot <<GP
 set terminal pngcairo size 800,500
 set output "$root/docs/speed.png"
-set title "Eye pass, N spheres, ${W}x${H}, $THREADS threads (median of $RUNS)"
+set title "Eye pass, N spheres (bench/eye: $SCENES), ${W}x${H}, $THREADS threads (median of $RUNS)"
 set logscale xy
 set xlabel "spheres"
 set ylabel "seconds"
 set key left top
 set datafile missing "?"
-plot "$tmp/eye.dat" using 1:2 with linespoints title "arvo eye pass", \
-     "$tmp/eye.dat" using 1:3 with linespoints title "POV-Ray trace time"
+plot $(for sc in $SCENES; do printf '"%s" using 1:2 with linespoints title "arvo eye pass, %s", "%s" using 1:3 with linespoints title "POV-Ray trace time, %s", ' "$tmp/eye-$sc.dat" "$sc" "$tmp/eye-$sc.dat" "$sc"; done | sed 's/, $//')
 GP
 fi

@@ -132,12 +132,39 @@ static void t_texture_sharing(void)
 	CHECK(o[0]->tex == o[2]->tex && o[2]->tex == o[4]->tex);
 	CHECK(o[1]->tex == o[3]->tex && o[0]->tex != o[1]->tex);
 	CHECK(o[0]->tex->pigment.c[0].r == 0 && o[1]->tex->pigment.c[0].r == 1);
-	CHECK(o[0]->tex->finish->phong == 1 && o[1]->tex->finish == o[0]->tex->finish);
+	CHECK(tex_finish(o[0]->tex)->phong == 1 && tex_finish(o[1]->tex) == tex_finish(o[0]->tex));
 	struct object *clip = o[6];
 	CHECK(clip->kind == OBJ_CLIP && clip->g.csg.kids[0]->tex->pigment.c[0].r == 1);
 	CHECK(clip->tex->pigment.c[0].g == 1 && clip->tex->pigment.c[0].r == 0);
 	CHECK(o[7]->tex->pigment.c[0].r == 0.25 && o[7]->tex->pigment.xf && o[8]->tex->pigment.c[0].r == 0.5);
 	CHECK(o[8]->tex->pigment.xf == NULL);
+	done();
+}
+
+/* A texture keeps its finish, normal, maps, layers and location in a shared
+ * record: the distinct textures of a loop share one, which holds the place
+ * they were written; a normal or a layer makes another; a texture is its
+ * pigment and that pointer, 72 bytes. */
+static void t_texture_records(void)
+{
+	CHECK(sizeof(struct texture) == 72);
+	CHECK(run("#declare I = 0;\n#while (I < 4)\n"
+	          "  sphere { x * I, 0.4 pigment { rgb <I / 4, 0, 1> } }\n"
+	          "  #declare I = I + 1;\n#end\n"
+	          "sphere { 0, 1 pigment { rgb 1 } normal { bumps 0.5 } }\n"
+	          "sphere { 0, 1 texture { pigment { rgb 1 } } texture { pigment { rgbt <1, 0, 0, 0.5> } } }\n"
+	          "sphere { 0, 1 }\n") == 0);
+	CHECK(sc.nobjects == 7);
+	struct object **o = sc.objects;
+	CHECK(o[0]->tex != o[1]->tex && o[0]->tex->ext && o[0]->tex->ext == o[3]->tex->ext);
+	CHECK(tex_loc(o[2]->tex).line == 3 && tex_loc(o[2]->tex).col == 23);
+	CHECK(tex_normal(o[2]->tex) == NULL && tex_below(o[2]->tex) == NULL && tex_map(o[2]->tex) == NULL);
+	CHECK(tex_normal(o[4]->tex) && tex_loc(o[4]->tex).line == 6 && tex_loc(o[4]->tex).col == 15);
+	const struct texture *below = tex_below(o[5]->tex);
+	CHECK(below && below->pigment.c[0].r == 1 && below->pigment.c[0].b == 1 && tex_below(below) == NULL);
+	CHECK(o[5]->tex->pigment.c[0].t == 0.5 && tex_loc(o[5]->tex).line == 7 && tex_loc(o[5]->tex).col == 45);
+	CHECK(o[6]->tex->ext == NULL && tex_loc(o[6]->tex).file == -1 && tex_nmap(o[6]->tex) == 0);
+	CHECK(tex_finish(o[6]->tex) == tex_finish(o[0]->tex) && tex_finish(o[0]->tex)->diffuse == 0.6);
 	done();
 }
 
@@ -160,6 +187,7 @@ int main(void)
 	RUN(t_camera_look_at_deferred);
 	RUN(t_texture_inheritance);
 	RUN(t_texture_sharing);
+	RUN(t_texture_records);
 	RUN(t_errors_are_65);
 	srcfile_free_all();
 	return test_done();

@@ -179,7 +179,7 @@ static bool is_specular(const struct scene *s, const struct object *o)
 		return false;
 	}
 	const struct texture *t = mat_texture(o);
-	const struct finish *f = t->finish;
+	const struct finish *f = tex_finish(t);
 	const struct pigment *p = &t->pigment;
 	bool refl = maxc(opt_rgb(f->refl_min)) > 0 || maxc(opt_rgb(f->refl_max)) > 0;
 	bool trans = p->kind == PIG_SOLID ? p->c[0].f + p->c[0].t > 0 : true;
@@ -194,7 +194,7 @@ bool lp_dispersive(const struct scene *s)
 		stack[n++] = s->objects[i];
 		while (n > 0) {
 			const struct object *o = stack[--n];
-			if (o->interior && o->interior->dispersion != 1)
+			if (obj_interior(o) && obj_interior(o)->dispersion != 1)
 				return true;
 			if (o->kind >= OBJ_FIRST_CSG)
 				for (int k = 0; k < o->g.csg.n && n < 64; k++)
@@ -358,7 +358,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	/* POV-Ray's photons { } on the object: pass_through lets light by
 	 * untouched, collect off keeps it off the maps, and a target with
 	 * refraction or reflection off does not bend light that way */
-	const struct photon_spec *ph = h.obj->has_photons ? &h.obj->photons : NULL;
+	const struct photon_spec *ph = obj_photons(h.obj);
 	if (ph && ph->pass_through) {
 		if (depth < J->o->max_depth)
 			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
@@ -934,8 +934,9 @@ static int cmp_double(const void *a, const void *b)
  * land far away do not inflate it. */
 static struct illum_spec choose_spec(const struct object *o, const struct vec3 *pts, long k, double per_node)
 {
-	if (o->illum.resolution > 0 || o->illum.cell > 0)
-		return o->illum;
+	struct illum_spec own = obj_illum(o);
+	if (own.resolution > 0 || own.cell > 0)
+		return own;
 	double *c = mem_alloc(sizeof *c * (size_t)(k ? k : 1)), ex[3];
 	for (int axis = 0; axis < 3; axis++) {
 		for (long i = 0; i < k; i++)
@@ -967,8 +968,9 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
                                     long k, const struct lp_opts *opt)
 {
-	if (o->illum.resolution > 0 || o->illum.cell > 0)
-		return o->illum;
+	struct illum_spec own = obj_illum(o);
+	if (own.resolution > 0 || own.cell > 0)
+		return own;
 	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
@@ -1152,7 +1154,8 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	 * the records where they are, and their points are copied only when
 	 * they choose its cell */
 	bool inplace = n == 1 && ptotal == 0;
-	bool need_pts = !inplace || !(objs[0]->illum.resolution > 0 || objs[0]->illum.cell > 0);
+	struct illum_spec own = n ? obj_illum(objs[0]) : (struct illum_spec){0, 0};
+	bool need_pts = !inplace || !(own.resolution > 0 || own.cell > 0);
 	struct vec3 *pts = need_pts ? mem_alloc(sizeof *pts * (size_t)(total ? total : 1)) : NULL;
 	struct illum_splat *sp = inplace ? NULL : mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
 	double *psz = inplace ? NULL : mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
