@@ -553,6 +553,62 @@ static void t_isolated(void)
 	illum_free(m);
 }
 
+/* The isolated-sample rule against a brute-force count: a node is isolated
+ * exactly when the counts of the (2r+1)² nodes around it add up to at most
+ * 4 (r = 2, or less on a short wrapping axis; wrapping across seams).
+ * Sparse splats, so both kinds abound, on a plane (no wrap; nodes on both
+ * sides of 0, whose negative neighbours count as much) and a torus
+ * with 24 nodes a side (windows across both seams); on a torus with 4
+ * (r = 1), five splats on node (0,0) and one on (2,2), which r = 2 would
+ * see together. */
+static void t_isolated_rule(void)
+{
+	enum { W = 64 };
+	static const int res[3] = {0, 24, 4}, splats[3] = {150, 30, 6};
+	for (int s = 0; s < 3; s++) {
+		rng_seed(21 + s);
+		struct object o = prim(s ? OBJ_TORUS : OBJ_PLANE);
+		struct illum_map *m = s ? map_res(&o, res[s]) : map_cell(&o, 1);
+		double e[3] = {1, 1, 1}, rem[3];
+		for (int k = 0; k < splats[s]; k++)
+			if (s == 2)
+				illum_deposit(m, k < 5 ? 0 : 0.5, k < 5 ? 0 : 0.5, e);
+			else
+				illum_deposit(m, s ? rnd() : rndr(-28, 28), s ? rnd() : rndr(-28, 28), e);
+		illum_finish(m, true, rem);
+		struct nodes *ns = nodes_of(m);
+		static uint64_t cnt[W][W];
+		memset(cnt, 0, sizeof cnt);
+		int n = s ? res[s] : W, r = s && (n - 1) / 2 < 2 ? (n - 1) / 2 : 2, bad = 0, iso = 0, neg = 0;
+		long off = s ? 0 : W / 2; /* the plane's node i at cnt[.][i + off] */
+		for (int k = 0; k < ns->n; k++)
+			if (ns->a[k].i + off >= 0 && ns->a[k].i + off < W && ns->a[k].j + off >= 0 && ns->a[k].j + off < W)
+				cnt[ns->a[k].j + off][ns->a[k].i + off] = ns->a[k].count;
+			else
+				bad++;
+		for (int k = 0; k < ns->n; k++) {
+			long i = ns->a[k].i, j = ns->a[k].j;
+			uint64_t sum = 0;
+			for (long dj = -r; dj <= r; dj++)
+				for (long di = -r; di <= r; di++) {
+					long a = s ? ((i + di) % n + n) % n : i + di, b = s ? ((j + dj) % n + n) % n : j + dj;
+					a += off, b += off;
+					sum += a >= 0 && a < W && b >= 0 && b < W ? cnt[b][a] : 0;
+				}
+			bad += ns->a[k].isolated != (sum <= 4);
+			iso += ns->a[k].isolated;
+			neg += i < 0 && !ns->a[k].isolated;
+		}
+		printf("# %s: %d nodes, %d isolated\n", s ? "torus" : "plane", ns->n, iso);
+		CHECK(bad == 0);
+		CHECK(iso > 0 && iso < ns->n); /* both kinds */
+		CHECK(s || neg > 0);
+		CHECK((rem[0] > 0) == (iso > 0));
+		free(ns);
+		illum_free(m);
+	}
+}
+
 /* ==== ray density and EXR dump ============================================ */
 
 static void t_auto_cell(void)
@@ -615,6 +671,7 @@ int main(void)
 	RUN(t_merge);
 	RUN(t_range);
 	RUN(t_isolated);
+	RUN(t_isolated_rule);
 	RUN(t_auto_cell);
 	RUN(t_exr);
 	return test_done();

@@ -1569,8 +1569,8 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 	for (long dj = -rv; dj <= rv; dj++)
 		for (long di = -ru; di <= ru; di++) {
 			long a = axis_step(&m->ax[0], i, di), b = axis_step(&m->ax[1], j, dj);
-			if (a < 0 || b < 0)
-				continue;
+			if ((a < 0 && m->ax[0].bounded) || (b < 0 && m->ax[1].bounded))
+				continue; /* past a bounded edge (the plane's nodes go negative) */
 			long ta = floordiv(a) - nb->ti + 1, tb = floordiv(b) - nb->tj + 1;
 			int slot = (int)((b - floordiv(b) * ILLUM_TILE) * ILLUM_TILE + (a - floordiv(a) * ILLUM_TILE));
 			const struct tile *t = ta >= 0 && ta < 3 && tb >= 0 && tb < 3 ? nb->t[tb][ta]
@@ -1621,12 +1621,41 @@ static uint64_t near_count(const struct near *nb)
 	return c;
 }
 
+#define NEAR_N (3 * ILLUM_TILE) /* nodes a side of the 3×3 tiles of a struct near */
+
+/* The deposit counts of the 3×3 tiles nb holds, as one array of nodes
+ * (zero where a tile is absent). */
+static void near_counts(const struct near *nb, uint64_t c[NEAR_N][NEAR_N])
+{
+	for (int b = 0; b < 3; b++)
+		for (int a = 0; a < 3; a++)
+			for (int q = 0; q < TN; q++)
+				c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] =
+					nb->t[b][a] ? nb->t[b][a]->n[q].count : 0;
+}
+
+/* node_isolated for node q of the middle tile of c (near_counts), when its
+ * 5×5 neighbourhood lies inside c (near_closed, two nodes each way): the
+ * same sum of counts, read from the array. */
+static bool near_isolated(uint64_t c[NEAR_N][NEAR_N], int q)
+{
+	int x = ILLUM_TILE + q % ILLUM_TILE, y = ILLUM_TILE + q / ILLUM_TILE;
+	uint64_t sum = 0;
+	for (int j = y - 2; j <= y + 2; j++)
+		for (int i = x - 2; i <= x + 2; i++)
+			sum += c[j][i];
+	return sum <= 4;
+}
+
 /* Job k of the array at ctx (a parallel_for item). */
 static void finish_work(void *ctx, long job, int worker)
 {
 	(void)worker;
 	struct finish_job *J = (struct finish_job *)ctx + job;
 	const struct illum_map *m = J->m;
+	/* node_isolated reaches two nodes each way on both axes (not fewer on
+	 * a short wrapping axis) */
+	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
 		for (int q = 0; q < TN; q++)
@@ -1634,13 +1663,18 @@ static void finish_work(void *ctx, long job, int worker)
 				fx_add(&J->tot[c], t->n[q].e[c]);
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = J->discard && tile_count(t) <= 4, all = false;
+		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
 		struct near nb = {.ti = 0};
+		uint64_t cnt[NEAR_N][NEAR_N];
 		if (check) {
 			near_fill(m, &nb, t->ti, t->tj);
 			/* at most one splat in the tiles around: every node with a
 			 * deposit is isolated (its neighbourhood is among them) */
-			all = near_closed(m, t->ti, t->tj) && near_count(&nb) <= 4;
+			closed = near_closed(m, t->ti, t->tj);
+			all = closed && near_count(&nb) <= 4;
+			closed = closed && reach2 && !all;
+			if (closed) /* else node_isolated looks the nodes up */
+				near_counts(&nb, cnt);
 		}
 		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
@@ -1652,7 +1686,7 @@ static void finish_work(void *ctx, long job, int worker)
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			if (t->area)
 				t->area[q] = node_area(m, i, j);
-			if (check && (all || node_isolated(m, &nb, i, j, t->n[q].count))) {
+			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
 					fx_add(&J->rem[c], t->n[q].e[c]);
