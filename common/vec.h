@@ -39,6 +39,10 @@ static inline struct vec3 v_norm(struct vec3 a)
 	return l > 0 ? v_scale(a, 1.0 / l) : a;
 }
 static inline struct vec3 v_madd(struct vec3 a, struct vec3 b, double s) { return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
+/* min and max of numbers that are not NaN, inline (fmin and fmax are libm
+ * calls; on a tie these give b) */
+static inline double d_min(double a, double b) { return a < b ? a : b; }
+static inline double d_max(double a, double b) { return a > b ? a : b; }
 static inline struct vec3 v_min(struct vec3 a, struct vec3 b) { return v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
 static inline struct vec3 v_max(struct vec3 a, struct vec3 b) { return v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
 static inline double v_comp(struct vec3 a, int i) { return i == 0 ? a.x : i == 1 ? a.y : a.z; }

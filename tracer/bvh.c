@@ -339,8 +339,8 @@ struct bbox bvh_bounds(const struct bvh *b)
 static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
 {
 	for (int k = 0; k < 3; k++) {
-		double o = v_comp(r->o, k), d = v_comp(r->d, k);
-		double t0 = (v_comp(b.lo, k) - o) / d, t1 = (v_comp(b.hi, k) - o) / d;
+		double o = v_comp(r->o, k), inv = 1 / v_comp(r->d, k); /* ±inf for 0: the same bounds */
+		double t0 = (v_comp(b.lo, k) - o) * inv, t1 = (v_comp(b.hi, k) - o) * inv;
 		if (t0 > t1) {
 			double s = t0;
 			t0 = t1;

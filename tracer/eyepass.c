@@ -55,7 +55,7 @@ struct surf {
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
 static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
-static double v_maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+static double v_maxc(struct vec3 a) { return d_max(a.x, d_max(a.y, a.z)); }
 
 /* The query flag for hits shaded here: (u,v) are looked at only to read
  * illumination maps (caustic_at). */
@@ -64,7 +64,7 @@ static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : B
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static double eps_at(struct vec3 p)
 {
-	return 1e-7 * (1 + fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z))));
+	return 1e-7 * (1 + d_max(fabs(p.x), d_max(fabs(p.y), fabs(p.z))));
 }
 
 /* ==== lights ============================================================= */
@@ -633,8 +633,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
-	if (ctx->beauty_only) { /* the same radiance, without the layers */
-		memset(out, 0, sizeof *out);
+	if (ctx->beauty_only) { /* the same radiance, without the layers (left unset) */
 		for (int i = 0; i < ctx->spp; i++) {
 			struct path pa;
 			struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);

@@ -37,7 +37,8 @@ struct eye_ctx {
 	struct lp_result *const *caustics; /* light-pass results (one, or one per channel) */
 	int ncaustics;                 /* entries in caustics (0: no light pass) */
 	bool beauty_only;              /* only R G B are kept: the AOV layers are
-	                                  not computed (eye_px holds zeros there) */
+	                                  not computed (eye_px holds R G B alone:
+	                                  the rest is left unset) */
 	bool see_through;              /* some object is a straight transmitter: shadow
 	                                  rays look through such objects (surface.h) */
 	bool spectral;                 /* passes spectral: dispersive glass splits a path

@@ -11,7 +11,9 @@
 #   eye       each bench/eye scene in $SCENES with N in $SIZES, ${W}x${H},
 #             $THREADS threads: spheres.scn (.pov), N spheres at random in a
 #             box, and grid.scn (.pov), N spheres on a cubic grid in the same
-#             box (the layout issue 13's Embree figures were measured on); arvo's eye-pass time (--stats) against POV-Ray's
+#             box (the layout issue 13's Embree figures were measured on);
+#             and prims.scn (.pov), seven primitives and a plane with
+#             reflection and refraction (no N; its objects column says 8); arvo's eye-pass time (--stats) against POV-Ray's
 #             "Trace Time" (no start-up, parsing or bounding); ratio =
 #             povray / arvo (target >= 3); and arvo's rays/s/core (target
 #             >= 5e6 at 100k spheres); eye_cpu: the same in CPU seconds
@@ -139,6 +141,16 @@ row scaling "$sc $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "
 g=$(ratio "$last_c" "$first_c")
 row scaling_cpu "$sc $(echo $SIZES | awk '{ print $1 " -> " $NF }')" "" "$THREADS" "$g" "" "" "x (CPU)" "<=3x" "$(met "$g" "<=" 3)"
 done
+
+a=$(arvo_eye 0 "$THREADS" "$W" "$H" prims)
+p=
+[ "$have_pov" = 1 ] && p=$(pov_trace 0 prims)
+r=$(ratio "$p" "$a")
+row eye prims 8 "$THREADS" "$a" "$p" "$r" s ">=3x" "$(met "$r" ">=" 3)"
+ac=$(cat "$tmp/acpu") pc=
+[ "$have_pov" = 1 ] && pc=$(cat "$tmp/pcpu")
+r=$(ratio "$pc" "$ac")
+row eye_cpu prims 8 "$THREADS" "$ac" "$pc" "$r" "CPU s" ">=3x" "$(met "$r" ">=" 3)"
 
 # ---- 1 -> 2 threads ----
 e1=$(arvo_eye 100000 1 "$TW" "$TH"); e2=$(arvo_eye 100000 2 "$TW" "$TH"); r=$(ratio "$e1" "$e2")

@@ -26,8 +26,9 @@
 /* Normalised corners (lo ≤ hi on every axis). */
 static void bx_corners(const struct object *o, struct vec3 *lo, struct vec3 *hi)
 {
-	*lo = v_min(o->g.box.lo, o->g.box.hi);
-	*hi = v_max(o->g.box.lo, o->g.box.hi);
+	struct vec3 a = o->g.box.lo, b = o->g.box.hi;
+	*lo = v3(d_min(a.x, b.x), d_min(a.y, b.y), d_min(a.z, b.z));
+	*hi = v3(d_max(a.x, b.x), d_max(a.y, b.y), d_max(a.z, b.z));
 }
 
 static double *comp(struct vec3 *v, int i) { return i == 0 ? &v->x : i == 1 ? &v->y : &v->z; }
@@ -98,8 +99,8 @@ static void bx_fill(const struct object *o, const struct ray *r, double t, int k
 	struct vec3 e = v_sub(hi, lo);
 	double s = (v_comp(p, a) - v_comp(lo, a)) / v_comp(e, a);
 	double w = (v_comp(p, b) - v_comp(lo, b)) / v_comp(e, b);
-	s = fmin(fmax(s, 0), 1);
-	w = fmin(fmax(w, 0), 1);
+	s = d_min(d_max(s, 0), 1);
+	w = d_min(d_max(w, 0), 1);
 	if (!side)
 		s = 1 - s;
 	lh->t = t;

@@ -22,13 +22,21 @@ struct pframe {
 	double d;              /* n̂·p = d on the plane */
 };
 
+/* |n|, without the square root for the common unit normal (the same
+ * numbers: sqrt(1) is 1). */
+static double pl_norm(const struct object *o)
+{
+	double l2 = v_dot(o->g.plane.n, o->g.plane.n);
+	return l2 == 1 ? 1 : sqrt(l2);
+}
+
 static bool pl_frame(const struct object *o, struct pframe *f)
 {
-	double l = v_len(o->g.plane.n);
+	double l = pl_norm(o);
 	if (!(l > 0))
 		return false;
-	f->n = v_scale(o->g.plane.n, 1 / l);
-	f->d = o->g.plane.d / l;
+	f->n = l == 1 ? o->g.plane.n : v_scale(o->g.plane.n, 1 / l);
+	f->d = l == 1 ? o->g.plane.d : o->g.plane.d / l;
 	shape_basis(f->n, &f->e1, &f->e2);
 	return true;
 }
@@ -60,9 +68,11 @@ static bool pl_root(struct vec3 n, double d, const struct ray *r, double tmin, d
 
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
-	double l = v_len(o->g.plane.n); /* as pl_frame, without the in-plane axes */
+	double l = pl_norm(o); /* as pl_frame, without the in-plane axes */
 	if (!(l > 0))
 		return false;
+	if (l == 1)
+		return pl_root(o->g.plane.n, o->g.plane.d, r, tmin, tmax, t);
 	return pl_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
 }
 

@@ -113,8 +113,8 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
 		return false;
 	double q = -0.5 * (b + copysign(sqrt(disc), b));
 	double r0 = q / a, r1 = q != 0 ? c / q : r0;
-	*t0 = fmin(r0, r1);
-	*t1 = fmax(r0, r1);
+	*t0 = d_min(r0, r1);
+	*t1 = d_max(r0, r1);
 	return true;
 }
 
@@ -129,7 +129,13 @@ static inline bool prim_sphere_t(struct vec3 c, double rad, const struct ray *r,
 	if (!(rad > 0))
 		return false;
 	struct vec3 f = v_sub(r->o, c), d = r->d;
-	double a = v_dot(d, d), b = 2 * v_dot(f, d), cc = v_dot(f, f) - rad * rad, t0, t1;
+	double a = v_dot(d, d), fd = v_dot(f, d), ff = v_dot(f, f), rr = rad * rad;
+	/* a clear miss without a square root or a division: a·|f⊥|² = a·|f|² −
+	 * (f·d)², rounded within 5e-16·a·|f|², exceeds a·r² by more than any
+	 * error of the exact test below, which decides everything else */
+	if (a * ff - fd * fd > a * (rr * (1 + 1e-9) + ff * 1e-12))
+		return false;
+	double b = 2 * fd, cc = ff - rr, t0, t1;
 	if (!(a > 0))
 		return false;
 	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);

@@ -161,6 +161,11 @@ static bool to_intersect(const struct object *o, const struct ray *r, double tmi
 	double s0 = fmax(-half, (tmin * L - tc) / sc), s1 = fmin(half, (tmax * L - tc) / sc);
 	if (!(s1 >= s0))
 		return false;
+	/* a ray that stays above or below the slab |y| <= r over [s0, s1] has
+	 * no root there: no quartic to solve (its interval is left as it is) */
+	double m = reach * rr / sc, y0 = qs.y + d.y * s0, y1 = qs.y + d.y * s1;
+	if ((y0 > m && y1 > m) || (y0 < -m && y1 < -m))
+		return false;
 	double s[4];
 	int n = quartic_hits(R / sc, rr / sc, qs, d, s0, s1, s);
 	for (int i = 0; i < n; i++) {
