@@ -10,10 +10,11 @@
  * computed once, for the winner. Unbounded leaves are tested on every ray
  * first, as before.
  *
- * Native Embree spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT, grown by the margin
- * and decided by a filter function) were measured here against this user
- * geometry on bench/eye's spheres: no faster to trace (2.6 against 2.9 M
- * primary rays/s/core at 100k spheres, 6.4 against 8.7 at 1k), and Embree
+ * Native Embree spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT) are no way round
+ * the callbacks: bench/eye/kernel.sh times the same camera rays through
+ * this kernel and through Embree alone, and Embree's own float spheres are
+ * slower on the random cloud at 100k spheres (3.3 against 3.8 M rays/s on
+ * one core) and faster on the grid (11.9 against 9.4); besides, Embree
  * proposes a sphere only where the float segment meets its surface with
  * tnear >= 0, which a ray starting in the margin's shell (every ray spawned
  * on a sphere) can miss. Neither RTC_SCENE_FLAG_ROBUST nor _COMPACT is set:

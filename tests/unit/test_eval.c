@@ -168,6 +168,34 @@ static void t_texture_records(void)
 	done();
 }
 
+/* Objects keep their interior, illum_map and photons in one shared record
+ * (struct obj_extra): none for a plain object, one for the children of a
+ * CSG that pass the same ones down, and a write copies it. */
+static void t_object_records(void)
+{
+	CHECK(obj_size(OBJ_SPHERE) == 72);
+	CHECK(run("#declare U = union { sphere { 0, 1 } sphere { x, 1 } sphere { 2 * x, 1 interior { ior 2 } }\n"
+	          "  interior { ior 1.5 } photons { target } }\n"
+	          "object { U }\n"
+	          "object { U photons { target 0.5 } }\n"
+	          "sphere { 0, 1 illum_map { resolution 64 } }\n"
+	          "sphere { 0, 1 }\n") == 0);
+	CHECK(sc.nobjects == 4);
+	struct object **o = sc.objects;
+	struct object *const *a = o[0]->g.csg.kids, *const *b = o[1]->g.csg.kids;
+	/* the first two children share the record propagate made; the third
+	 * keeps its own interior and takes the photons */
+	CHECK(a[0]->ext && a[0]->ext == a[1]->ext && a[2]->ext != a[0]->ext);
+	CHECK(obj_interior(a[0])->ior == 1.5 && obj_interior(a[2])->ior == 2);
+	CHECK(obj_photons(a[0]) && obj_photons(a[0])->target && obj_photons(a[2]) && obj_photons(a[2])->target);
+	/* the copy's own photons { } are its own: the first copy keeps spacing 1 */
+	CHECK(obj_photons(o[0])->spacing == 1 && obj_photons(o[1])->spacing == 0.5);
+	CHECK(obj_interior(o[1])->ior == 1.5 && obj_photons(b[0]) && obj_photons(b[0])->spacing == 0.5);
+	CHECK(obj_illum(o[2]).resolution == 64 && obj_interior(o[2]) == NULL && obj_photons(o[2]) == NULL);
+	CHECK(o[3]->ext == NULL && obj_illum(o[3]).resolution == 0 && obj_illum(o[3]).cell == 0);
+	done();
+}
+
 static void t_errors_are_65(void)
 {
 	CHECK(run("#declare X = 1/0;\n") == 65);
@@ -188,6 +216,7 @@ int main(void)
 	RUN(t_texture_inheritance);
 	RUN(t_texture_sharing);
 	RUN(t_texture_records);
+	RUN(t_object_records);
 	RUN(t_errors_are_65);
 	srcfile_free_all();
 	return test_done();
