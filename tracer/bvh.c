@@ -49,9 +49,11 @@ struct bvh {
 	int nprims;                    /* entries of prims */
 	bool own_prims;                /* prims is ours to free, not the caller's list */
 	const struct object **unbound; /* unbounded leaves, tested always */
+	struct pl_prep *uplane;        /* per unbounded leaf: its frame, when a plane */
 	int nunbound;                  /* entries of unbound */
 	struct bbox bounds;            /* world bounds of the bounded leaves */
 	double pad;                    /* float safety margin of every box */
+	struct bbox padded;            /* bounds grown by pad (float_ray) */
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
@@ -276,6 +278,10 @@ struct bvh *bvh_build(struct object **objs, int n)
 	t->prims = (const struct object **)objs;
 	for (int i = 0; i < n; i++, B.next++)
 		collect(&B, objs[i]);
+	t->uplane = mem_calloc((size_t)(t->nunbound ? t->nunbound : 1), sizeof *t->uplane);
+	for (int i = 0; i < t->nunbound; i++)
+		if (t->unbound[i]->kind == OBJ_PLANE)
+			pl_prep(t->unbound[i], &t->uplane[i]);
 	if (t->nprims == 0)
 		return t;
 	/* rounding a ray that starts inside (or on) the box to float moves it
@@ -283,6 +289,8 @@ struct bvh *bvh_build(struct object **objs, int n)
 	struct vec3 m = v_max(v_neg(t->bounds.lo), t->bounds.hi);
 	double mag = fmax(fmax(m.x, m.y), m.z) + v_len(v_sub(t->bounds.hi, t->bounds.lo));
 	t->pad = ldexp(mag, -18) + 1e-30;
+	t->padded = (struct bbox){v_sub(t->bounds.lo, v3(t->pad, t->pad, t->pad)),
+	                          v_add(t->bounds.hi, v3(t->pad, t->pad, t->pad))};
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
@@ -310,7 +318,7 @@ void bvh_free(struct bvh *b)
 		rtcReleaseScene(b->scene);
 	if (b->own_prims)
 		free(b->prims);
-	free(b->unbound);
+	free(b->unbound), free(b->uplane);
 	free(b);
 }
 
@@ -356,9 +364,7 @@ static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, 
  * (and no ray) when the ray misses that box within q's interval. */
 static bool float_ray(struct query *q, float row[9])
 {
-	const struct bvh *b = q->b;
-	struct bbox bx = {v_sub(b->bounds.lo, v3(b->pad, b->pad, b->pad)),
-	                  v_add(b->bounds.hi, v3(b->pad, b->pad, b->pad))};
+	const struct bbox bx = q->b->padded;
 	struct vec3 ro = q->r->o;
 	double te = 0; /* a ray starting inside the box enters it at t <= 0 */
 	bool inside = ro.x >= bx.lo.x && ro.x <= bx.hi.x && ro.y >= bx.lo.y && ro.y <= bx.hi.y &&
@@ -438,7 +444,7 @@ static bool unbounded(struct query *q, bool any)
 			return q->found = true;
 		double t;
 		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
-			if (shape_hit_t(o, q->r, q->tmin, q->tmax, &t))
+			if (shape_plane_hit_t(o, &q->b->uplane[i], q->r, q->tmin, q->tmax, &t))
 				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
@@ -454,7 +460,8 @@ static void finish(struct query *q)
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
 	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t */
-		shape_intersect(q->b->unbound[q->ubest], q->r, q->tmin, q->ubest_hi, q->h);
+		shape_plane_intersect(q->b->unbound[q->ubest], &q->b->uplane[q->ubest], q->r, q->tmin, q->ubest_hi,
+		                      q->h);
 }
 
 /* A query over (tmin, tmax) for ray r, its result into *h: skip's object

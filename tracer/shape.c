@@ -20,12 +20,14 @@ static const struct prim_ops *ops(const struct object *o)
 
 /* ==== intersection ======================================================= */
 
-/* The world ray expressed in the object's frame (same t). */
-static struct ray local_ray(const struct object *o, const struct ray *r)
+/* The world ray expressed in the object's frame (same t): r itself when
+ * the object has no transform, else *tmp. */
+static const struct ray *local_ray(const struct object *o, const struct ray *r, struct ray *tmp)
 {
 	if (!o->xf) /* no transform: the world frame */
-		return *r;
-	return (struct ray){xf_inv_point(o->xf, r->o), xf_inv_vector(o->xf, r->d)};
+		return r;
+	*tmp = (struct ray){xf_inv_point(o->xf, r->o), xf_inv_vector(o->xf, r->d)};
+	return tmp;
 }
 
 /* Fills a world hit from a local one; without uv, (u,v) are NaN and the
@@ -59,9 +61,10 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	const struct prim_ops *p = ops(o);
 	if (!p)
 		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, h);
-	struct ray lr = local_ray(o, r);
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	if (!p->intersect(o, &lr, tmin, tmax, &lh))
+	if (!p->intersect(o, lr, tmin, tmax, &lh))
 		return false;
 	to_world(o, r, &lh, true, h);
 	return true;
@@ -71,8 +74,9 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
 {
 	struct hit h;
 	if (o->kind == OBJ_SPHERE || o->kind == OBJ_PLANE) {
-		struct ray lr = local_ray(o, r);
-		return o->kind == OBJ_SPHERE ? sph_hit_t(o, &lr, tmin, tmax, t) : pl_hit_t(o, &lr, tmin, tmax, t);
+		struct ray tmp;
+		const struct ray *lr = local_ray(o, r, &tmp);
+		return o->kind == OBJ_SPHERE ? sph_hit_t(o, lr, tmin, tmax, t) : pl_hit_t(o, lr, tmin, tmax, t);
 	}
 	if (!shape_intersect(o, r, tmin, tmax, &h))
 		return false;
@@ -85,11 +89,32 @@ bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, doub
 {
 	if (o->kind != OBJ_SPHERE)
 		return shape_intersect(o, r, tmin, tmax, h);
-	struct ray lr = local_ray(o, r);
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	if (!sph_hit_at(o, &lr, t, uv, &lh))
+	if (!sph_hit_at(o, lr, t, uv, &lh))
 		return false;
 	to_world(o, r, &lh, uv, h);
+	return true;
+}
+
+bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
+                       double tmax, double *t)
+{
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
+	return pl_prep_hit_t(p, lr, tmin, tmax, t);
+}
+
+bool shape_plane_intersect(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
+                           double tmax, struct hit *h)
+{
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
+	struct local_hit lh;
+	if (!pl_prep_intersect(p, lr, tmin, tmax, &lh))
+		return false;
+	to_world(o, r, &lh, true, h);
 	return true;
 }
 
@@ -102,9 +127,10 @@ bool shape_occluded(const struct object *o, const struct ray *r, double tmin, do
 		return shape_hit_t(o, r, tmin, tmax, &t);
 	if (!p)
 		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, &h);
-	struct ray lr = local_ray(o, r);
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	return p->intersect(o, &lr, tmin, tmax, &lh);
+	return p->intersect(o, lr, tmin, tmax, &lh);
 }
 
 bool shape_inside(const struct object *o, struct vec3 world_p)

@@ -56,6 +56,13 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
  * pass needs them only on a surface with an illumination map). */
 bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
                   bool uv, struct hit *h);
+/* shape_hit_t and shape_intersect for plane o, with its frame p made once
+ * by pl_prep (shapes/prim.h): the same results. */
+struct pl_prep;
+bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
+                       double tmax, double *t);
+bool shape_plane_intersect(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
+                           double tmax, struct hit *h);
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
 /* Is the world point strictly inside the solid (OF_INVERSE honoured)? */

@@ -358,6 +358,75 @@ static void t_threads(void)
 	}
 }
 
+/* illum_deposit_runs reads the splats where they lie (a record whose first
+ * member is the splat; runs of any length, empty ones too, across the prep
+ * chunks, with other records between them) and gives the map illum_deposit_all gives the same splats in
+ * one array, bit for bit, for any thread count. The far-flung tenth of the
+ * splats lands outside the window, so the tiles' hash grows many times. */
+struct rec_like {
+	struct illum_splat s;
+	const void *obj;
+	double pad[4];
+};
+
+static void t_runs(void)
+{
+	enum { N = 60000, R = 9 };
+	static struct illum_splat sp[N];
+	static struct rec_like rec[N + 2 * R]; /* two others after each run */
+	static const long len[R] = {0, 5, 16384, 0, 20000, 1, 3610, 20000, 0}; /* Σ = N */
+	rng_seed(11);
+	struct object o = prim(OBJ_PLANE);
+	for (int k = 0; k < N; k++) {
+		double r = k % 10 ? 0.3 * rnd() : 40 * rnd(), a = rndr(0, 2 * M_PI);
+		sp[k] = (struct illum_splat){r * cos(a), r * sin(a), {rnd(), 0.5 * rnd(), 0}};
+	}
+	sp[20001].v = NAN; /* dropped once */
+	struct illum_run runs[R];
+	long at = 0, next = 0;
+	for (int k = 0; k < R; k++) {
+		runs[k] = (struct illum_run){rec + at, len[k], sizeof *rec};
+		for (long i = 0; i < len[k]; i++)
+			rec[at++] = (struct rec_like){sp[next++], &o, {(double)i, -1, 0, 0}};
+		for (int i = 0; i < 2; i++) /* not splats of the map: they must not count */
+			rec[at++] = (struct rec_like){{0.5, 0.5, {1e3, 1e3, 1e3}}, NULL, {0, 0, 0, 0}};
+	}
+	CHECK(next == N && at == N + 2 * R);
+	struct illum_map *one = map_cell(&o, 0.01);
+	illum_deposit_all(one, sp, N, 1);
+	double rem1[3], rem[3];
+	illum_finish(one, true, rem1);
+	struct nodes *s1 = nodes_of(one);
+	CHECK(s1->n > 1000 && s1->n < MAXN && rem1[0] > 0);
+	static const int threads[] = {1, 2, 3};
+	for (int t = 0; t < 3; t++) {
+		struct illum_map *m = illum_new_like(one);
+		illum_deposit_runs(m, runs, R, threads[t]);
+		illum_finish_mt(m, true, rem, threads[t]);
+		struct nodes *s2 = nodes_of(m);
+		int diff = s1->n != s2->n;
+		for (int q = 0; q < s1->n && q < s2->n; q++) {
+			const struct illum_node *a = &s1->a[q], *b = &s2->a[q];
+			diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
+			diff += memcmp(a->sumsq, b->sumsq, sizeof a->sumsq) != 0;
+			diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
+			diff += a->count != b->count || a->i != b->i || a->j != b->j || a->isolated != b->isolated;
+		}
+		CHECK(diff == 0);
+		CHECK(memcmp(rem, rem1, sizeof rem) == 0);
+		CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
+		free(s2);
+		illum_free(m);
+	}
+	/* no splats at all: nothing happens */
+	struct illum_map *m = illum_new_like(one);
+	illum_deposit_runs(m, runs, 1, 2);
+	CHECK(illum_tiles(m) == 0 && illum_dropped(m) == 0);
+	illum_free(m);
+	free(s1);
+	illum_free(one);
+}
+
 static void t_merge(void)
 {
 	rng_seed(99);
@@ -484,6 +553,62 @@ static void t_isolated(void)
 	illum_free(m);
 }
 
+/* The isolated-sample rule against a brute-force count: a node is isolated
+ * exactly when the counts of the (2r+1)² nodes around it add up to at most
+ * 4 (r = 2, or less on a short wrapping axis; wrapping across seams).
+ * Sparse splats, so both kinds abound, on a plane (no wrap; nodes on both
+ * sides of 0, whose negative neighbours count as much) and a torus
+ * with 24 nodes a side (windows across both seams); on a torus with 4
+ * (r = 1), five splats on node (0,0) and one on (2,2), which r = 2 would
+ * see together. */
+static void t_isolated_rule(void)
+{
+	enum { W = 64 };
+	static const int res[3] = {0, 24, 4}, splats[3] = {150, 30, 6};
+	for (int s = 0; s < 3; s++) {
+		rng_seed(21 + s);
+		struct object o = prim(s ? OBJ_TORUS : OBJ_PLANE);
+		struct illum_map *m = s ? map_res(&o, res[s]) : map_cell(&o, 1);
+		double e[3] = {1, 1, 1}, rem[3];
+		for (int k = 0; k < splats[s]; k++)
+			if (s == 2)
+				illum_deposit(m, k < 5 ? 0 : 0.5, k < 5 ? 0 : 0.5, e);
+			else
+				illum_deposit(m, s ? rnd() : rndr(-28, 28), s ? rnd() : rndr(-28, 28), e);
+		illum_finish(m, true, rem);
+		struct nodes *ns = nodes_of(m);
+		static uint64_t cnt[W][W];
+		memset(cnt, 0, sizeof cnt);
+		int n = s ? res[s] : W, r = s && (n - 1) / 2 < 2 ? (n - 1) / 2 : 2, bad = 0, iso = 0, neg = 0;
+		long off = s ? 0 : W / 2; /* the plane's node i at cnt[.][i + off] */
+		for (int k = 0; k < ns->n; k++)
+			if (ns->a[k].i + off >= 0 && ns->a[k].i + off < W && ns->a[k].j + off >= 0 && ns->a[k].j + off < W)
+				cnt[ns->a[k].j + off][ns->a[k].i + off] = ns->a[k].count;
+			else
+				bad++;
+		for (int k = 0; k < ns->n; k++) {
+			long i = ns->a[k].i, j = ns->a[k].j;
+			uint64_t sum = 0;
+			for (long dj = -r; dj <= r; dj++)
+				for (long di = -r; di <= r; di++) {
+					long a = s ? ((i + di) % n + n) % n : i + di, b = s ? ((j + dj) % n + n) % n : j + dj;
+					a += off, b += off;
+					sum += a >= 0 && a < W && b >= 0 && b < W ? cnt[b][a] : 0;
+				}
+			bad += ns->a[k].isolated != (sum <= 4);
+			iso += ns->a[k].isolated;
+			neg += i < 0 && !ns->a[k].isolated;
+		}
+		printf("# %s: %d nodes, %d isolated\n", s ? "torus" : "plane", ns->n, iso);
+		CHECK(bad == 0);
+		CHECK(iso > 0 && iso < ns->n); /* both kinds */
+		CHECK(s || neg > 0);
+		CHECK((rem[0] > 0) == (iso > 0));
+		free(ns);
+		illum_free(m);
+	}
+}
+
 /* ==== ray density and EXR dump ============================================ */
 
 static void t_auto_cell(void)
@@ -542,9 +667,11 @@ int main(void)
 	RUN(t_uniform_plane);
 	RUN(t_plane_sparse);
 	RUN(t_threads);
+	RUN(t_runs);
 	RUN(t_merge);
 	RUN(t_range);
 	RUN(t_isolated);
+	RUN(t_isolated_rule);
 	RUN(t_auto_cell);
 	RUN(t_exr);
 	return test_done();

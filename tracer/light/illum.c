@@ -199,15 +199,19 @@ static void tile_index(struct illum_map *m, long idx)
 		return;
 	}
 	if (2 * ++m->nhashed >= m->nslots) {
-		long ns = m->nslots ? 2 * m->nslots : 16;
-		free(m->slots);
-		m->bytes -= (size_t)m->nslots * sizeof *m->slots;
+		/* the hashed tiles move to a table twice the size, taken from the
+		 * old table (not by looking at every tile: those in the window are
+		 * most, and cold) */
+		long ns = m->nslots ? 2 * m->nslots : 16, old = m->nslots;
+		long *was = m->slots;
+		m->bytes -= (size_t)old * sizeof *m->slots;
 		m->slots = mem_calloc((size_t)ns, sizeof *m->slots);
 		m->bytes += (size_t)ns * sizeof *m->slots;
 		m->nslots = ns;
-		for (long k = 0; k < m->ntiles; k++)
-			if (k != idx && !win_slot(m, m->tiles[k]->ti, m->tiles[k]->tj))
-				slot_insert(m, k);
+		for (long k = 0; k < old; k++)
+			if (was[k])
+				slot_insert(m, was[k] - 1);
+		free(was);
 	}
 	slot_insert(m, idx);
 }
@@ -732,18 +736,31 @@ struct prep {
 
 struct deposit_job {
 	struct illum_map *m;
-	const struct illum_splat *s;
+	const struct illum_run *runs;
+	const long *off;    /* run k's splats are [off[k], off[k+1]) */
+	long nruns;
 	struct prep *p;
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
+	long valid;         /* per chunk: splats that deposit */
+	long c0;            /* per chunk: the valid splats before it */
+	int32_t *ti, *tj;   /* the window's sample (step 2) */
+	long stride;        /* of the sample: every stride-th valid splat */
 	double emax;        /* per chunk: the largest energy_max of its splats */
 	struct arena pool;  /* per band: the tiles it made in the window */
 	struct tile **made; /* per band: those tiles, in order */
 	long *where;        /* per band: their window entries */
 	long nmade, cap;
+	long first;         /* per band: where its tiles go in the map's list */
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
+
+/* Splat i of run r. */
+static const struct illum_splat *run_at(const struct illum_run *r, long i)
+{
+	return (const struct illum_splat *)(const void *)((const char *)r->s + (size_t)i * r->stride);
+}
 
 /* Step 1 for chunk k of the splats (a parallel_for item). */
 static void prep_work(void *ctx, long k, int worker)
@@ -753,9 +770,20 @@ static void prep_work(void *ctx, long k, int worker)
 	const struct illum_map *m = D->m;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
+	J->valid = 0;
 	J->emax = 0;
+	long r0 = 0, r1 = D->nruns; /* the run holding splat lo: off[r0] <= lo < off[r0+1] */
+	while (r1 - r0 > 1) {
+		long mid = (r0 + r1) / 2;
+		if (D->off[mid] <= lo)
+			r0 = mid;
+		else
+			r1 = mid;
+	}
 	for (long q = lo; q < hi; q++) {
-		const struct illum_splat *sp = &D->s[q];
+		while (q >= D->off[r0 + 1])
+			r0++;
+		const struct illum_splat *sp = run_at(&D->runs[r0], q - D->off[r0]);
 		struct prep *p = &D->p[q];
 		double e[3], x = energy_max(sp->e);
 		J->emax = x > J->emax ? x : J->emax;
@@ -770,25 +798,42 @@ static void prep_work(void *ctx, long k, int worker)
 		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &p->fu);
 		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &p->fv);
 		p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
+		J->valid++;
 	}
 }
 
-/* Step 2: the window, placed where most deposits land. */
+/* Step 2's sample from chunk k (a parallel_for item): the tiles of valid
+ * splats c = 0, stride, 2·stride, … counted over all chunks, each at c /
+ * stride. */
+static void sample_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	const struct deposit_job *J = (const struct deposit_job *)ctx + k, *D = ctx;
+	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n, c = J->c0;
+	for (long q = lo; q < hi; q++)
+		if (D->p[q].i != INT32_MIN && c++ % D->stride == 0) {
+			D->ti[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].i);
+			D->tj[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].j);
+		}
+}
+
+/* Step 2: the window, placed where most deposits land (the sample taken
+ * on the threads). */
 static void prep_window(struct deposit_job *D, long nchunks)
 {
 	struct illum_map *m = D->m;
-	long n = 0, ns = 0;
-	for (long k = 0; k < nchunks; k++)
+	long n = 0;
+	for (long k = 0; k < nchunks; k++) {
 		m->dropped += D[k].dropped;
-	for (long q = 0; q < D->n; q++)
-		n += D->p[q].i != INT32_MIN;
-	long stride = n / WIN_SAMPLE + 1;
-	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1)), *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
-	for (long q = 0, c = 0; q < D->n; q++)
-		if (D->p[q].i != INT32_MIN && c++ % stride == 0)
-			ti[ns] = (int32_t)floordiv(D->p[q].i), tj[ns++] = (int32_t)floordiv(D->p[q].j);
-	win_fit(m, ti, tj, ns, n);
-	free(ti), free(tj);
+		D[k].c0 = n;
+		n += D[k].valid;
+	}
+	D->stride = n / WIN_SAMPLE + 1;
+	long ns = (n + D->stride - 1) / D->stride;
+	D->ti = mem_alloc(sizeof *D->ti * (size_t)(ns + 1)), D->tj = mem_alloc(sizeof *D->tj * (size_t)(ns + 1));
+	parallel_for(nchunks, D->nb, sample_work, D);
+	win_fit(m, D->ti, D->tj, ns, n);
+	free(D->ti), free(D->tj);
 }
 
 /* The tile (ti,tj) for band job B, made when missing: in the window, from
@@ -838,7 +883,9 @@ static void accumulate_work(void *ctx, long k, int worker)
 	bool finite = m->bound < 0x1p32 * m->unit; /* no sum can reach 2^128 (map_reserve) */
 	long lti = LONG_MIN, ltj = LONG_MIN; /* the tile of the last node (most splats stay in one) */
 	struct tile *lt = NULL;
-	for (long q = 0; q < D->n; q++) {
+	for (long q = 0, r = 0; q < D->n; q++) {
+		while (q >= D->off[r + 1]) /* r: the run of splat q */
+			r++;
 		const struct prep *p = &D->p[q];
 		if (p->i == INT32_MIN)
 			continue;
@@ -852,7 +899,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 		}
 		long iu[2] = {p->i, ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1};
 		double wu[2] = {1 - p->fu, p->fu}, wv[2] = {1 - p->fv, p->fv}, e[3];
-		energy_clean(D->s[q].e, e);
+		energy_clean(run_at(&D->runs[r], q - D->off[r])->e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
 		for (int b = 0; b < 2; b++) {
 			if (!mine[b])
@@ -875,19 +922,43 @@ static void accumulate_work(void *ctx, long k, int worker)
 	}
 }
 
+/* Step 4 for band k (a parallel_for item): its window tiles join the map's
+ * list at D[k].first. */
+static void join_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	const struct deposit_job *B = (const struct deposit_job *)ctx + k;
+	struct illum_map *m = ((const struct deposit_job *)ctx)->m;
+	for (long i = 0; i < B->nmade; i++) {
+		m->win[B->where[i]] = (int32_t)(B->first + i + 1);
+		m->tiles[B->first + i] = B->made[i];
+	}
+}
+
 #define PREP_CHUNK 16384 /* splats per step-1 item */
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
+	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s}, 1, threads);
+}
+
+void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long nruns, int threads)
+{
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
-	if (n <= 0)
+	long *off = mem_alloc(sizeof *off * (size_t)(nruns + 1)), n = 0;
+	off[0] = 0;
+	for (long r = 0; r < nruns; r++)
+		off[r + 1] = n += runs[r].n > 0 ? runs[r].n : 0;
+	if (n <= 0) {
+		free(off);
 		return;
+	}
 	if (n < 8192)
 		nb = 1;
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
-	D[0] = (struct deposit_job){.m = m, .s = s, .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n,
-	                            .chunk = PREP_CHUNK, .nb = nb};
+	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
+	                            .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	for (long k = 0; k < nchunks; k++)
@@ -899,29 +970,31 @@ void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n,
 		D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
 	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
-	 * their window entries (without reading the tiles, which are cold) */
+	 * their window entries (without reading the tiles, which are cold),
+	 * each band's into its own range, on the threads; then the tiles the
+	 * bands made outside the window (the order of the list is free:
+	 * readers sort it) */
+	long total = m->ntiles;
+	for (int b = 0; b < nb; b++)
+		D[b].first = total, total += D[b].nmade;
+	if (total > m->cap) {
+		long cap = m->cap ? m->cap : 8;
+		while (cap < total)
+			cap *= 2;
+		m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
+		m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
+		m->cap = cap;
+	}
+	parallel_for(nb, nb, join_work, D);
+	m->ntiles = total;
 	for (int b = 0; b < nb; b++) {
-		long total = m->ntiles + D[b].nmade; /* room for them (a partial
-		                                        map adopted below adds more) */
-		if (total > m->cap) {
-			long cap = m->cap ? m->cap : 8;
-			while (cap < total)
-				cap *= 2;
-			m->tiles = mem_realloc(m->tiles, (size_t)cap * sizeof *m->tiles);
-			m->bytes += (size_t)(cap - m->cap) * sizeof *m->tiles;
-			m->cap = cap;
-		}
-		for (long k = 0; k < D[b].nmade; k++) {
-			m->win[D[b].where[k]] = (int32_t)(m->ntiles + 1);
-			m->tiles[m->ntiles++] = D[b].made[k];
-		}
 		arena_adopt(&m->pool, &D[b].pool);
 		free(D[b].made), free(D[b].where);
 		if (D[b].part)
 			adopt(m, D[b].part);
 	}
 	m->finished = false;
-	free(D->p), free(D);
+	free(D->p), free(D), free(off);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)
@@ -1496,8 +1569,8 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 	for (long dj = -rv; dj <= rv; dj++)
 		for (long di = -ru; di <= ru; di++) {
 			long a = axis_step(&m->ax[0], i, di), b = axis_step(&m->ax[1], j, dj);
-			if (a < 0 || b < 0)
-				continue;
+			if ((a < 0 && m->ax[0].bounded) || (b < 0 && m->ax[1].bounded))
+				continue; /* past a bounded edge (the plane's nodes go negative) */
 			long ta = floordiv(a) - nb->ti + 1, tb = floordiv(b) - nb->tj + 1;
 			int slot = (int)((b - floordiv(b) * ILLUM_TILE) * ILLUM_TILE + (a - floordiv(a) * ILLUM_TILE));
 			const struct tile *t = ta >= 0 && ta < 3 && tb >= 0 && tb < 3 ? nb->t[tb][ta]
@@ -1548,12 +1621,41 @@ static uint64_t near_count(const struct near *nb)
 	return c;
 }
 
+#define NEAR_N (3 * ILLUM_TILE) /* nodes a side of the 3×3 tiles of a struct near */
+
+/* The deposit counts of the 3×3 tiles nb holds, as one array of nodes
+ * (zero where a tile is absent). */
+static void near_counts(const struct near *nb, uint64_t c[NEAR_N][NEAR_N])
+{
+	for (int b = 0; b < 3; b++)
+		for (int a = 0; a < 3; a++)
+			for (int q = 0; q < TN; q++)
+				c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] =
+					nb->t[b][a] ? nb->t[b][a]->n[q].count : 0;
+}
+
+/* node_isolated for node q of the middle tile of c (near_counts), when its
+ * 5×5 neighbourhood lies inside c (near_closed, two nodes each way): the
+ * same sum of counts, read from the array. */
+static bool near_isolated(uint64_t c[NEAR_N][NEAR_N], int q)
+{
+	int x = ILLUM_TILE + q % ILLUM_TILE, y = ILLUM_TILE + q / ILLUM_TILE;
+	uint64_t sum = 0;
+	for (int j = y - 2; j <= y + 2; j++)
+		for (int i = x - 2; i <= x + 2; i++)
+			sum += c[j][i];
+	return sum <= 4;
+}
+
 /* Job k of the array at ctx (a parallel_for item). */
 static void finish_work(void *ctx, long job, int worker)
 {
 	(void)worker;
 	struct finish_job *J = (struct finish_job *)ctx + job;
 	const struct illum_map *m = J->m;
+	/* node_isolated reaches two nodes each way on both axes (not fewer on
+	 * a short wrapping axis) */
+	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
 		for (int q = 0; q < TN; q++)
@@ -1561,13 +1663,18 @@ static void finish_work(void *ctx, long job, int worker)
 				fx_add(&J->tot[c], t->n[q].e[c]);
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = J->discard && tile_count(t) <= 4, all = false;
+		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
 		struct near nb = {.ti = 0};
+		uint64_t cnt[NEAR_N][NEAR_N];
 		if (check) {
 			near_fill(m, &nb, t->ti, t->tj);
 			/* at most one splat in the tiles around: every node with a
 			 * deposit is isolated (its neighbourhood is among them) */
-			all = near_closed(m, t->ti, t->tj) && near_count(&nb) <= 4;
+			closed = near_closed(m, t->ti, t->tj);
+			all = closed && near_count(&nb) <= 4;
+			closed = closed && reach2 && !all;
+			if (closed) /* else node_isolated looks the nodes up */
+				near_counts(&nb, cnt);
 		}
 		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
@@ -1579,7 +1686,7 @@ static void finish_work(void *ctx, long job, int worker)
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			if (t->area)
 				t->area[q] = node_area(m, i, j);
-			if (check && (all || node_isolated(m, &nb, i, j, t->n[q].count))) {
+			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
 					fx_add(&J->rem[c], t->n[q].e[c]);

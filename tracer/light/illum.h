@@ -99,6 +99,18 @@ struct illum_splat {
  * them one by one, for any thread count. */
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads);
 
+/* Splats s, s + stride, …, n of them, somewhere in the caller's memory (a
+ * struct whose first member is the illum_splat, say). */
+struct illum_run {
+	const void *s;
+	long n;
+	size_t stride; /* bytes from one splat to the next */
+};
+
+/* illum_deposit_all over the runs r[0..nr) in order, as if they were one
+ * array: the same result, without copying them into one. */
+void illum_deposit_runs(struct illum_map *m, const struct illum_run *r, long nr, int threads);
+
 /* Spreads energy (per channel, W; negative or NaN components count as 0)
  * uniformly per unit (u,v) area over the polygon uv[0..n) — the footprint of
  * a light shaft — giving node k the share ∫_poly φ_k du dv / area(poly), φ_k

@@ -30,9 +30,10 @@
 
 /* A diffuse landing, kept until the maps exist. */
 struct rec {
+	struct illum_splat s;     /* where on the primitive (u,v) and the energy per
+	                             channel (W): first, so the maps read it in place
+	                             (illum_deposit_runs) */
 	const struct object *obj; /* primitive hit */
-	double u, v;              /* where on it */
-	double e[3];              /* energy per channel (W) */
 	struct vec3 p;            /* world point (for the automatic cell size) */
 	double size;              /* shafts: the spread of the corners around it (m), else 0 */
 };
@@ -92,13 +93,20 @@ struct job {
 	struct span *spans;         /* per item: where its records went */
 };
 
+#define DISTINCT_MAX 4 /* surfaces an item lists (more: the maps step reads its records) */
+
 /* The records of one work item: recs.r[r0 .. r0+nr) and precs.r[p0 ..
  * p0+np) of worker w. Taken in item order, the records are in the same
  * order for any thread count, and so is every map's sum (even its float
- * Σw²). */
+ * Σw²). The distinct surfaces they reach, in order of first appearance,
+ * are listed while they are in cache (nd of them; -1: more than
+ * DISTINCT_MAX), so the serial step that numbers the surfaces reads a few
+ * per item instead of every record. */
 struct span {
 	int w;
 	long r0, nr, p0, np;
+	int nd;
+	const struct object *d[DISTINCT_MAX];
 };
 
 /* The same, resolved to memory once the workers are done. */
@@ -107,6 +115,8 @@ struct seg {
 	long nr;
 	const struct prec *p;
 	long np;
+	int nd;
+	const struct object *const *d;
 };
 
 /* Light shafts (docs/design.md §4): where one specular path of a corner ray
@@ -314,7 +324,7 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 		rb->cap = rb->cap ? rb->cap * 2 : 4096;
 		rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)rb->cap);
 	}
-	rb->r[rb->n++] = (struct rec){h->obj, h->u, h->v, {e[0], e[1], e[2]}, h->p, 0};
+	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
 }
 
 static void add3(double acc[3], const double e[3], double k)
@@ -665,8 +675,8 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 				struct recbuf *rb = &w->recs;
 				if (rb->n == rb->cap)
 					rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)(rb->cap = rb->cap ? rb->cap * 2 : 4096));
-				rb->r[rb->n++] = (struct rec){L->obj, L->u, L->v,
-				                              {L->e[0] * share, L->e[1] * share, L->e[2] * share}, L->p, size};
+				rb->r[rb->n++] = (struct rec){{L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
+				                              L->obj, L->p, size};
 				continue;
 			}
 			if (k > 0)
@@ -812,6 +822,29 @@ static void run_item(struct worker *w, const struct item *it)
 	}
 }
 
+/* The distinct surfaces of records r[0..nr) and footprints p[0..np) (see
+ * struct span). */
+static void list_distinct(struct span *sp, const struct rec *r, long nr, const struct prec *p, long np)
+{
+	const struct object *prev = NULL;
+	sp->nd = 0;
+	for (long i = 0; i < nr + np && sp->nd >= 0; i++) {
+		const struct object *ob = i < nr ? r[i].obj : p[i - nr].obj;
+		if (ob == prev)
+			continue;
+		prev = ob;
+		int k = 0;
+		while (k < sp->nd && sp->d[k] != ob)
+			k++;
+		if (k < sp->nd)
+			continue;
+		if (sp->nd == DISTINCT_MAX)
+			sp->nd = -1;
+		else
+			sp->d[sp->nd++] = ob;
+	}
+}
+
 /* Work item k on the worker's own buffers (a parallel_for item; ctx is the
  * workers' array). */
 static void work(void *ctx, long k, int worker)
@@ -823,7 +856,9 @@ static void work(void *ctx, long k, int worker)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
-	J->spans[k] = (struct span){worker, r0, w->recs.n - r0, p0, w->precs.n - p0};
+	struct span *sp = &J->spans[k];
+	*sp = (struct span){worker, r0, w->recs.n - r0, p0, w->precs.n - p0, 0, {NULL}};
+	list_distinct(sp, sp->nr ? w->recs.r + r0 : NULL, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
 	progress_step(J->o->progress, 1);
 }
 
@@ -1050,7 +1085,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 }
 
 /* One surface's records gathered for its map: segment g's records go to
- * [off[g], off[g+1]) (a parallel_for item). */
+ * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item). */
 struct gather {
 	const struct seg *sg;
 	const long *off;
@@ -1065,9 +1100,12 @@ static void gather_work(void *ctx, long g, int worker)
 	const struct gather *G = ctx;
 	for (long i = 0, at = G->off[g]; i < G->sg[g].nr; i++, at++) {
 		const struct rec *rc = &G->sg[g].r[i];
-		G->pts[at] = rc->p;
-		G->psz[at] = rc->size;
-		G->sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
+		if (G->pts)
+			G->pts[at] = rc->p;
+		if (G->psz)
+			G->psz[at] = rc->size;
+		if (G->sp)
+			G->sp[at] = rc->s;
 	}
 }
 
@@ -1087,8 +1125,9 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	int cap = 16;
 	const struct object *prev = NULL;
 	for (long g = 0; g < nseg; g++)
-		for (long i = 0; i < sg[g].nr + sg[g].np; i++) {
-			const struct object *ob = i < sg[g].nr ? sg[g].r[i].obj : sg[g].p[i - sg[g].nr].obj;
+		for (long i = 0; i < (sg[g].nd >= 0 ? sg[g].nd : sg[g].nr + sg[g].np); i++) {
+			const struct object *ob = sg[g].nd >= 0 ? sg[g].d[i]
+			                        : i < sg[g].nr ? sg[g].r[i].obj : sg[g].p[i - sg[g].nr].obj;
 			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
 			if (seen)
@@ -1111,21 +1150,35 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	int *ki = n > 1 ? mem_alloc(sizeof *ki * (size_t)(total ? total : 1)) : NULL;
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
 	long *pstart = mem_calloc((size_t)n + 1, sizeof *pstart);
-	struct vec3 *pts = mem_alloc(sizeof *pts * (size_t)(total ? total : 1));
-	struct illum_splat *sp = mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
-	double *psz = mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
+	/* one surface and point deposits only (the usual case): its map reads
+	 * the records where they are, and their points are copied only when
+	 * they choose its cell */
+	bool inplace = n == 1 && ptotal == 0;
+	struct illum_spec own = n ? obj_illum(objs[0]) : (struct illum_spec){0, 0};
+	bool need_pts = !inplace || !(own.resolution > 0 || own.cell > 0);
+	struct vec3 *pts = need_pts ? mem_alloc(sizeof *pts * (size_t)(total ? total : 1)) : NULL;
+	struct illum_splat *sp = inplace ? NULL : mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
+	double *psz = inplace ? NULL : mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
 	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
 	t = 0;
-	for (long g = 0; g < nseg; g++)
+	for (long g = 0; g < nseg && ki; g++)
 		for (long i = 0; i < sg[g].nr; i++, t++)
-			start[(ki ? (ki[t] = find_map(r, sg[g].r[i].obj)) : 0) + 1]++;
+			start[(ki[t] = find_map(r, sg[g].r[i].obj)) + 1]++;
+	if (!ki && n)
+		start[1] = total;
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < sg[g].np; i++)
 			pstart[find_map(r, sg[g].p[i].obj) + 1]++;
 	for (int k = 0; k < n; k++)
 		start[k + 1] += start[k], pstart[k + 1] += pstart[k];
 	t = 0;
-	if (!ki) { /* one surface: the segments' records in order, on the threads */
+	struct illum_run *runs = NULL;
+	if (inplace) {
+		runs = mem_alloc(sizeof *runs * (size_t)nseg);
+		for (long g = 0; g < nseg; g++)
+			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r};
+	}
+	if (!ki && (pts || sp)) { /* one surface: the segments' records in order, on the threads */
 		long *off = mem_alloc(sizeof *off * (size_t)(nseg + 1));
 		off[0] = 0;
 		for (long g = 0; g < nseg; g++)
@@ -1140,7 +1193,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 			long at = start[k] + fill[k]++;
 			pts[at] = rc->p;
 			psz[at] = rc->size;
-			sp[at] = (struct illum_splat){rc->u, rc->v, {rc->e[0], rc->e[1], rc->e[2]}};
+			sp[at] = rc->s;
 		}
 	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
 	for (long g = 0; g < nseg; g++)
@@ -1159,12 +1212,14 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 		long np = pstart[k + 1] - pstart[k], nr = start[k + 1] - start[k];
 		struct illum_map *lv[LP_LEVELS] = {NULL};
 		struct illum_spec spec = np ? shaft_spec(objs[k], pr + pstart[k], np, pts + start[k], nr, o)
-		                            : choose_spec(objs[k], pts + start[k], nr, per_node);
+		                            : choose_spec(objs[k], pts ? pts + start[k] : NULL, nr, per_node);
 		int nl = np && spec.resolution == 0 ? LP_LEVELS : 1;
 		lv[0] = illum_new(objs[k], &spec);
 		if (!lv[0] && !out->nomap)
 			out->nomap = objs[k];
-		if (lv[0] && nl == 1 && np == 0)
+		if (lv[0] && inplace)
+			illum_deposit_runs(lv[0], runs, nseg, o->threads);
+		else if (lv[0] && nl == 1 && np == 0)
 			illum_deposit_all(lv[0], sp + start[k], nr, o->threads);
 		else if (lv[0])
 			deposit_levels(lv, objs[k], spec.cell, nl, pr + pstart[k], np, sp + start[k], psz + start[k], nr,
@@ -1190,7 +1245,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	free(r->objs), free(r->slots), free(r);
 	r = out;
 	index_maps(r);
-	free(ki), free(start), free(fill), free(pstart), free(pts), free(sp), free(psz), free(pr);
+	free(ki), free(start), free(fill), free(pstart), free(pts), free(sp), free(psz), free(pr), free(runs);
 	return r;
 }
 
@@ -1308,7 +1363,8 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->nr ? bufs[p->w].r + p->r0 : NULL, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np};
+		sg[k] = (struct seg){p->nr ? bufs[p->w].r + p->r0 : NULL, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np,
+		                     p->nd, p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
 	free(sg), free(J.spans);

@@ -76,7 +76,21 @@ bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double t
 	return pl_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
 }
 
-/* One root; the hit is rebuilt from its (u,v) so it lies in the plane. */
+/* The hit at root t, from frame f: rebuilt from its (u,v) so it lies in
+ * the plane. */
+static void pl_hit(const struct pframe *f, const struct ray *r, double t, struct local_hit *lh)
+{
+	struct vec3 p = ray_at(*r, t);
+	lh->t = t;
+	lh->u = v_dot(p, f->e1);
+	lh->v = v_dot(p, f->e2);
+	lh->p = v_madd(v_madd(v_scale(f->n, f->d), f->e1, lh->u), f->e2, lh->v);
+	lh->n = f->n;
+	lh->dpdu = f->e1;
+	lh->dpdv = f->e2;
+}
+
+/* One root. */
 static bool pl_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
@@ -84,14 +98,29 @@ static bool pl_intersect(const struct object *o, const struct ray *r, double tmi
 	double t;
 	if (!pl_frame(o, &f) || !pl_root(f.n, f.d, r, tmin, tmax, &t))
 		return false;
-	struct vec3 p = ray_at(*r, t);
-	lh->t = t;
-	lh->u = v_dot(p, f.e1);
-	lh->v = v_dot(p, f.e2);
-	lh->p = v_madd(v_madd(v_scale(f.n, f.d), f.e1, lh->u), f.e2, lh->v);
-	lh->n = f.n;
-	lh->dpdu = f.e1;
-	lh->dpdv = f.e2;
+	pl_hit(&f, r, t, lh);
+	return true;
+}
+
+void pl_prep(const struct object *o, struct pl_prep *p)
+{
+	struct pframe f = {.d = 0};
+	p->ok = pl_frame(o, &f);
+	p->n = f.n, p->e1 = f.e1, p->e2 = f.e2, p->d = f.d;
+}
+
+bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t)
+{
+	return p->ok && pl_root(p->n, p->d, r, tmin, tmax, t);
+}
+
+bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
+                       struct local_hit *lh)
+{
+	double t;
+	if (!p->ok || !pl_root(p->n, p->d, r, tmin, tmax, &t))
+		return false;
+	pl_hit(&(struct pframe){p->n, p->e1, p->e2, p->d}, r, t, lh);
 	return true;
 }
 

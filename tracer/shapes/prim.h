@@ -55,6 +55,20 @@ bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double 
 /* The plane's root in (tmin, tmax), in its own frame: the t its intersect
  * finds, without its frame, point and (u,v) (shape_hit_t). */
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
+/* A plane's unit normal, offset and in-plane axes, which pl_hit_t and the
+ * plane's intersect work out on every call, worked out once (pl_prep) for
+ * a leaf every ray tests: pl_prep_hit_t and pl_prep_intersect then give
+ * the same numbers, bit for bit. ok: the normal is not zero (else neither
+ * hits). */
+struct pl_prep {
+	struct vec3 n, e1, e2;
+	double d;
+	bool ok;
+};
+void pl_prep(const struct object *o, struct pl_prep *p);
+bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t);
+bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
+                       struct local_hit *lh);
 /* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
  * without uv, (u,v) and the partials are left unset (shape_hit_at). */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);
