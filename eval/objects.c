@@ -155,8 +155,8 @@ struct texture *texture_copy(struct eval *E, const struct texture *t)
 
 static bool ext_equal(const struct tex_ext *a, const struct tex_ext *b)
 {
-	return a->finish == b->finish && a->normal == b->normal && a->map == b->map && a->below == b->below && a->nmap == b->nmap &&
-	       a->loc.file == b->loc.file && a->loc.line == b->loc.line && a->loc.col == b->loc.col;
+	return a->finish == b->finish && a->normal == b->normal && a->map == b->map && a->below == b->below &&
+	       a->nmap == b->nmap && a->loc.file == b->loc.file && a->loc.line == b->loc.line && a->loc.col == b->loc.col;
 }
 
 void tex_ext_set(struct eval *E, struct texture *t, const struct tex_ext *x)

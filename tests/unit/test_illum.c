@@ -73,6 +73,22 @@ static struct nodes *nodes_of(const struct illum_map *m)
 	return s;
 }
 
+/* How many nodes of two maps differ, bit for bit (energies, Σw²,
+ * irradiance, counts, place, isolated flag), counting a different number of
+ * nodes as one. */
+static int node_diffs(const struct nodes *s1, const struct nodes *s2)
+{
+	int diff = s1->n != s2->n;
+	for (int q = 0; q < s1->n && q < s2->n; q++) {
+		const struct illum_node *a = &s1->a[q], *b = &s2->a[q];
+		diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
+		diff += memcmp(a->sumsq, b->sumsq, sizeof a->sumsq) != 0;
+		diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
+		diff += a->count != b->count || a->i != b->i || a->j != b->j || a->isolated != b->isolated;
+	}
+	return diff;
+}
+
 /* Energy of node (i,j) in channel 0, 0 when absent. */
 static double node_e(const struct nodes *s, long i, long j)
 {
@@ -339,15 +355,7 @@ static void t_threads(void)
 			illum_deposit_all(m, sp, N, threads[t]);
 			illum_finish_mt(m, true, rem, threads[t]);
 			struct nodes *s2 = nodes_of(m);
-			int diff = s1->n != s2->n;
-			for (int q = 0; q < s1->n && q < s2->n; q++) {
-				const struct illum_node *a = &s1->a[q], *b = &s2->a[q];
-				diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
-				diff += memcmp(a->sumsq, b->sumsq, sizeof a->sumsq) != 0;
-				diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
-				diff += a->count != b->count || a->i != b->i || a->j != b->j || a->isolated != b->isolated;
-			}
-			CHECK(diff == 0);
+			CHECK(node_diffs(s1, s2) == 0);
 			CHECK(memcmp(rem, rem1, sizeof rem) == 0);
 			CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
 			free(s2);
@@ -404,15 +412,7 @@ static void t_runs(void)
 		illum_deposit_runs(m, runs, R, threads[t]);
 		illum_finish_mt(m, true, rem, threads[t]);
 		struct nodes *s2 = nodes_of(m);
-		int diff = s1->n != s2->n;
-		for (int q = 0; q < s1->n && q < s2->n; q++) {
-			const struct illum_node *a = &s1->a[q], *b = &s2->a[q];
-			diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0;
-			diff += memcmp(a->sumsq, b->sumsq, sizeof a->sumsq) != 0;
-			diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0;
-			diff += a->count != b->count || a->i != b->i || a->j != b->j || a->isolated != b->isolated;
-		}
-		CHECK(diff == 0);
+		CHECK(node_diffs(s1, s2) == 0);
 		CHECK(memcmp(rem, rem1, sizeof rem) == 0);
 		CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
 		free(s2);

@@ -194,7 +194,8 @@ bool lp_dispersive(const struct scene *s)
 		stack[n++] = s->objects[i];
 		while (n > 0) {
 			const struct object *o = stack[--n];
-			if (obj_interior(o) && obj_interior(o)->dispersion != 1)
+			const struct interior *in = obj_interior(o);
+			if (in && in->dispersion != 1)
 				return true;
 			if (o->kind >= OBJ_FIRST_CSG)
 				for (int k = 0; k < o->g.csg.n && n < 64; k++)

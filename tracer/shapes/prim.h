@@ -138,7 +138,7 @@ static inline bool prim_sphere_t(struct vec3 c, double rad, const struct ray *r,
 	double b = 2 * fd, cc = ff - rr, t0, t1;
 	if (!(a > 0))
 		return false;
-	struct vec3 perp = v_madd(f, d, -v_dot(f, d) / a);
+	struct vec3 perp = v_madd(f, d, -fd / a);
 	double lp = v_len(perp);
 	double disc = 4 * a * (rad + lp) * (rad - lp);
 	if (!prim_quadratic(a, b, cc, disc, &t0, &t1))
