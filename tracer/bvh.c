@@ -254,18 +254,30 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 			test_lane(P ? &P->q[P->base + (int)i] : q, (int)a->primID, a->rayhit, a->N, i, a->geomID);
 }
 
-static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
+/* Whether primitive id blocks query q's ray over its interval. */
+static bool blocks(const struct query *q, unsigned id)
 {
-	if (a->N != 1 || !a->valid[0]) /* only single shadow rays come here */
-		return;
-	struct query *q = (struct query *)a->context;
-	const struct object *o = q->b->prims[a->primID];
+	const struct object *o = q->b->prims[id];
 	double t;
 	if (o->flags & q->skip)
-		return;
-	if (o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
-	                          : shape_occluded(o, q->r, q->tmin, q->tmax))
-		((struct RTCRay *)a->ray)->tfar = -INFINITY;
+		return false;
+	return o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
+	                             : shape_occluded(o, q->r, q->tmin, q->tmax);
+}
+
+/* A blocked lane's tfar (RTCRayN's float row 8) becomes -inf: Embree drops
+ * it from the walk. */
+static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
+{
+	struct query *q = (struct query *)a->context;
+	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
+	for (unsigned i = 0; i < a->N; i++) {
+		struct query *qi = P ? &P->q[P->base + (int)i] : q;
+		if (a->valid[i] && !qi->found && blocks(qi, a->primID)) {
+			qi->found = true;
+			((float *)a->ray)[8 * a->N + i] = -INFINITY;
+		}
+	}
 }
 
 /* ==== building =========================================================== */
@@ -546,6 +558,49 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		rtcIntersect8(valid + 8, b->scene, &Q.rc, &rh8[1]);
 	}
 	done(&Q, n, found);
+}
+
+void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const double *tmax,
+                         unsigned skip, bool *blocked)
+{
+	struct packet Q;
+	_Alignas(64) struct RTCRayHit16 rh;
+	_Alignas(64) struct RTCRayHit8 rh8[2];
+	_Alignas(64) int valid[BVH_PACKET];
+	bool any = false;
+	for (int i = 0; i < BVH_PACKET; i++) {
+		struct query *q = &Q.q[i];
+		*q = new_query(b, &r[i < n ? i : 0], 0, i < n ? tmax[i] : 0, skip | BVH_NO_UV, NULL);
+		valid[i] = 0;
+		if (i >= n || unbounded(q, true) || b->nprims == 0)
+			continue;
+		if (!b->scene) {
+			brute(q, true);
+			continue;
+		}
+		float row[9];
+		valid[i] = float_ray(q, row) ? -1 : 0;
+		if (valid[i] && native16)
+			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
+		else if (valid[i])
+			put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
+		any |= valid[i] != 0;
+	}
+	if (any) {
+		rtcInitIntersectContext(&Q.rc);
+		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+		Q.lanes = BVH_PACKET;
+		Q.base = 0;
+		if (native16) {
+			rtcOccluded16(valid, b->scene, &Q.rc, &rh.ray);
+		} else {
+			rtcOccluded8(valid, b->scene, &Q.rc, &rh8[0].ray);
+			Q.base = 8;
+			rtcOccluded8(valid + 8, b->scene, &Q.rc, &rh8[1].ray);
+		}
+	}
+	for (int i = 0; i < n; i++)
+		blocked[i] = Q.q[i].found;
 }
 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,

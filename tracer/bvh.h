@@ -41,6 +41,12 @@ bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, do
 #define BVH_PACKET 16
 void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, double tmin, double tmax,
                           unsigned skip, struct hit *h, bool *found);
+/* Whether each of n <= BVH_PACKET shadow rays r[i] is blocked over
+ * (0, tmax[i]), as bvh_occluded_skip answers one by one: Embree walks them
+ * as one packet (the shadow rays of a 4×4 block's camera hits towards one
+ * light, which stay together). */
+void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const double *tmax,
+                         unsigned skip, bool *blocked);
 /* Leaves after flattening: bounded ones in the tree, and unbounded ones. */
 int bvh_count(const struct bvh *b, int *unbounded);
 /* World bounds of everything bounded in the tree (empty when none). */

@@ -3,6 +3,7 @@
 #include "eyepass.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "optics.h"
@@ -21,6 +22,20 @@ struct path {
 	const struct hit *pre;     /* the camera ray's hit, traced beforehand in a
 	                              packet (eye_pixels); used by the first trace */
 	int pre_state;             /* 1: pre holds it, -1: it missed, 0: none */
+	const struct shadow_memo *memo; /* per light (EYE_MEMO first ones): the
+	                              shadow ray of the camera hit, tested
+	                              beforehand in a packet (eye_pixels), or NULL */
+};
+
+/* A shadow ray of a light point towards l->pos, and whether it is blocked,
+ * answered beforehand; shadow() uses it for exactly this ray (the same bits
+ * of origin, direction and end), which gets the same answer alone. */
+#define EYE_MEMO 4
+struct shadow_memo {
+	bool set;    /* the entry holds a ray */
+	bool blocked;
+	struct ray r;
+	double tmax;
 };
 
 /* The AOVs of the first visible point (filled at depth 1 only). The
@@ -127,8 +142,16 @@ static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p,
 	struct ray r = {v_madd(p, nf, eps_at(p)), L};
 	double tmax = dist * (1 - 1e-9), t0 = 0;
 	pa->rays++;
-	if (!ctx->see_through)
-		return bvh_occluded_skip(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW) ? v3(0, 0, 0) : pass;
+	if (!ctx->see_through) {
+		ptrdiff_t li = l - ctx->scene->lights;
+		const struct shadow_memo *m = pa->memo && li < EYE_MEMO ? &pa->memo[li] : NULL;
+		bool blocked;
+		if (m && m->set && !memcmp(&m->r, &r, sizeof r) && !memcmp(&m->tmax, &tmax, sizeof tmax))
+			blocked = m->blocked;
+		else
+			blocked = bvh_occluded_skip(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW);
+		return blocked ? v3(0, 0, 0) : pass;
+	}
 	for (int n = 0; n < 64; n++) {
 		struct hit h;
 		if (!bvh_intersect_skip(ctx->bvh, &r, t0, tmax, OF_NO_SHADOW | BVH_NO_UV, &h))
@@ -591,7 +614,7 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0};
+	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL};
 	double jx = 0.5, jy = 0.5;
 	if (jitter) {
 		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
@@ -677,6 +700,61 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	pixel(ctx, x, y, out, rays, NULL, (struct ray){0}, NULL, 0);
 }
 
+/* The shadow rays shadow() will ask for at the camera hits h of a packet
+ * (found[i]: ray r[i] hit), towards each point or spot light among the
+ * first EYE_MEMO, built as shade_tex, from_point and shadow build them,
+ * tested as one packet per light; the answers go to memo[i], which pa[i]
+ * points to. Hits under a textured normal or a layered or mapped texture
+ * get none (their facing normal is known only in the shading). */
+static void shadow_packets(const struct eye_ctx *ctx, int n, const struct ray *r, const struct hit *h,
+                           const bool *found, struct path *pa, struct shadow_memo memo[][EYE_MEMO])
+{
+	const struct scene *s = ctx->scene;
+	struct vec3 nf[BVH_PACKET];
+	bool ok[BVH_PACKET];
+	for (int i = 0; i < n; i++) {
+		for (int k = 0; k < EYE_MEMO; k++)
+			memo[i][k].set = false;
+		pa[i].memo = memo[i];
+		ok[i] = found[i];
+		if (!ok[i])
+			continue;
+		const struct texture *t = mat_texture(h[i].obj);
+		if (tex_normal(t) || tex_map(t) || tex_below(t)) {
+			ok[i] = false;
+			continue;
+		}
+		nf[i] = h[i].n;
+		if (v_dot(nf[i], v_neg(v_norm(r[i].d))) < 0)
+			nf[i] = v_neg(nf[i]);
+	}
+	for (int k = 0; k < s->nlights && k < EYE_MEMO; k++) {
+		const struct light *l = &s->lights[k];
+		if (l->area || l->shadowless || l->kind == LIGHT_PARALLEL)
+			continue;
+		struct ray sr[BVH_PACKET];
+		double tmax[BVH_PACKET];
+		bool blocked[BVH_PACKET];
+		int lane[BVH_PACKET], m = 0;
+		for (int i = 0; i < n; i++) {
+			if (!ok[i])
+				continue;
+			struct vec3 L;
+			double dist = towards(l, h[i].p, l->pos, &L);
+			if (v_dot(nf[i], L) <= 0)
+				continue; /* from_point tests no shadow */
+			sr[m] = (struct ray){v_madd(h[i].p, nf[i], eps_at(h[i].p)), L};
+			tmax[m] = dist * (1 - 1e-9);
+			lane[m++] = i;
+		}
+		if (m == 0)
+			continue;
+		bvh_occluded_packet(ctx->bvh, m, sr, tmax, OF_NO_SHADOW, blocked);
+		for (int j = 0; j < m; j++)
+			memo[lane[j]][k] = (struct shadow_memo){true, blocked[j], sr[j], tmax[j]};
+	}
+}
+
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
@@ -687,6 +765,9 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	for (int i = 0; i < n; i++)
 		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
+	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
+	if (!ctx->see_through && ctx->scene->nlights > 0)
+		shadow_packets(ctx, n, r, h, found, pa, memo);
 	for (int i = 0; i < n; i++)
 		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], r[i], &h[i], found[i] ? 1 : -1);
 }

@@ -4,7 +4,7 @@
  * random rays through a random scene of 1000 spheres, boxes and triangles
  * with planes, a flattened union and a CSG leaf; shadow queries and skip
  * masks agree too; degenerate and empty scenes work; rays leaving sphere
- * surfaces agree too. */
+ * surfaces agree too, and so do shadow rays asked as one packet. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -265,6 +265,68 @@ static void t_from_surfaces(void)
 	bvh_free(b);
 }
 
+/* Shadow rays as one packet (bvh_occluded_packet) answer as they do one by
+ * one and as brute force does: 1 to 16 rays at a time, from nearby points
+ * on the scene's surfaces towards one light point (as a 4×4 block's camera
+ * hits send them), or from anywhere to anywhere, with and without a skip
+ * mask, over (0, tmax). */
+static void t_occluded_packet(void)
+{
+	static struct scene_fixture s;
+	rng_seed(25);
+	build_scene(&s);
+	for (int i = 0; i < NOBJ; i += 5)
+		s.prims[i].flags |= OF_NO_SHADOW;
+	struct bvh *b = bvh_build(s.top, s.ntop);
+	int mism = 0, blocked = 0, total = 0;
+	for (int k = 0; k < 3000; k++) {
+		int n = 1 + k % BVH_PACKET;
+		unsigned skip = k % 2 ? OF_NO_SHADOW : 0;
+		struct vec3 light = rnd_vec(-90, 90), at = rnd_vec(-40, 40);
+		struct ray r[BVH_PACKET];
+		double tmax[BVH_PACKET];
+		bool got[BVH_PACKET];
+		for (int i = 0; i < n; i++) {
+			struct vec3 p = v_add(at, rnd_vec(-1, 1));
+			if (k % 3 == 0) { /* on the nearest surface along a camera-like ray */
+				struct ray c = {light, v_norm(v_sub(p, light))};
+				struct hit h;
+				if (brute(s.top, s.ntop, &c, 0, INFINITY, 0, &h))
+					p = v_madd(h.p, h.n, 1e-7 * (1 + fabs(h.p.x) + fabs(h.p.y) + fabs(h.p.z)));
+				light = v_add(light, v3(0, 200, 0)); /* the light is elsewhere */
+			}
+			if (k % 7 == 6)
+				p = rnd_vec(-70, 70), light = rnd_vec(-70, 70);
+			struct vec3 d = v_sub(light, p);
+			double len = v_len(d);
+			r[i] = (struct ray){p, v_scale(d, 1 / len)};
+			tmax[i] = k % 11 == 10 ? INFINITY : len * (1 - 1e-9);
+		}
+		bvh_occluded_packet(b, n, r, tmax, skip, got);
+		for (int i = 0; i < n; i++) {
+			struct hit h;
+			bool gb = brute(s.top, s.ntop, &r[i], 0, tmax[i], skip, &h);
+			bool g1 = bvh_occluded_skip(b, &r[i], 0, tmax[i], skip);
+			if ((gb != got[i] || g1 != got[i]) && mism++ < 5)
+				printf("#   packet %d lane %d: brute %d, one %d, packet %d\n", k, i, gb, g1, got[i]);
+			blocked += gb;
+			total++;
+		}
+	}
+	printf("# %d of %d shadow rays blocked, %d mismatches\n", blocked, total, mism);
+	CHECK(mism == 0);
+	CHECK(blocked > total / 10 && blocked < total * 9 / 10);
+	bvh_free(b);
+
+	b = bvh_build(NULL, 0); /* nothing to block: every lane is clear */
+	struct ray r[2] = {{v3(0, 0, 0), v3(1, 0, 0)}, {v3(1, 1, 1), v3(0, 1, 0)}};
+	double tmax[2] = {INFINITY, 5};
+	bool got[2] = {true, true};
+	bvh_occluded_packet(b, 2, r, tmax, 0, got);
+	CHECK(!got[0] && !got[1]);
+	bvh_free(b);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -272,5 +334,6 @@ int main(void)
 	RUN(t_degenerate_and_empty);
 	RUN(t_axis_rays);
 	RUN(t_from_surfaces);
+	RUN(t_occluded_packet);
 	return test_done();
 }
