@@ -706,12 +706,19 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
  * tested as one packet per light; the answers go to memo[i], which pa[i]
  * points to. Hits under a textured normal or a layered or mapped texture
  * get none (their facing normal is known only in the shading). */
+#define EYE_COHERENT 1.05
 static void shadow_packets(const struct eye_ctx *ctx, int n, const struct ray *r, const struct hit *h,
                            const bool *found, struct path *pa, struct shadow_memo memo[][EYE_MEMO])
 {
 	const struct scene *s = ctx->scene;
 	struct vec3 nf[BVH_PACKET];
 	bool ok[BVH_PACKET];
+	double t0 = INFINITY, t1 = 0;
+	for (int i = 0; i < n; i++)
+		if (found[i])
+			t0 = fmin(t0, h[i].t), t1 = fmax(t1, h[i].t);
+	if (t1 > t0 * EYE_COHERENT)
+		return; /* scattered in depth: the rays would go their own ways */
 	for (int i = 0; i < n; i++) {
 		for (int k = 0; k < EYE_MEMO; k++)
 			memo[i][k].set = false;
