@@ -348,24 +348,31 @@ struct bbox bvh_bounds(const struct bvh *b)
 
 /* ==== traversal ========================================================== */
 
+/* Narrows (*tmin, *tmax) to the slab lo..hi of one axis (ray origin o,
+ * direction d along it): false when it becomes empty. */
+static inline bool slab(double o, double d, double lo, double hi, double *tmin, double *tmax)
+{
+	double inv = 1 / d; /* ±inf for 0: the same bounds */
+	double t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+	if (t0 > t1) {
+		double s = t0;
+		t0 = t1;
+		t1 = s;
+	}
+	if (t0 > *tmin) /* NaN (0/0) leaves the bound as it is */
+		*tmin = t0;
+	if (t1 < *tmax)
+		*tmax = t1;
+	return !(*tmin > *tmax);
+}
+
 /* Where r enters box b over (tmin, tmax): false when it misses. */
 static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
 {
-	for (int k = 0; k < 3; k++) {
-		double o = v_comp(r->o, k), inv = 1 / v_comp(r->d, k); /* ±inf for 0: the same bounds */
-		double t0 = (v_comp(b.lo, k) - o) * inv, t1 = (v_comp(b.hi, k) - o) * inv;
-		if (t0 > t1) {
-			double s = t0;
-			t0 = t1;
-			t1 = s;
-		}
-		if (t0 > tmin) /* NaN (0/0) leaves the bound as it is */
-			tmin = t0;
-		if (t1 < tmax)
-			tmax = t1;
-		if (tmin > tmax)
-			return false;
-	}
+	if (!slab(r->o.x, r->d.x, b.lo.x, b.hi.x, &tmin, &tmax) ||
+	    !slab(r->o.y, r->d.y, b.lo.y, b.hi.y, &tmin, &tmax) ||
+	    !slab(r->o.z, r->d.z, b.lo.z, b.hi.z, &tmin, &tmax))
+		return false;
 	*t = tmin;
 	return true;
 }
@@ -456,7 +463,9 @@ static bool unbounded(struct query *q, bool any)
 			return q->found = true;
 		double t;
 		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
-			if (shape_plane_hit_t(o, &q->b->uplane[i], q->r, q->tmin, q->tmax, &t))
+			const struct pl_prep *pp = &q->b->uplane[i];
+			if (!o->xf ? pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t)
+			           : shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t))
 				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
