@@ -545,11 +545,10 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	pa->pre_state = 0;
 	if (depth > maxd || weight < s->gs.adc_bailout)
 		return v3(0, 0, 0);
-	struct hit h;
+	struct hit hit;
+	const struct hit *hp = pre > 0 ? pa->pre : &hit; /* the packet's hit is used in place */
 	pa->rays++;
-	if (pre > 0)
-		h = *pa->pre;
-	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), &h))) {
+	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), &hit))) {
 		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
 		if (s->fog.type)
 			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
@@ -558,10 +557,10 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		return bg;
 	}
 	if (aov)
-		aov->z = h.t * v_len(r.d);
-	struct vec3 c = shade(pa, &h, r.d, depth, weight, skip, aov);
-	if (!h.entering) {
-		struct vec3 fade = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
+		aov->z = hp->t * v_len(r.d);
+	struct vec3 c = shade(pa, hp, r.d, depth, weight, skip, aov);
+	if (!hp->entering) {
+		struct vec3 fade = opt_fade(mat_interior(hp->obj), hp->t * v_len(r.d));
 		c = v_mul(c, fade);
 		if (aov) {
 			aov->emis = v_mul(aov->emis, fade);
@@ -570,7 +569,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		}
 	}
 	if (s->fog.type) /* the layers keep their unfogged values */
-		c = fog(&s->fog, r.o, v_norm(r.d), h.t * v_len(r.d), c);
+		c = fog(&s->fog, r.o, v_norm(r.d), hp->t * v_len(r.d), c);
 	return c;
 }
 
@@ -651,18 +650,25 @@ static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, c
  * -1: miss) and pre give sample 0's camera hit when it was traced
  * beforehand. */
 static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays,
-                  const struct path *pa0, struct ray r0, const struct hit *pre, int pre_state)
+                  struct path *pa0, struct ray r0, const struct hit *pre, int pre_state)
 {
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
 	int hits = 0;
 	if (ctx->beauty_only) { /* the same radiance, without the layers (left unset) */
 		for (int i = 0; i < ctx->spp; i++) {
-			struct path pa;
-			struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
+			struct path own, *pa = &own;
+			struct ray r;
+			if (i == 0 && pa0) { /* sample 0's path, used in place */
+				pa = pa0;
+				pa->pre = pre, pa->pre_state = pre_state;
+				r = r0;
+			} else {
+				r = camera_sample(ctx, x, y, i, pa);
+			}
 			if (v_dot(r.d, r.d) > 0)
-				sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, NULL));
-			*rays += pa.rays;
+				sum = v_add(sum, trace(pa, r, 1, 1, OF_NO_IMAGE, NULL));
+			*rays += pa->rays;
 		}
 		put3(out->rgb, sum, 1.0 / ctx->spp);
 		return;
