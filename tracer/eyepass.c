@@ -634,13 +634,13 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 /* Sample i's path and camera ray: sample 0's as eye_pixels started and
  * traced it (pa0, r0 and its hit pre), when it did. */
 static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, const struct path *pa0,
-                               struct ray r0, const struct hit *pre, int pre_state, struct path *pa)
+                               const struct ray *r0, const struct hit *pre, int pre_state, struct path *pa)
 {
 	if (i > 0 || !pa0)
 		return camera_sample(ctx, x, y, i, pa);
 	*pa = *pa0;
 	pa->pre = pre, pa->pre_state = pre_state;
-	return r0;
+	return *r0;
 }
 
 /* Shades one pixel: spp camera samples averaged with equal weights. The
@@ -650,7 +650,7 @@ static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, c
  * -1: miss) and pre give sample 0's camera hit when it was traced
  * beforehand. */
 static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays,
-                  struct path *pa0, struct ray r0, const struct hit *pre, int pre_state)
+                  struct path *pa0, const struct ray *r0, const struct hit *pre, int pre_state)
 {
 	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
 	struct aov near = {.z = INFINITY};
@@ -662,7 +662,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 			if (i == 0 && pa0) { /* sample 0's path, used in place */
 				pa = pa0;
 				pa->pre = pre, pa->pre_state = pre_state;
-				r = r0;
+				r = *r0;
 			} else {
 				r = camera_sample(ctx, x, y, i, pa);
 			}
@@ -703,7 +703,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 
 void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays)
 {
-	pixel(ctx, x, y, out, rays, NULL, (struct ray){0}, NULL, 0);
+	pixel(ctx, x, y, out, rays, NULL, NULL, NULL, 0);
 }
 
 /* The shadow rays shadow() will ask for at the camera hits h of a packet
@@ -782,5 +782,5 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	if (!ctx->see_through && ctx->scene->nlights > 0)
 		shadow_packets(ctx, n, r, h, found, pa, memo);
 	for (int i = 0; i < n; i++)
-		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], r[i], &h[i], found[i] ? 1 : -1);
+		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], &r[i], &h[i], found[i] ? 1 : -1);
 }
