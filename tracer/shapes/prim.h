@@ -122,9 +122,12 @@ static inline bool prim_quadratic(double a, double b, double c, double disc, dou
  * radius rad (> 0), in the sphere's frame. The discriminant is computed as
  * 4a·(r² − |f⊥|²), f⊥ the part of f = o − c perpendicular to d, which keeps
  * precision for distant rays (pbrt-v4's formulation). Inline: the sphere
- * primitive and the hierarchy's sphere leaves (bvh.c) share it. */
-static inline bool prim_sphere_t(struct vec3 c, double rad, const struct ray *r, double tmin,
-                                 double tmax, double *t)
+ * primitive and the hierarchy's sphere leaves (bvh.c) share it; always
+ * inlined, as the candidate test of every sphere leaf (GCC at -O2 would
+ * call it, passing c through the stack). */
+__attribute__((always_inline)) static inline bool prim_sphere_t(struct vec3 c, double rad,
+                                                                 const struct ray *r, double tmin,
+                                                                 double tmax, double *t)
 {
 	if (!(rad > 0))
 		return false;
