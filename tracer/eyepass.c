@@ -706,25 +706,48 @@ void eye_pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long
 	pixel(ctx, x, y, out, rays, NULL, NULL, NULL, 0);
 }
 
+/* Whether the camera hits h of a packet (found[i]: ray i hit) are close
+ * enough for their shadow rays to walk the hierarchy together: within 5%
+ * in depth and on at most two objects. Elsewhere (the random cloud, or
+ * spheres a pixel or two across) a packet of shadow rays was measured
+ * slower than the rays one by one. */
+#define EYE_COHERENT 1.05
+#define EYE_FEW 2
+static bool coherent(int n, const struct hit *h, const bool *found)
+{
+	const struct object *seen[EYE_FEW];
+	int nseen = 0;
+	double t0 = INFINITY, t1 = 0;
+	for (int i = 0; i < n; i++) {
+		if (!found[i])
+			continue;
+		t0 = fmin(t0, h[i].t), t1 = fmax(t1, h[i].t);
+		int k = 0;
+		while (k < nseen && seen[k] != h[i].obj)
+			k++;
+		if (k == nseen && nseen == EYE_FEW)
+			return false;
+		if (k == nseen)
+			seen[nseen++] = h[i].obj;
+	}
+	return !(t1 > t0 * EYE_COHERENT);
+}
+
 /* The shadow rays shadow() will ask for at the camera hits h of a packet
  * (found[i]: ray r[i] hit), towards each point or spot light among the
  * first EYE_MEMO, built as shade_tex, from_point and shadow build them,
- * tested as one packet per light; the answers go to memo[i], which pa[i]
- * points to. Hits under a textured normal or a layered or mapped texture
- * get none (their facing normal is known only in the shading). */
-#define EYE_COHERENT 1.05
+ * tested as one packet per light when the hits are coherent; the answers
+ * go to memo[i], which pa[i] points to. Hits under a textured normal or a
+ * layered or mapped texture get none (their facing normal is known only
+ * in the shading). */
 static void shadow_packets(const struct eye_ctx *ctx, int n, const struct ray *r, const struct hit *h,
                            const bool *found, struct path *pa, struct shadow_memo memo[][EYE_MEMO])
 {
 	const struct scene *s = ctx->scene;
 	struct vec3 nf[BVH_PACKET];
 	bool ok[BVH_PACKET];
-	double t0 = INFINITY, t1 = 0;
-	for (int i = 0; i < n; i++)
-		if (found[i])
-			t0 = fmin(t0, h[i].t), t1 = fmax(t1, h[i].t);
-	if (t1 > t0 * EYE_COHERENT)
-		return; /* scattered in depth: the rays would go their own ways */
+	if (!coherent(n, h, found))
+		return;
 	for (int i = 0; i < n; i++) {
 		for (int k = 0; k < EYE_MEMO; k++)
 			memo[i][k].set = false;
