@@ -239,15 +239,35 @@ bool env_declared_before(struct eval *E, const struct node *n)
 struct call_memo {
 	const struct node *macro;
 	struct value *var;
+	const struct builtin *builtin; /* the built-in of that name, once found */
+	bool builtin_found;            /* builtin was looked up (it stays valid) */
 };
+
+static struct call_memo *call_memo(struct eval *E, const struct node *n)
+{
+	struct node *w = (struct node *)n;
+	if (!w->memo) {
+		w->memo = ARENA_NEW(&E->arena, struct call_memo);
+		w->memo_gen = 0; /* env_gen starts at 1: the names are looked up */
+	}
+	return w->memo;
+}
+
+const struct builtin *env_call_builtin(struct eval *E, const struct node *n)
+{
+	struct call_memo *m = call_memo(E, n);
+	if (!m->builtin_found) {
+		m->builtin = builtin_find(n->str);
+		m->builtin_found = true;
+	}
+	return m->builtin;
+}
 
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var)
 {
 	struct node *w = (struct node *)n;
-	struct call_memo *m = w->memo;
-	if (!m || w->memo_gen != E->env_gen) {
-		if (!m)
-			w->memo = m = ARENA_NEW(&E->arena, struct call_memo);
+	struct call_memo *m = call_memo(E, n);
+	if (w->memo_gen != E->env_gen) {
 		m->macro = env_macro(E, n->str);
 		m->var = m->macro ? NULL : env_lookup(E, n->str);
 		w->memo_gen = E->env_gen;

@@ -504,9 +504,9 @@ static inline void enter(struct eval *E, struct srcloc loc)
 	char here;
 	if (E->depth >= MAX_EVAL_DEPTH)
 		enter_fail(E, loc, 0);
-	if ((size_t)(E->stack_base - &here) > E->stack_max)
+	if ((uintptr_t)&here < E->stack_floor)
 		enter_fail(E, loc, 1);
-	if (++E->steps > E->opt->max_steps) /* bounds the time any scene can take */
+	if (++E->steps > E->max_steps) /* bounds the time any scene can take */
 		enter_fail(E, loc, 2);
 	E->depth++;
 }
@@ -564,6 +564,17 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
 		not_finite(E, n, r);
 	*f = r;
 	return true;
+}
+
+/* The plain function of N_CALL n when the call is one of a built-in like
+ * sin() with its one argument (not a macro or a declared function of that
+ * name): eval_num calls it directly. NULL otherwise. */
+static inline double (*float_builtin(struct eval *E, const struct node *n))(double)
+{
+	struct value *fv;
+	if (n->nkids != 1 || !n->kids[0] || env_call_lookup(E, n, &fv) || (fv && fv->kind == V_FUNCTION))
+		return NULL;
+	return builtin_float_fn(env_call_builtin(E, n));
 }
 
 /* eval_expr for the expressions that are mostly floats (numbers, names,
@@ -625,7 +636,21 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		E->depth--;
 		break;
 	}
+	case N_CALL: {
+		double (*fn)(double) = float_builtin(E, n);
+		if (!fn)
+			goto general;
+		/* as eval_expr and builtin_call would: the call counted, then its
+		 * argument, which must be a float (the message of their F()) */
+		enter(E, n->loc);
+		if (!(leaf_num(E, n->kids[0], &x) || eval_num(E, n->kids[0], &x, &a)))
+			x = val_want_float(E, &a, n->kids[0]->loc);
+		E->depth--;
+		r = fn(x);
+		break;
+	}
 	default:
+	general:
 		*v = eval_expr(E, n);
 		if (v->kind != V_FLOAT)
 			return false;
@@ -1053,11 +1078,12 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	jmp_buf jb;
 	char base;
 	struct rlimit rl;
-	E->stack_base = &base;
-	E->stack_max = (size_t)64 << 20;
-	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < E->stack_max)
-		E->stack_max = (size_t)rl.rlim_cur;
-	E->stack_max = E->stack_max / 4 * 3;
+	size_t stack_max = (size_t)64 << 20;
+	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < stack_max)
+		stack_max = (size_t)rl.rlim_cur;
+	stack_max = stack_max / 4 * 3;
+	E->stack_floor = (uintptr_t)&base > stack_max ? (uintptr_t)&base - stack_max : 0;
+	E->max_steps = opt->max_steps;
 	E->diag = diag;
 	E->opt = opt;
 	E->scene = out;

@@ -23,6 +23,7 @@
 struct scope;
 struct entry;
 struct inc_cache;
+struct builtin;
 
 /* What a block's items are being evaluated into. */
 enum sink_kind {
@@ -68,10 +69,11 @@ struct eval {
 	int include_depth;
 	int macro_depth;
 	int depth;                 /* evaluator recursion (eval_items, eval_expr) */
-	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
-	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
+	uintptr_t stack_floor;     /* the lowest stack address enter() allows: 3/4 of the
+	                            * stack limit (of 64 MiB at most) below a local of eval_scene */
 	long calls;                /* macro calls so far */
 	long steps;                /* item lists and expressions evaluated so far */
+	long max_steps;            /* opt->max_steps, beside steps (enter() reads both) */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
@@ -149,6 +151,9 @@ struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
 bool env_declared_before(struct eval *E, const struct node *n);
 /* N_CALL n's macro (NULL: none), and else in *var its variable (NULL: none). */
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var);
+/* N_CALL n's built-in function (NULL: none): looked up once per node, since
+ * built-in names never change. */
+const struct builtin *env_call_builtin(struct eval *E, const struct node *n);
 bool env_undef(struct eval *E, const char *name);
 
 /* ---- builtins.c ---- */
@@ -157,6 +162,11 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out);
 /* Calls built-in function `name`; false when there is no such function. */
 bool builtin_call(struct eval *E, const struct node *call, struct value *out);
 bool builtin_is_name(const char *name);
+/* The built-in function named name; NULL when there is none. */
+const struct builtin *builtin_find(const char *name);
+/* b's plain function of one float when b is one (sin, exp …: a float
+ * argument, a float result, no check of its own), else NULL. */
+double (*builtin_float_fn(const struct builtin *b))(double);
 
 /* ---- function.c: function { } ---- */
 /* Compiles a function { } node into a V_FUNCTION value. */
