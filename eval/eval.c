@@ -64,6 +64,8 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 
 static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v);
 static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
+static bool vector_in_place(struct eval *E, const struct node *n, struct value *v);
+static inline void enter(struct eval *E, const struct node *n);
 
 double eval_float(struct eval *E, const struct node *n)
 {
@@ -76,7 +78,9 @@ double eval_float(struct eval *E, const struct node *n)
 
 struct vec3 eval_vec3(struct eval *E, const struct node *n)
 {
-	struct value v = eval_expr(E, n);
+	struct value v;
+	if (!vector_in_place(E, n, &v))
+		v = eval_expr(E, n);
 	return val_want_vec3(E, &v, n->loc);
 }
 
@@ -144,8 +148,13 @@ static struct value arith(struct eval *E, enum tok op, const struct value *a, co
 	return r;
 }
 
+static _Noreturn __attribute__((noinline, cold)) void division_by_zero(struct eval *E, const struct node *n)
+{
+	eval_fail(E, n->loc, "division by zero");
+}
+
 /* A binary operator other than & and | on two floats (eval_num). */
-static double binary_floats(struct eval *E, const struct node *n, double x, double y)
+static inline double binary_floats(struct eval *E, const struct node *n, double x, double y)
 {
 	switch (n->op) {
 	case TK_PLUS: return x + y;
@@ -153,7 +162,7 @@ static double binary_floats(struct eval *E, const struct node *n, double x, doub
 	case TK_STAR: return x * y;
 	case TK_SLASH:
 		if (y == 0)
-			eval_fail(E, n->loc, "division by zero");
+			division_by_zero(E, n);
 		return x / y;
 	case TK_EQ: return x == y;
 	case TK_NE: return x != y;
@@ -222,7 +231,9 @@ static struct value colour_prefix(struct eval *E, const struct node *n)
 /* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
 static struct value colour_base(struct eval *E, const struct node *n)
 {
-	struct value a = eval_expr(E, n->a);
+	struct value a;
+	if (!vector_in_place(E, n->a, &a))
+		a = eval_expr(E, n->a);
 	if (n->op == TK_COLOR || n->op == TK_COLOUR)
 		return val_colour(val_want_colour(E, &a, n->a->loc));
 	int srgb = n->op == TK_SRGB || n->op == TK_SRGBF || n->op == TK_SRGBT || n->op == TK_SRGBFT;
@@ -273,6 +284,24 @@ static struct value vector_literal(struct eval *E, const struct node *n)
 	for (int i = 0; i < n->nkids; i++)
 		c[i] = eval_float(E, n->kids[i]);
 	return val_vector(n->nkids, c);
+}
+
+/* eval_expr of a vector literal <a, b, …> of 2 to 5 components, written
+ * into *v in place (the commonest vectors: a colour's, a translate's, an
+ * operand's) with the same count and nesting; false, having done nothing,
+ * for anything else. */
+static bool vector_in_place(struct eval *E, const struct node *n, struct value *v)
+{
+	if (n->kind != N_VEC || n->nkids < 2 || n->nkids > 5)
+		return false;
+	enter(E, n);
+	v->kind = V_VECTOR;
+	v->n = n->nkids;
+	v->p.s = NULL;
+	for (int i = 0; i < 5; i++) /* a vector's components are checked each */
+		v->v[i] = i < n->nkids ? eval_float(E, n->kids[i]) : 0;
+	E->depth--;
+	return true;
 }
 
 static struct value member(struct eval *E, const struct node *n)
@@ -485,8 +514,9 @@ static struct value identifier(struct eval *E, const struct node *n)
 
 static struct value eval_expr_node(struct eval *E, const struct node *n);
 
-static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E, struct srcloc loc, int why)
+static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E, const struct node *n, int why)
 {
+	struct srcloc loc = n->loc;
 	if (why == 0)
 		eval_fail(E, loc, "nesting too deep (more than %d levels of blocks, directives, macro calls, includes and expressions)",
 		          MAX_EVAL_DEPTH);
@@ -495,19 +525,19 @@ static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E,
 	eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
 }
 
-/* Counts one level of the evaluator's recursion at loc: the count bounds
+/* Counts one level of the evaluator's recursion at node n: the count bounds
  * it at MAX_EVAL_DEPTH wherever the nesting comes from (directives, blocks,
  * macro calls, includes, expressions), and the stack in use is checked
  * against three quarters of the stack limit as a second guard (docs/design.md §9). */
-static inline void enter(struct eval *E, struct srcloc loc)
+static inline void enter(struct eval *E, const struct node *n)
 {
 	char here;
 	if (E->depth >= MAX_EVAL_DEPTH)
-		enter_fail(E, loc, 0);
+		enter_fail(E, n, 0);
 	if ((uintptr_t)&here < E->stack_floor)
-		enter_fail(E, loc, 1);
+		enter_fail(E, n, 1);
 	if (++E->steps > E->max_steps) /* bounds the time any scene can take */
-		enter_fail(E, loc, 2);
+		enter_fail(E, n, 2);
 	E->depth++;
 }
 
@@ -558,7 +588,7 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
 	} else {
 		return false;
 	}
-	enter(E, n->loc);
+	enter(E, n);
 	E->depth--;
 	if (!isfinite(r))
 		not_finite(E, n, r);
@@ -588,12 +618,12 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 	struct value a, b;
 	switch (n->kind) {
 	case N_NUM:
-		enter(E, n->loc);
+		enter(E, n);
 		E->depth--;
 		r = n->num;
 		break;
 	case N_IDENT: {
-		enter(E, n->loc);
+		enter(E, n);
 		const struct value *p = env_lookup_node(E, n);
 		if (!p || p->kind != V_FLOAT) {
 			*v = identifier(E, n);
@@ -604,7 +634,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		break;
 	}
 	case N_UNARY:
-		enter(E, n->loc);
+		enter(E, n);
 		if (!eval_num(E, n->a, &x, &a)) {
 			*v = unary_value(E, n, a);
 			return num_or_value(E, n, v, f);
@@ -613,7 +643,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		r = n->op == TK_BANG ? x == 0 : n->op == TK_MINUS ? -x : x;
 		break;
 	case N_BINARY: {
-		enter(E, n->loc);
+		enter(E, n);
 		bool fa = leaf_num(E, n->a, &x) || eval_num(E, n->a, &x, &a);
 		if (n->op == TK_AMP || n->op == TK_PIPE) {
 			if (!fa)
@@ -642,13 +672,17 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 			goto general;
 		/* as eval_expr and builtin_call would: the call counted, then its
 		 * argument, which must be a float (the message of their F()) */
-		enter(E, n->loc);
+		enter(E, n);
 		if (!(leaf_num(E, n->kids[0], &x) || eval_num(E, n->kids[0], &x, &a)))
 			x = val_want_float(E, &a, n->kids[0]->loc);
 		E->depth--;
 		r = fn(x);
 		break;
 	}
+	case N_VEC:
+		if (!vector_in_place(E, n, v))
+			goto general;
+		return false;
 	default:
 	general:
 		*v = eval_expr(E, n);
@@ -670,7 +704,7 @@ struct value eval_expr(struct eval *E, const struct node *n)
 		struct value v;
 		return eval_num(E, n, &f, &v) ? val_float(f) : v;
 	}
-	enter(E, n->loc);
+	enter(E, n);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
 	if (n->kind != N_VEC) /* a vector's components were checked each */
@@ -923,7 +957,7 @@ static __attribute__((noinline)) void exec_include(struct eval *E, const struct 
  * counter bounds the evaluator's recursion whatever mix makes it. */
 void eval_items(struct eval *E, const struct node *list, struct sink *s)
 {
-	enter(E, list->loc);
+	enter(E, list);
 	for (int i = 0; i < list->nkids && !E->breaking; i++)
 		eval_item(E, list->kids[i], s);
 	E->depth--;
