@@ -211,23 +211,20 @@ bool env_undef(struct eval *E, const char *name)
  * changes, and a node keeps what its name resolved to with the count it was
  * found at (a loop body's names are looked up once, not once per pass). */
 
-struct value *env_lookup_node(struct eval *E, const struct node *n)
+/* env_lookup_node and env_declare_node (internal.h) when the memo is stale. */
+struct value *env_lookup_again(struct eval *E, const struct node *n)
 {
 	struct node *w = (struct node *)n;
-	if (w->memo_gen != E->env_gen) {
-		w->memo = env_lookup(E, n->str);
-		w->memo_gen = E->env_gen;
-	}
+	w->memo = env_lookup(E, n->str);
+	w->memo_gen = E->env_gen;
 	return w->memo;
 }
 
-struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
+struct value *env_declare_again(struct eval *E, const struct node *n, bool local)
 {
 	struct node *w = (struct node *)n;
-	if (w->memo_gen != E->env_gen) {
-		w->memo = env_declare(E, n->str, local);
-		w->memo_gen = E->env_gen; /* after the insert's own change */
-	}
+	w->memo = env_declare(E, n->str, local);
+	w->memo_gen = E->env_gen; /* after the insert's own change */
 	return w->memo;
 }
 

@@ -63,6 +63,11 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 }
 
 static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v);
+/* The kinds eval_expr hands to eval_num. */
+static inline bool is_num_kind(const struct node *n)
+{
+	return n->kind == N_NUM || n->kind == N_IDENT || n->kind == N_UNARY || n->kind == N_BINARY;
+}
 static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
 static bool vector_in_place(struct eval *E, const struct node *n, struct value *v);
 static inline void enter(struct eval *E, const struct node *n);
@@ -549,7 +554,7 @@ static _Noreturn __attribute__((noinline, cold)) void not_finite(struct eval *E,
 /* Every number the language computes passes here: an infinity or a NaN
  * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
  * non-finite number reaches the scene (docs/design.md §8). */
-static void check_finite(struct eval *E, const struct node *n, const struct value *v)
+static inline void check_finite(struct eval *E, const struct node *n, const struct value *v)
 {
 	if (v->kind == V_FLOAT) {
 		if (!isfinite(v->v[0]))
@@ -699,7 +704,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 
 struct value eval_expr(struct eval *E, const struct node *n)
 {
-	if (n->kind == N_NUM || n->kind == N_IDENT || n->kind == N_UNARY || n->kind == N_BINARY) {
+	if (is_num_kind(n)) {
 		double f;
 		struct value v;
 		return eval_num(E, n, &f, &v) ? val_float(f) : v;
@@ -792,7 +797,14 @@ static __attribute__((noinline)) void exec_declare(struct eval *E, const struct 
 		*index_slot(E, chain) = v;
 		return;
 	}
-	struct value v = eval_expr(E, n->a);
+	struct value v;
+	double f;
+	if (!is_num_kind(n->a)) {
+		v = eval_expr(E, n->a);
+	} else if (eval_num(E, n->a, &f, &v)) { /* eval_expr's float, stored without a copy */
+		*env_declare_node(E, n, local) = val_float(f);
+		return;
+	}
 	if (v.kind == V_ARRAY)
 		v = array_copy(E, v);
 	if (v.kind == V_NONE)

@@ -144,9 +144,18 @@ const struct node *env_macro(struct eval *E, const char *name);
 struct value *env_declare(struct eval *E, const char *name, bool local);
 void env_define_macro(struct eval *E, const char *name, const struct node *def);
 /* The same through a node's memo (N_IDENT, N_DECLARE): looked up again only
- * when the scopes changed since. */
-struct value *env_lookup_node(struct eval *E, const struct node *n);
-struct value *env_declare_node(struct eval *E, const struct node *n, bool local);
+ * when the scopes changed since (the memo is checked here, inline: a loop's
+ * names are read on every pass; env.c looks them up). */
+struct value *env_lookup_again(struct eval *E, const struct node *n);
+struct value *env_declare_again(struct eval *E, const struct node *n, bool local);
+static inline struct value *env_lookup_node(struct eval *E, const struct node *n)
+{
+	return n->memo_gen == E->env_gen ? n->memo : env_lookup_again(E, n);
+}
+static inline struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
+{
+	return n->memo_gen == E->env_gen ? n->memo : env_declare_again(E, n, local);
+}
 /* N_DECLARE n declared its name already, and the scopes are as they were. */
 bool env_declared_before(struct eval *E, const struct node *n);
 /* N_CALL n's macro (NULL: none), and else in *var its variable (NULL: none). */
