@@ -72,13 +72,20 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
 static bool vector_in_place(struct eval *E, const struct node *n, struct value *v);
 static inline void enter(struct eval *E, const struct node *n);
 
-double eval_float(struct eval *E, const struct node *n)
+/* eval_float, inline where floats are read most: a vector's components, a
+ * loop's test, the operands of & and |. */
+static inline double float_of(struct eval *E, const struct node *n)
 {
 	double f;
 	struct value v;
 	if (leaf_num(E, n, &f) || eval_num(E, n, &f, &v))
 		return f;
 	return val_want_float(E, &v, n->loc);
+}
+
+double eval_float(struct eval *E, const struct node *n)
+{
+	return float_of(E, n);
 }
 
 struct vec3 eval_vec3(struct eval *E, const struct node *n)
@@ -304,7 +311,7 @@ static bool vector_in_place(struct eval *E, const struct node *n, struct value *
 	v->n = n->nkids;
 	v->p.s = NULL;
 	for (int i = 0; i < 5; i++) /* a vector's components are checked each */
-		v->v[i] = i < n->nkids ? eval_float(E, n->kids[i]) : 0;
+		v->v[i] = i < n->nkids ? float_of(E, n->kids[i]) : 0;
 	E->depth--;
 	return true;
 }
@@ -653,7 +660,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		if (n->op == TK_AMP || n->op == TK_PIPE) {
 			if (!fa)
 				x = val_want_float(E, &a, n->a->loc);
-			y = eval_float(E, n->b); /* both sides are evaluated, as in POV-Ray */
+			y = float_of(E, n->b); /* both sides are evaluated, as in POV-Ray */
 			E->depth--;
 			r = n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0);
 			break;
@@ -984,7 +991,7 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 	case N_UNDEF: env_undef(E, n->str); return;
 	case N_INCLUDE: exec_include(E, n, s); return;
 	case N_IF:
-		if (eval_float(E, n->a) != 0)
+		if (float_of(E, n->a) != 0)
 			eval_items(E, n->b, s);
 		else if (n->c)
 			n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
@@ -998,7 +1005,7 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 		return;
 	}
 	case N_WHILE:
-		while (eval_float(E, n->a) != 0) {
+		while (float_of(E, n->a) != 0) {
 			count_iteration(E, n->loc);
 			eval_items(E, n->b, s);
 			if (E->breaking) {
