@@ -114,12 +114,11 @@ const char *eval_string(struct eval *E, const struct node *n, int *len)
 
 /* ==== operators =========================================================== */
 
-/* Widens a float/vector/colour to n components as POV-Ray promotes them. */
-static void widen(const struct value *v, int n, double out[5])
+/* Component i of a float, vector or colour widened as POV-Ray promotes
+ * them: a float is the same in every component, a short vector has zeros. */
+static inline double component(const struct value *v, int i)
 {
-	for (int i = 0; i < 5; i++)
-		out[i] = v->kind == V_FLOAT ? v->v[0] : (i < v->n ? v->v[i] : 0);
-	(void)n;
+	return v->kind == V_FLOAT ? v->v[0] : i < v->n ? v->v[i] : 0;
 }
 
 static int is_numeric(const struct value *v)
@@ -149,13 +148,15 @@ static struct value arith(struct eval *E, enum tok op, const struct value *a, co
 		if (a->kind == V_VECTOR && b->kind == V_VECTOR && b->n > r.n)
 			r.n = b->n;
 	}
-	double x[5], y[5];
-	widen(a, r.n, x);
-	widen(b, r.n, y);
 	for (int i = 0; i < 5; i++) {
-		if (op == TK_SLASH && y[i] == 0 && i < r.n)
+		if (i >= r.n) {
+			r.v[i] = 0;
+			continue;
+		}
+		double x = component(a, i), y = component(b, i);
+		if (op == TK_SLASH && y == 0)
 			eval_fail(E, loc, "division by zero");
-		r.v[i] = i >= r.n ? 0 : op == TK_PLUS ? x[i] + y[i] : op == TK_MINUS ? x[i] - y[i] : op == TK_STAR ? x[i] * y[i] : x[i] / y[i];
+		r.v[i] = op == TK_PLUS ? x + y : op == TK_MINUS ? x - y : op == TK_STAR ? x * y : x / y;
 	}
 	return r;
 }
