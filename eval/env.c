@@ -237,6 +237,7 @@ struct call_memo {
 	const struct node *macro;
 	struct value *var;
 	const struct builtin *builtin; /* the built-in of that name, once found */
+	double (*float_fn)(double);    /* and builtin_float_fn of it */
 	bool builtin_found;            /* builtin was looked up (it stays valid) */
 };
 
@@ -256,6 +257,7 @@ const struct builtin *env_call_builtin(struct eval *E, const struct node *n)
 	if (!m->builtin_found) {
 		m->builtin = builtin_find(n->str);
 		m->builtin_found = true;
+		m->float_fn = builtin_float_fn(m->builtin);
 	}
 	return m->builtin;
 }
@@ -271,4 +273,18 @@ const struct node *env_call_lookup(struct eval *E, const struct node *n, struct 
 	}
 	*var = m->var;
 	return m->macro;
+}
+
+double (*env_call_float_fn(struct eval *E, const struct node *n))(double)
+{
+	struct value *var;
+	if (env_call_lookup(E, n, &var) || (var && var->kind == V_FUNCTION))
+		return NULL;
+	struct call_memo *m = n->memo;
+	if (!m->builtin_found) {
+		m->builtin = builtin_find(n->str);
+		m->builtin_found = true;
+		m->float_fn = builtin_float_fn(m->builtin);
+	}
+	return m->float_fn;
 }

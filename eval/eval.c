@@ -71,6 +71,7 @@ static inline bool is_num_kind(const struct node *n)
 static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
 static bool vector_in_place(struct eval *E, const struct node *n, struct value *v);
 static inline void enter(struct eval *E, const struct node *n);
+static inline void check_finite(struct eval *E, const struct node *n, const struct value *v);
 
 /* eval_float, inline where floats are read most: a vector's components, a
  * loop's test, the operands of & and |. */
@@ -238,6 +239,10 @@ static struct value colour_prefix(struct eval *E, const struct node *n)
 		default: v.v[4] = f; break;
 		}
 	}
+	/* the components are checked numbers, copied, but for what the sRGB
+	 * conversion computes: only those are checked again (not eval_expr) */
+	if (n->op == TK_SRGB || n->op == TK_SRGBF || n->op == TK_SRGBT || n->op == TK_SRGBFT)
+		check_finite(E, n, &v);
 	return v;
 }
 
@@ -507,17 +512,18 @@ static __attribute__((noinline)) struct value dir_value(struct eval *E, const st
 	return s.result;
 }
 
-static struct value identifier(struct eval *E, const struct node *n)
+/* The value of name n in *out (a declared one, else a built-in constant). */
+static void identifier(struct eval *E, const struct node *n, struct value *out)
 {
 	struct value *v = env_lookup_node(E, n);
 	if (v) {
 		if (v->kind == V_NONE)
 			eval_fail(E, n->loc, "'%s' has no value", n->str);
-		return *v;
+		*out = *v;
+		return;
 	}
-	struct value c;
-	if (builtin_constant(E, n->str, &c))
-		return c;
+	if (builtin_constant(E, n->str, out))
+		return;
 	if (env_macro(E, n->str))
 		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
 	if (tok_is_pov_word(n->str))
@@ -614,10 +620,7 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
  * name): eval_num calls it directly. NULL otherwise. */
 static inline double (*float_builtin(struct eval *E, const struct node *n))(double)
 {
-	struct value *fv;
-	if (n->nkids != 1 || !n->kids[0] || env_call_lookup(E, n, &fv) || (fv && fv->kind == V_FUNCTION))
-		return NULL;
-	return builtin_float_fn(env_call_builtin(E, n));
+	return n->nkids == 1 && n->kids[0] ? env_call_float_fn(E, n) : NULL;
 }
 
 /* eval_expr for the expressions that are mostly floats (numbers, names,
@@ -639,7 +642,7 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		enter(E, n);
 		const struct value *p = env_lookup_node(E, n);
 		if (!p || p->kind != V_FLOAT) {
-			*v = identifier(E, n);
+			identifier(E, n, v);
 			return num_or_value(E, n, v, f);
 		}
 		E->depth--;
@@ -720,7 +723,7 @@ struct value eval_expr(struct eval *E, const struct node *n)
 	enter(E, n);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
-	if (n->kind != N_VEC) /* a vector's components were checked each */
+	if (n->kind != N_VEC && n->kind != N_COLOUR) /* their components were checked each */
 		check_finite(E, n, &v);
 	return v;
 }

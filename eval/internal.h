@@ -163,6 +163,9 @@ const struct node *env_call_lookup(struct eval *E, const struct node *n, struct 
 /* N_CALL n's built-in function (NULL: none): looked up once per node, since
  * built-in names never change. */
 const struct builtin *env_call_builtin(struct eval *E, const struct node *n);
+/* builtin_float_fn of N_CALL n's built-in, when the name is not a macro or a
+ * declared function now; else NULL. */
+double (*env_call_float_fn(struct eval *E, const struct node *n))(double);
 bool env_undef(struct eval *E, const char *name);
 
 /* ---- builtins.c ---- */

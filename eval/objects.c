@@ -344,9 +344,10 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.p.nrm = blk->kind == N_SKIPPED ? NULL : normal_block(E, blk);
 		return v;
 	}
-	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
+	bool object = is_object_kw(blk->op);
+	if (object || blk->op == TK_LIGHT_SOURCE)
 		eval_count_object(E, blk->loc);
-	if (is_object_kw(blk->op))
+	if (object)
 		return object_block(E, blk);
 	switch (blk->op) {
 	case TK_TEXTURE:
