@@ -560,6 +560,18 @@ static inline void enter(struct eval *E, const struct node *n)
 	E->depth++;
 }
 
+/* enter() for a number or a name: they nest nothing and take no stack of
+ * their own (they are read in the frame of the expression that holds them,
+ * or one frame below a checked one), so they count against the depth and
+ * the step limits but skip the stack guard. */
+static inline void enter_leaf(struct eval *E, const struct node *n)
+{
+	if (E->depth >= MAX_EVAL_DEPTH)
+		enter_fail(E, n, 0);
+	if (++E->steps > E->max_steps)
+		enter_fail(E, n, 2);
+}
+
 static _Noreturn __attribute__((noinline, cold)) void not_finite(struct eval *E, const struct node *n, double x)
 {
 	eval_fail(E, n->loc, "the result is not a finite number (%s)", isnan(x) ? "NaN" : "infinite");
@@ -607,8 +619,7 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
 	} else {
 		return false;
 	}
-	enter(E, n);
-	E->depth--;
+	enter_leaf(E, n);
 	if (!isfinite(r))
 		not_finite(E, n, r);
 	*f = r;
@@ -634,18 +645,20 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 	struct value a, b;
 	switch (n->kind) {
 	case N_NUM:
-		enter(E, n);
-		E->depth--;
+		enter_leaf(E, n);
 		r = n->num;
 		break;
 	case N_IDENT: {
-		enter(E, n);
+		enter_leaf(E, n);
 		const struct value *p = env_lookup_node(E, n);
 		if (!p || p->kind != V_FLOAT) {
 			identifier(E, n, v);
-			return num_or_value(E, n, v, f);
+			check_finite(E, n, v);
+			if (v->kind != V_FLOAT)
+				return false;
+			*f = v->v[0];
+			return true;
 		}
-		E->depth--;
 		r = p->v[0];
 		break;
 	}
