@@ -999,72 +999,68 @@ void eval_items(struct eval *E, const struct node *list, struct sink *s)
 	E->depth--;
 }
 
-void eval_item(struct eval *E, const struct node *n, struct sink *s)
+/* The directives and items eval_item hands on, each a function of its own,
+ * so that eval_item is a dispatch that saves no registers of its own (it
+ * runs for every item of every loop body and block). */
+static __attribute__((noinline)) void exec_if(struct eval *E, const struct node *n, struct sink *s)
 {
-	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
-		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
-	switch (n->kind) {
-	case N_DECLARE: exec_declare(E, n); return;
-	case N_UNDEF: env_undef(E, n->str); return;
-	case N_INCLUDE: exec_include(E, n, s); return;
-	case N_IF:
-		if (float_of(E, n->a) != 0)
-			eval_items(E, n->b, s);
-		else if (n->c)
-			n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
-		return;
-	case N_IFDEF: {
-		int def = ifdef_test(E, n->a);
-		if (def == (n->op == TK_DIR_IFDEF))
-			eval_items(E, n->b, s);
-		else if (n->c)
-			eval_items(E, n->c, s);
-		return;
-	}
-	case N_WHILE:
-		while (float_of(E, n->a) != 0) {
-			count_iteration(E, n->loc);
-			eval_items(E, n->b, s);
-			if (E->breaking) {
-				E->breaking = 0;
-				break;
-			}
+	if (float_of(E, n->a) != 0)
+		eval_items(E, n->b, s);
+	else if (n->c)
+		n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
+}
+
+static __attribute__((noinline)) void exec_ifdef(struct eval *E, const struct node *n, struct sink *s)
+{
+	int def = ifdef_test(E, n->a);
+	if (def == (n->op == TK_DIR_IFDEF))
+		eval_items(E, n->b, s);
+	else if (n->c)
+		eval_items(E, n->c, s);
+}
+
+static __attribute__((noinline)) void exec_while(struct eval *E, const struct node *n, struct sink *s)
+{
+	while (float_of(E, n->a) != 0) {
+		count_iteration(E, n->loc);
+		eval_items(E, n->b, s);
+		if (E->breaking) {
+			E->breaking = 0;
+			break;
 		}
-		return;
-	case N_FOR: exec_for(E, n, s); return;
-	case N_SWITCH: exec_switch(E, n, s); return;
-	case N_BREAK: E->breaking = 1; return;
-	case N_MACRO:
-		if (builtin_is_name(n->str))
-			eval_fail(E, n->loc, "'%s' is a built-in name and cannot be a macro", n->str);
-		env_define_macro(E, n->str, n);
-		return;
-	case N_VERSION: {
-		double v = eval_float(E, n->a);
-		E->scene->version = v;
-		if (E->include_depth == 0 && v < 4.0) {
-			E->scene->legacy_lights = true;
-			/* a POV-Ray scene: arvo's library then reads POV-Ray's files
-			 * of the same names after itself (docs/design.md §2) */
-			if (E->opt->pov_include_dir)
-				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
-		}
-		return;
 	}
-	case N_MESSAGE: exec_message(E, n); return;
-	case N_DEFAULT: case N_BLOCK: case N_MOD: case N_WORD: case N_SKIPPED: case N_ENTRY:
-		sink_keyword(E, s, n);
-		return;
-	case N_CALL: {
+}
+
+static __attribute__((noinline)) void exec_macro(struct eval *E, const struct node *n)
+{
+	if (builtin_is_name(n->str))
+		eval_fail(E, n->loc, "'%s' is a built-in name and cannot be a macro", n->str);
+	env_define_macro(E, n->str, n);
+}
+
+static __attribute__((noinline)) void exec_version(struct eval *E, const struct node *n)
+{
+	double v = eval_float(E, n->a);
+	E->scene->version = v;
+	if (E->include_depth == 0 && v < 4.0) {
+		E->scene->legacy_lights = true;
+		/* a POV-Ray scene: arvo's library then reads POV-Ray's files
+		 * of the same names after itself (docs/design.md §2) */
+		if (E->opt->pov_include_dir)
+			*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
+	}
+}
+
+/* An item that is an expression (or a macro call, which may yield items). */
+static __attribute__((noinline)) void item_value(struct eval *E, const struct node *n, struct sink *s)
+{
+	if (n->kind == N_CALL) {
 		struct value *fv;
 		const struct node *def = env_call_lookup(E, n, &fv);
 		if (def) {
 			call_macro(E, def, n, s);
 			return;
 		}
-		break;
-	}
-	default: break;
 	}
 	struct value ignored;
 	if (s->kind == SK_NORMAL && n->kind == N_IDENT && !env_lookup(E, n->str) &&
@@ -1078,6 +1074,30 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 		return;
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
+}
+
+void eval_item(struct eval *E, const struct node *n, struct sink *s)
+{
+	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
+		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
+	switch (n->kind) {
+	case N_DECLARE: exec_declare(E, n); return;
+	case N_UNDEF: env_undef(E, n->str); return;
+	case N_INCLUDE: exec_include(E, n, s); return;
+	case N_IF: exec_if(E, n, s); return;
+	case N_IFDEF: exec_ifdef(E, n, s); return;
+	case N_WHILE: exec_while(E, n, s); return;
+	case N_FOR: exec_for(E, n, s); return;
+	case N_SWITCH: exec_switch(E, n, s); return;
+	case N_BREAK: E->breaking = 1; return;
+	case N_MACRO: exec_macro(E, n); return;
+	case N_VERSION: exec_version(E, n); return;
+	case N_MESSAGE: exec_message(E, n); return;
+	case N_DEFAULT: case N_BLOCK: case N_MOD: case N_WORD: case N_SKIPPED: case N_ENTRY:
+		sink_keyword(E, s, n);
+		return;
+	default: item_value(E, n, s); return;
+	}
 }
 
 /* ==== driver ============================================================== */
