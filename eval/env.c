@@ -228,11 +228,6 @@ struct value *env_declare_again(struct eval *E, const struct node *n, bool local
 	return w->memo;
 }
 
-bool env_declared_before(struct eval *E, const struct node *n)
-{
-	return n->memo && n->memo_gen == E->env_gen;
-}
-
 struct call_memo {
 	const struct node *macro;
 	struct value *var;

@@ -800,25 +800,31 @@ void eval_count_object(struct eval *E, struct srcloc loc)
 		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
+/* #declare A[i][j] = v: the element's slot, found as A[i][j] would be. */
+static __attribute__((noinline)) void declare_element(struct eval *E, const struct node *n)
+{
+	const struct node *chain = NULL;
+	/* rebuild A[i][j] as index nodes on the stack */
+	struct node id = {.kind = N_IDENT, .loc = n->loc, .str = n->str, .len = n->len};
+	struct node ix[5];
+	if (n->nkids > 5)
+		eval_fail(E, n->loc, "too many indices (an array has at most 5 dimensions)");
+	chain = &id;
+	for (int i = 0; i < n->nkids; i++) {
+		ix[i] = (struct node){.kind = N_INDEX, .loc = n->kids[i]->loc, .a = (struct node *)chain, .b = n->kids[i]};
+		chain = &ix[i];
+	}
+	struct value v = eval_expr(E, n->a);
+	*index_slot(E, chain) = v;
+}
+
 static __attribute__((noinline)) void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
 	if (!env_declared_before(E, n) && builtin_is_name(n->str))
 		eval_fail(E, n->b ? n->b->loc : n->loc, "'%s' is a built-in name and cannot be declared", n->str);
 	if (n->nkids > 0) { /* #declare A[i] = v */
-		const struct node *chain = NULL;
-		/* rebuild A[i][j] as index nodes on the stack */
-		struct node id = {.kind = N_IDENT, .loc = n->loc, .str = n->str, .len = n->len};
-		struct node ix[5];
-		if (n->nkids > 5)
-			eval_fail(E, n->loc, "too many indices (an array has at most 5 dimensions)");
-		chain = &id;
-		for (int i = 0; i < n->nkids; i++) {
-			ix[i] = (struct node){.kind = N_INDEX, .loc = n->kids[i]->loc, .a = (struct node *)chain, .b = n->kids[i]};
-			chain = &ix[i];
-		}
-		struct value v = eval_expr(E, n->a);
-		*index_slot(E, chain) = v;
+		declare_element(E, n);
 		return;
 	}
 	struct value v;

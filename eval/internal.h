@@ -157,7 +157,10 @@ static inline struct value *env_declare_node(struct eval *E, const struct node *
 	return n->memo_gen == E->env_gen ? n->memo : env_declare_again(E, n, local);
 }
 /* N_DECLARE n declared its name already, and the scopes are as they were. */
-bool env_declared_before(struct eval *E, const struct node *n);
+static inline bool env_declared_before(struct eval *E, const struct node *n)
+{
+	return n->memo && n->memo_gen == E->env_gen;
+}
 /* N_CALL n's macro (NULL: none), and else in *var its variable (NULL: none). */
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var);
 /* N_CALL n's built-in function (NULL: none): looked up once per node, since
@@ -256,6 +259,12 @@ struct value object_block(struct eval *E, const struct node *blk);
 void propagate(struct eval *E, struct object *o, struct texture *tex);
 
 /* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
+/* Whether objects of kind k are built by outlines.c (checked before its
+ * calls, which every other object's items would pay for). */
+static inline bool is_outline_kind(enum object_kind k)
+{
+	return k == OBJ_TEXT || k == OBJ_PRISM || k == OBJ_POLYGON || k == OBJ_LATHE || k == OBJ_SOR;
+}
 /* Takes a positional value or a leading keyword (linear_spline, conic_sweep,
  * ttf …) of those primitives; false when o is not one of them or n is not
  * such a keyword. */
