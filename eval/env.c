@@ -246,15 +246,20 @@ static struct call_memo *call_memo(struct eval *E, const struct node *n)
 	return w->memo;
 }
 
+/* The memo m of a call of name, with its built-in looked up. */
+static struct call_memo *with_builtin(struct call_memo *m, const char *name)
+{
+	if (!m->builtin_found) {
+		m->builtin = builtin_find(name);
+		m->float_fn = builtin_float_fn(m->builtin);
+		m->builtin_found = true;
+	}
+	return m;
+}
+
 const struct builtin *env_call_builtin(struct eval *E, const struct node *n)
 {
-	struct call_memo *m = call_memo(E, n);
-	if (!m->builtin_found) {
-		m->builtin = builtin_find(n->str);
-		m->builtin_found = true;
-		m->float_fn = builtin_float_fn(m->builtin);
-	}
-	return m->builtin;
+	return with_builtin(call_memo(E, n), n->str)->builtin;
 }
 
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var)
@@ -275,11 +280,5 @@ double (*env_call_float_fn(struct eval *E, const struct node *n))(double)
 	struct value *var;
 	if (env_call_lookup(E, n, &var) || (var && var->kind == V_FUNCTION))
 		return NULL;
-	struct call_memo *m = n->memo;
-	if (!m->builtin_found) {
-		m->builtin = builtin_find(n->str);
-		m->builtin_found = true;
-		m->float_fn = builtin_float_fn(m->builtin);
-	}
-	return m->float_fn;
+	return with_builtin(n->memo, n->str)->float_fn;
 }
