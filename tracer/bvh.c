@@ -161,6 +161,10 @@ static void collect(struct builder *B, const struct object *o)
 		add_leaf(B, o, b);
 }
 
+/* Scenes with at most this many bounded leaves are traced without Embree
+ * (brute). */
+#define BRUTE_MAX 4
+
 /* ==== callbacks ========================================================== */
 
 /* The next float towards -inf (+inf) from a finite, non-zero float f:
@@ -210,26 +214,24 @@ static inline bool sphere_t(const struct object *o, const struct ray *r, double 
 	return shape_hit_t(o, r, tmin, tmax, t);
 }
 
-/* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
- * single ray) for query q: on a better hit, records it and shrinks the
- * lane's tfar just past it. */
-static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
-                      unsigned geom)
+/* Tests primitive id for query q: on a better hit, records it (a sphere by
+ * its t alone; traverse fills *h at the end) and returns true. */
+static bool consider(struct query *q, int id)
 {
 	const struct object *o = q->b->prims[id];
 	if (o->flags & q->skip)
-		return;
+		return false;
 	/* a tie with the best so far is looked at: the lower index wins */
 	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
-	if (o->kind == OBJ_SPHERE) { /* the t alone; traverse fills *h at the end */
+	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
-			return;
+			return false;
 		q->deferred = true;
 		q->best_t = t;
 	} else {
 		struct hit tmp;
 		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
-			return;
+			return false;
 		*q->h = tmp;
 		t = tmp.t;
 		q->deferred = false;
@@ -238,9 +240,20 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 	q->best = id;
 	q->best_hi = hi;
 	q->found = true;
+	return true;
+}
+
+/* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
+ * single ray) for query q: on a better hit, records it and shrinks the
+ * lane's tfar just past it. */
+static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
+                      unsigned geom)
+{
+	if (!consider(q, id))
+		return;
 	/* RTCRayHitN is a structure of arrays: tfar is float row 8, the hit's
 	 * primID and geomID are rows 12 + 5 and 12 + 6 */
-	((float *)rayhit)[8 * N + i] = up((t - q->t0) * (1 + 1e-6));
+	((float *)rayhit)[8 * N + i] = up((q->tmax - q->t0) * (1 + 1e-6));
 	((unsigned *)rayhit)[17 * N + i] = (unsigned)id;
 	((unsigned *)rayhit)[18 * N + i] = geom;
 }
@@ -416,18 +429,21 @@ static void walk(struct query *q, bool any)
 	}
 }
 
-/* Without a device (Embree failed to start): every bounded leaf in order. */
+/* Every bounded leaf in order, as the callbacks test them: without a
+ * device (Embree failed to start), and for a scene of at most BRUTE_MAX
+ * leaves, where setting up Embree's float ray and walk costs more than
+ * testing them all (a sphere's t is ~80 instructions; Embree's query ~500).
+ * The hit is the same either way (see the top of this file). */
 static void brute(struct query *q, bool any)
 {
-	struct hit tmp;
 	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
-		const struct object *o = q->b->prims[i];
-		if (o->flags & q->skip)
+		if (!any) {
+			consider(q, i);
 			continue;
-		if (any)
+		}
+		const struct object *o = q->b->prims[i];
+		if (!(o->flags & q->skip))
 			q->found = shape_occluded(o, q->r, q->tmin, q->tmax);
-		else if (shape_intersect(o, q->r, q->tmin, q->tmax, &tmp))
-			*q->h = tmp, q->tmax = tmp.t, q->best = i, q->found = true;
 	}
 }
 
@@ -484,7 +500,7 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 		finish(&q);
 		return q.found;
 	}
-	if (b->scene)
+	if (b->scene && b->nprims > BRUTE_MAX)
 		walk(&q, any);
 	else
 		brute(&q, any);
@@ -518,7 +534,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		unbounded(q, false);
 		if (b->nprims == 0)
 			continue;
-		if (!b->scene) {
+		if (!b->scene || b->nprims <= BRUTE_MAX) {
 			brute(q, false);
 			continue;
 		}
