@@ -342,6 +342,25 @@ static double max3(double a, double b, double c)
 	return a > m ? a : m;
 }
 
+/* The finish of o when light can neither reflect from nor pass through it
+ * anywhere (one solid pigment without filter or transmit, a constant zero
+ * reflection): surf_scatter would give R = T = 0 and the opacity is 1, so
+ * trace needs neither it nor surf_prepare (most rays end on such a floor).
+ * NULL otherwise. */
+static const struct finish *dull(const struct object *o)
+{
+	const struct texture *t = mat_texture(o);
+	const struct colour *c = &t->pigment.c[0];
+	if (tex_map(t) || t->pigment.kind != PIG_SOLID || c->f != 0 || c->t != 0 || !isfinite(c->r) ||
+	    !isfinite(c->g) || !isfinite(c->b)) /* (an infinite colour times f = 0 is NaN) */
+		return NULL;
+	const struct finish *f = tex_finish(t);
+	if (f->refl_fresnel || f->refl_metallic || f->refl_min.r != 0 || f->refl_min.g != 0 || f->refl_min.b != 0 ||
+	    f->refl_max.r != 0 || f->refl_max.g != 0 || f->refl_max.b != 0)
+		return NULL;
+	return f;
+}
+
 /* Follows one light ray; nspec counts its specular bounces so far (a
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
@@ -375,6 +394,16 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		for (int c = 0; c < 3; c++)
 			w->absorbed[c] += e[c] - ea[c];
 		e = ea;
+	}
+	const struct finish *df = dull(h.obj);
+	if (df) { /* all of it stays here (rest = e); nothing goes on */
+		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
+			record(w, &h, &r, e, sig);
+			add3(w->deposited, e, 1);
+		} else {
+			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e, 1);
+		}
+		return;
 	}
 	struct surf_in si;
 	struct surf_out so;
