@@ -480,31 +480,48 @@ static void finish(struct query *q)
 		                      q->h);
 }
 
-/* A query over (tmin, tmax) for ray r, its result into *h: skip's object
- * flags, and BVH_NO_UV as the uv flag. */
-static struct query new_query(const struct bvh *b, const struct ray *r, double tmin, double tmax,
-                              unsigned skip, struct hit *h)
+/* Sets *q up as a query over (tmin, tmax) for ray r, its result into *h:
+ * skip's object flags, and BVH_NO_UV as the uv flag. Embree's context is
+ * left for walk to set (rtcInitIntersectContext): zeroing it on every query
+ * cost a fifth of a query that never reaches Embree. */
+static void new_query(struct query *q, const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                      unsigned skip, struct hit *h)
 {
-	return (struct query){.lanes = 1, .b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV,
-	                      .h = h, .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+	q->lanes = 1, q->b = b, q->r = r, q->tmin = tmin, q->tmax = tmax, q->t0 = 0;
+	q->skip = skip & ~BVH_NO_UV, q->h = h, q->uv = !(skip & BVH_NO_UV);
+	q->best = -1, q->best_t = 0, q->ubest = -1, q->ubest_hi = 0, q->best_hi = 0;
+	q->found = q->deferred = false;
+}
+
+/* finish(q), unless full (when given) says the winner found by its t
+ * alone needs no more than its object and t (bvh_intersect_lazy). */
+static void finish_if(struct query *q, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+{
+	const struct object *o = q->deferred                       ? q->b->prims[q->best]
+	                         : q->best < 0 && q->ubest >= 0 ? q->b->unbound[q->ubest]
+	                                                         : NULL;
+	if (!o || !full || full(ctx, o)) {
+		finish(q);
+		return;
+	}
+	q->h->obj = o;
+	q->h->t = q->deferred ? q->best_t : q->tmax;
+	q->h->u = q->h->v = NAN;
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
-static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
-                     unsigned skip, bool any, struct hit *h)
+static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
+                     struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
 {
-	struct query q = new_query(b, r, tmin, tmax, skip, h);
+	struct query q;
+	new_query(&q, b, r, tmin, tmax, skip, h);
 	if (unbounded(&q, any))
 		return q.found;
-	if (b->nprims == 0) {
-		finish(&q);
-		return q.found;
-	}
-	if (b->scene && b->nprims > BRUTE_MAX)
+	if (b->nprims > 0 && b->scene && b->nprims > BRUTE_MAX)
 		walk(&q, any);
-	else
+	else if (b->nprims > 0)
 		brute(&q, any);
-	finish(&q);
+	finish_if(&q, full, ctx);
 	return q.found;
 }
 
@@ -527,7 +544,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
-		*q = new_query(b, &r[i < n ? i : 0], tmin, tmax, skip, &h[i < n ? i : 0]);
+		new_query(q, b, &r[i < n ? i : 0], tmin, tmax, skip, &h[i < n ? i : 0]);
 		valid[i] = 0;
 		if (i >= n)
 			continue;
@@ -567,22 +584,28 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                         unsigned skip, struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, skip, false, h);
+	return traverse(b, r, tmin, tmax, skip, false, h, NULL, NULL);
 }
 
 bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                        unsigned skip)
 {
-	return traverse(b, r, tmin, tmax, skip, true, NULL);
+	return traverse(b, r, tmin, tmax, skip, true, NULL, NULL, NULL);
 }
 
 bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                    struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, 0, false, h);
+	return traverse(b, r, tmin, tmax, 0, false, h, NULL, NULL);
 }
 
 bool bvh_occluded(const struct bvh *b, const struct ray *r, double tmin, double tmax)
 {
-	return traverse(b, r, tmin, tmax, 0, true, NULL);
+	return traverse(b, r, tmin, tmax, 0, true, NULL, NULL, NULL);
+}
+
+bool bvh_intersect_lazy(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                        struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+{
+	return traverse(b, r, tmin, tmax, skip, false, h, full, ctx);
 }

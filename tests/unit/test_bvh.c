@@ -330,6 +330,59 @@ static void t_small_scenes(void)
 	CHECK(hits > NK * 2000);
 }
 
+static bool never(const void *ctx, const struct object *o)
+{
+	(void)ctx, (void)o;
+	return false;
+}
+
+static bool always(const void *ctx, const struct object *o)
+{
+	(void)ctx, (void)o;
+	return true;
+}
+
+/* bvh_intersect_lazy: with full saying no, the object and t of the nearest
+ * hit (a sphere or plane found by its t alone, or any other leaf in full);
+ * with full saying yes, the whole hit, bit for bit. On the random scene
+ * (Embree) and on a sphere over a plane (no Embree). */
+static void t_lazy(void)
+{
+	static struct scene_fixture s;
+	rng_seed(26);
+	build_scene(&s);
+	struct object small[2] = {mk_obj(OBJ_SPHERE), mk_obj(OBJ_PLANE)};
+	small[0].g.sphere.c = v3(0, 3, 0), small[0].g.sphere.r = 1;
+	small[1].g.plane.n = v3(0, 1, 0);
+	struct object *stop[2] = {&small[0], &small[1]};
+	int mism = 0, hits = 0;
+	for (int k = 0; k < 2; k++) {
+		struct bvh *b = k ? bvh_build(stop, 2) : bvh_build(s.top, s.ntop);
+		for (int i = 0; i < 10000; i++) {
+			struct ray r = k ? (struct ray){v3(rndr(-0.5, 0.5), 10, rndr(-0.5, 0.5)), v3(rndr(-0.3, 0.3), -1, rndr(-0.3, 0.3))}
+			                 : rnd_ray();
+			if (k && i % 2) /* from inside the sphere */
+				r.o = v3(0, 3, 0);
+			struct hit hf, hn, ha;
+			bool gf = bvh_intersect_skip(b, &r, 1e-9, INFINITY, BVH_NO_UV, &hf);
+			bool gn = bvh_intersect_lazy(b, &r, 1e-9, INFINITY, BVH_NO_UV, &hn, never, NULL);
+			bool ga = bvh_intersect_lazy(b, &r, 1e-9, INFINITY, BVH_NO_UV, &ha, always, NULL);
+			hits += gf;
+			bool bad = gf != gn || gf != ga ||
+			           (gf && (hn.obj != hf.obj || hn.t != hf.t || ha.obj != hf.obj || ha.t != hf.t ||
+			                   ha.p.x != hf.p.x || ha.p.y != hf.p.y || ha.n.z != hf.n.z || ha.entering != hf.entering));
+			if (bad && mism < 5)
+				printf("#   scene %d ray %d: full %d t=%.17g, lazy %d t=%.17g\n", k, i, gf, gf ? hf.t : 0, gn,
+				       gn ? hn.t : 0);
+			mism += bad;
+		}
+		bvh_free(b);
+	}
+	printf("# %d hits of 20000 rays, %d mismatches\n", hits, mism);
+	CHECK(mism == 0);
+	CHECK(hits > 12000);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -338,5 +391,6 @@ int main(void)
 	RUN(t_axis_rays);
 	RUN(t_from_surfaces);
 	RUN(t_small_scenes);
+	RUN(t_lazy);
 	return test_done();
 }

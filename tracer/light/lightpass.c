@@ -161,6 +161,11 @@ struct worker {
 	long long segments;
 	double emitted[3];
 	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
+	struct oinfo {              /* what trace asks of a surface, kept for a few (oinfo_of) */
+		const struct object *o;
+		const struct finish *dull; /* dull(o) */
+		bool quiet;                /* no pass_through, no fade (inert) */
+	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
 
@@ -361,6 +366,40 @@ static const struct finish *dull(const struct object *o)
 	return f;
 }
 
+/* dull(o) and whether o lets nothing pass (photons { pass_through }) and
+ * fades nothing, from the worker's small cache of them (a ray meets the
+ * same few surfaces over and over). */
+static const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
+{
+	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7];
+	if (x->o != o) {
+		const struct photon_spec *ph = obj_photons(o);
+		*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0)};
+	}
+	return x;
+}
+
+/* What trace needs of a hit on o by a ray with nspec specular bounces.
+ * Inert: a dull surface the ray reaches before any bounce (it is not
+ * recorded, unless the pass deposits direct light) that is quiet: all of
+ * the ray's light is direct or absorbed there, whatever the point, normal
+ * or side, so the query need not work them out (bvh_intersect_lazy). */
+struct need {
+	struct worker *w;
+	int nspec;
+};
+
+static bool inert(const struct need *n, const struct oinfo *x)
+{
+	return n->nspec == 0 && !n->w->job->o->deposit_direct && x->dull && x->quiet;
+}
+
+static bool full_hit(const void *ctx, const struct object *o)
+{
+	const struct need *n = ctx;
+	return !inert(n, oinfo_of(n->w, o));
+}
+
 /* Follows one light ray; nspec counts its specular bounces so far (a
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
@@ -371,8 +410,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	if (!bvh_intersect_skip(J->b, &r, 0, INFINITY, BVH_NO_UV, &h)) {
+	struct need nd = {w, nspec};
+	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)) {
 		add3(w->escaped, e, 1);
+		return;
+	}
+	const struct oinfo *hx = oinfo_of(w, h.obj);
+	if (inert(&nd, hx)) { /* h holds only obj and t */
+		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e, 1);
 		return;
 	}
 	/* POV-Ray's photons { } on the object: pass_through lets light by
@@ -395,7 +440,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 			w->absorbed[c] += e[c] - ea[c];
 		e = ea;
 	}
-	const struct finish *df = dull(h.obj);
+	const struct finish *df = hx->dull;
 	if (df) { /* all of it stays here (rest = e); nothing goes on */
 		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 			record(w, &h, &r, e, sig);
@@ -820,8 +865,9 @@ static void run_item(struct worker *w, const struct item *it)
 	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
 	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
-		double sx = ((double)col + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
-		double sy = ((double)row + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
+		struct smp_stream ss = smp_start(key, (uint32_t)i); /* smp_get's dimensions 0 and 1, one key */
+		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
+		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
 		double ph = 2 * M_PI * sy;
 		struct vec3 o = l->pos, d = t->axis;
 		if (beam) {
