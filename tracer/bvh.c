@@ -460,7 +460,9 @@ static bool unbounded(struct query *q, bool any)
 			return q->found = true;
 		double t;
 		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
-			if (shape_plane_hit_t(o, &q->b->uplane[i], q->r, q->tmin, q->tmax, &t))
+			const struct pl_prep *pp = &q->b->uplane[i]; /* inline without a transform */
+			if (o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
+			          : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t))
 				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;

@@ -369,13 +369,17 @@ static const struct finish *dull(const struct object *o)
 /* dull(o) and whether o lets nothing pass (photons { pass_through }) and
  * fades nothing, from the worker's small cache of them (a ray meets the
  * same few surfaces over and over). */
-static const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
+static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
+{
+	const struct photon_spec *ph = obj_photons(o);
+	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0)};
+}
+
+static inline const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
 {
 	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7];
-	if (x->o != o) {
-		const struct photon_spec *ph = obj_photons(o);
-		*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0)};
-	}
+	if (x->o != o)
+		oinfo_fill(x, o);
 	return x;
 }
 
