@@ -645,6 +645,8 @@ static bool energy_clean(const double energy[3], double e[3])
 static int band_of(long j, int nb)
 {
 	long t = floordiv(j), s = t >= 0 ? t / 16 : -((-t + 15) / 16);
+	if ((nb & (nb - 1)) == 0) /* the same, without two divisions (unsigned: s modulo 2^64) */
+		return (int)((unsigned long)s & (unsigned long)(nb - 1));
 	return (int)(((s % nb) + nb) % nb);
 }
 
