@@ -33,7 +33,7 @@ struct fx {
 };
 
 /* Rounds d (≥ 0) to the nearest quantum; saturates at 2^32. */
-static struct fx fx_from(double d)
+static inline struct fx fx_from(double d)
 {
 	struct fx r = {0, 0};
 	double m = d * 0x1p96; /* scaling by powers of two is exact here */
