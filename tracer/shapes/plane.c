@@ -56,14 +56,9 @@ static bool pl_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
-/* The root t in (tmin, tmax) of the ray and the plane n̂·p = d. */
 static bool pl_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax, double *t)
 {
-	double den = v_dot(n, r->d);
-	if (den == 0)
-		return false;
-	*t = (d - v_dot(n, r->o)) / den;
-	return *t > tmin && *t < tmax;
+	return prim_plane_root(n, d, r, tmin, tmax, t);
 }
 
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)

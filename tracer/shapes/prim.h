@@ -152,6 +152,18 @@ static inline bool prim_sphere_t(struct vec3 c, double rad, const struct ray *r,
 	return true;
 }
 
+/* The root t in (tmin, tmax) of the ray and the plane n̂·p = d. Inline: the
+ * plane primitive and the hierarchy's plane leaves (bvh.c) share it. */
+static inline bool prim_plane_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax,
+                                   double *t)
+{
+	double den = v_dot(n, r->d);
+	if (den == 0)
+		return false;
+	*t = (d - v_dot(n, r->o)) / den;
+	return *t > tmin && *t < tmax;
+}
+
 /* Möller–Trumbore in double precision, edges inclusive: the ray meets the
  * triangle p0 + a·e1 + b·e2 at *t, with barycentric (a, b) in *a, *b (no
  * interval test on t). The triangle primitive and the mesh share it. */
