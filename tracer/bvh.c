@@ -161,6 +161,10 @@ static void collect(struct builder *B, const struct object *o)
 		add_leaf(B, o, b);
 }
 
+/* Scenes with at most this many bounded leaves are traced without Embree
+ * (brute). */
+#define BRUTE_MAX 4
+
 /* ==== callbacks ========================================================== */
 
 /* The next float towards -inf (+inf) from a finite, non-zero float f:
@@ -210,26 +214,24 @@ static inline bool sphere_t(const struct object *o, const struct ray *r, double 
 	return shape_hit_t(o, r, tmin, tmax, t);
 }
 
-/* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
- * single ray) for query q: on a better hit, records it and shrinks the
- * lane's tfar just past it. */
-static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
-                      unsigned geom)
+/* Tests primitive id for query q: on a better hit, records it (a sphere by
+ * its t alone; traverse fills *h at the end) and returns true. */
+static bool consider(struct query *q, int id)
 {
 	const struct object *o = q->b->prims[id];
 	if (o->flags & q->skip)
-		return;
+		return false;
 	/* a tie with the best so far is looked at: the lower index wins */
 	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
-	if (o->kind == OBJ_SPHERE) { /* the t alone; traverse fills *h at the end */
+	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
-			return;
+			return false;
 		q->deferred = true;
 		q->best_t = t;
 	} else {
 		struct hit tmp;
 		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
-			return;
+			return false;
 		*q->h = tmp;
 		t = tmp.t;
 		q->deferred = false;
@@ -238,9 +240,20 @@ static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsign
 	q->best = id;
 	q->best_hi = hi;
 	q->found = true;
+	return true;
+}
+
+/* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
+ * single ray) for query q: on a better hit, records it and shrinks the
+ * lane's tfar just past it. */
+static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
+                      unsigned geom)
+{
+	if (!consider(q, id))
+		return;
 	/* RTCRayHitN is a structure of arrays: tfar is float row 8, the hit's
 	 * primID and geomID are rows 12 + 5 and 12 + 6 */
-	((float *)rayhit)[8 * N + i] = up((t - q->t0) * (1 + 1e-6));
+	((float *)rayhit)[8 * N + i] = up((q->tmax - q->t0) * (1 + 1e-6));
 	((unsigned *)rayhit)[17 * N + i] = (unsigned)id;
 	((unsigned *)rayhit)[18 * N + i] = geom;
 }
@@ -435,18 +448,21 @@ static void walk(struct query *q, bool any)
 	}
 }
 
-/* Without a device (Embree failed to start): every bounded leaf in order. */
+/* Every bounded leaf in order, as the callbacks test them: without a
+ * device (Embree failed to start), and for a scene of at most BRUTE_MAX
+ * leaves, where setting up Embree's float ray and walk costs more than
+ * testing them all (a sphere's t is ~80 instructions; Embree's query ~500).
+ * The hit is the same either way (see the top of this file). */
 static void brute(struct query *q, bool any)
 {
-	struct hit tmp;
 	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
-		const struct object *o = q->b->prims[i];
-		if (o->flags & q->skip)
+		if (!any) {
+			consider(q, i);
 			continue;
-		if (any)
+		}
+		const struct object *o = q->b->prims[i];
+		if (!(o->flags & q->skip))
 			q->found = shape_occluded(o, q->r, q->tmin, q->tmax);
-		else if (shape_intersect(o, q->r, q->tmin, q->tmax, &tmp))
-			*q->h = tmp, q->tmax = tmp.t, q->best = i, q->found = true;
 	}
 }
 
@@ -463,9 +479,9 @@ static bool unbounded(struct query *q, bool any)
 			return q->found = true;
 		double t;
 		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
-			const struct pl_prep *pp = &q->b->uplane[i];
-			if (!o->xf ? pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t)
-			           : shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t))
+			const struct pl_prep *pp = &q->b->uplane[i]; /* inline without a transform */
+			if (o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
+			          : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t))
 				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
@@ -485,31 +501,48 @@ static void finish(struct query *q)
 		                      q->h);
 }
 
-/* A query over (tmin, tmax) for ray r, its result into *h: skip's object
- * flags, and BVH_NO_UV as the uv flag. */
-static struct query new_query(const struct bvh *b, const struct ray *r, double tmin, double tmax,
-                              unsigned skip, struct hit *h)
+/* Sets *q up as a query over (tmin, tmax) for ray r, its result into *h:
+ * skip's object flags, and BVH_NO_UV as the uv flag. Embree's context is
+ * left for walk to set (rtcInitIntersectContext): zeroing it on every query
+ * cost a fifth of a query that never reaches Embree. */
+static void new_query(struct query *q, const struct bvh *b, const struct ray *r, double tmin, double tmax,
+                      unsigned skip, struct hit *h)
 {
-	return (struct query){.lanes = 1, .b = b, .r = r, .tmin = tmin, .tmax = tmax, .skip = skip & ~BVH_NO_UV,
-	                      .h = h, .uv = !(skip & BVH_NO_UV), .best = -1, .ubest = -1};
+	q->lanes = 1, q->b = b, q->r = r, q->tmin = tmin, q->tmax = tmax, q->t0 = 0;
+	q->skip = skip & ~BVH_NO_UV, q->h = h, q->uv = !(skip & BVH_NO_UV);
+	q->best = -1, q->best_t = 0, q->ubest = -1, q->ubest_hi = 0, q->best_hi = 0;
+	q->found = q->deferred = false;
+}
+
+/* finish(q), unless full (when given) says the winner found by its t
+ * alone needs no more than its object and t (bvh_intersect_lazy). */
+static void finish_if(struct query *q, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+{
+	const struct object *o = q->deferred                       ? q->b->prims[q->best]
+	                         : q->best < 0 && q->ubest >= 0 ? q->b->unbound[q->ubest]
+	                                                         : NULL;
+	if (!o || !full || full(ctx, o)) {
+		finish(q);
+		return;
+	}
+	q->h->obj = o;
+	q->h->t = q->deferred ? q->best_t : q->tmax;
+	q->h->u = q->h->v = NAN;
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
-static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax,
-                     unsigned skip, bool any, struct hit *h)
+static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
+                     struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
 {
-	struct query q = new_query(b, r, tmin, tmax, skip, h);
+	struct query q;
+	new_query(&q, b, r, tmin, tmax, skip, h);
 	if (unbounded(&q, any))
 		return q.found;
-	if (b->nprims == 0) {
-		finish(&q);
-		return q.found;
-	}
-	if (b->scene)
+	if (b->nprims > 0 && b->scene && b->nprims > BRUTE_MAX)
 		walk(&q, any);
-	else
+	else if (b->nprims > 0)
 		brute(&q, any);
-	finish(&q);
+	finish_if(&q, full, ctx);
 	return q.found;
 }
 
@@ -532,14 +565,14 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
-		*q = new_query(b, &r[i < n ? i : 0], tmin, tmax, skip, &h[i < n ? i : 0]);
+		new_query(q, b, &r[i < n ? i : 0], tmin, tmax, skip, &h[i < n ? i : 0]);
 		valid[i] = 0;
 		if (i >= n)
 			continue;
 		unbounded(q, false);
 		if (b->nprims == 0)
 			continue;
-		if (!b->scene) {
+		if (!b->scene || b->nprims <= BRUTE_MAX) {
 			brute(q, false);
 			continue;
 		}
@@ -579,11 +612,11 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
-		*q = new_query(b, &r[i < n ? i : 0], 0, i < n ? tmax[i] : 0, skip | BVH_NO_UV, NULL);
+		new_query(q, b, &r[i < n ? i : 0], 0, i < n ? tmax[i] : 0, skip | BVH_NO_UV, NULL);
 		valid[i] = 0;
 		if (i >= n || unbounded(q, true) || b->nprims == 0)
 			continue;
-		if (!b->scene) {
+		if (!b->scene || b->nprims <= BRUTE_MAX) {
 			brute(q, true);
 			continue;
 		}
@@ -615,22 +648,28 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                         unsigned skip, struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, skip, false, h);
+	return traverse(b, r, tmin, tmax, skip, false, h, NULL, NULL);
 }
 
 bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                        unsigned skip)
 {
-	return traverse(b, r, tmin, tmax, skip, true, NULL);
+	return traverse(b, r, tmin, tmax, skip, true, NULL, NULL, NULL);
 }
 
 bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                    struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, 0, false, h);
+	return traverse(b, r, tmin, tmax, 0, false, h, NULL, NULL);
 }
 
 bool bvh_occluded(const struct bvh *b, const struct ray *r, double tmin, double tmax)
 {
-	return traverse(b, r, tmin, tmax, 0, true, NULL);
+	return traverse(b, r, tmin, tmax, 0, true, NULL, NULL, NULL);
+}
+
+bool bvh_intersect_lazy(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                        struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+{
+	return traverse(b, r, tmin, tmax, skip, false, h, full, ctx);
 }

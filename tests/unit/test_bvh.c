@@ -318,6 +318,32 @@ static void t_occluded_packet(void)
 	CHECK(blocked > total / 10 && blocked < total * 9 / 10);
 	bvh_free(b);
 
+	/* a scene of three spheres, traced without Embree (BRUTE_MAX) */
+	static struct object few[3];
+	struct object *ftop[3];
+	for (int i = 0; i < 3; i++) {
+		few[i] = mk_obj(OBJ_SPHERE);
+		few[i].g.sphere.c = v3(3 * i, 0, 0), few[i].g.sphere.r = 1;
+		ftop[i] = &few[i];
+	}
+	b = bvh_build(ftop, 3);
+	struct ray fr[BVH_PACKET];
+	double ft[BVH_PACKET];
+	bool fgot[BVH_PACKET];
+	int fblocked = 0, fmism = 0;
+	for (int i = 0; i < BVH_PACKET; i++) {
+		fr[i] = (struct ray){v3(-5 + i, 5, 0), v_norm(v3(0.3 * (i % 5) - 0.6, -1, 0))};
+		ft[i] = i % 3 ? INFINITY : 4.5;
+	}
+	bvh_occluded_packet(b, BVH_PACKET, fr, ft, 0, fgot);
+	for (int i = 0; i < BVH_PACKET; i++) {
+		fblocked += fgot[i];
+		fmism += fgot[i] != bvh_occluded_skip(b, &fr[i], 0, ft[i], 0);
+	}
+	CHECK(fmism == 0);
+	CHECK(fblocked > 0 && fblocked < BVH_PACKET);
+	bvh_free(b);
+
 	b = bvh_build(NULL, 0); /* nothing to block: every lane is clear */
 	struct ray r[2] = {{v3(0, 0, 0), v3(1, 0, 0)}, {v3(1, 1, 1), v3(0, 1, 0)}};
 	double tmax[2] = {INFINITY, 5};
@@ -327,6 +353,124 @@ static void t_occluded_packet(void)
 	bvh_free(b);
 }
 
+/* Scenes of at most four bounded leaves are traced without Embree (bvh.c's
+ * BRUTE_MAX): the hits are those of brute force and of the same leaves
+ * with a fifth, out of every ray's way, which puts Embree back, bit for
+ * bit (nearest, any hit, and the full hit filled in at the end). */
+static void t_small_scenes(void)
+{
+	enum { NK = 4 };
+	static struct object o[NK + 2];
+	struct object *top[NK + 2];
+	rng_seed(25);
+	int mism = 0, hits = 0;
+	for (int k = 1; k <= NK; k++) {
+		for (int i = 0; i < k; i++) { /* touching spheres, one moved, and a box */
+			o[i] = mk_obj(i == 2 ? OBJ_BOX : OBJ_SPHERE);
+			if (i == 2) {
+				o[i].g.box.lo = v3(-1, -1, -1), o[i].g.box.hi = v3(0.5, 1, 2);
+			} else {
+				o[i].g.sphere.c = v3(1.5 * i, 0.3 * i, 0);
+				o[i].g.sphere.r = 1 - 0.1 * i;
+			}
+			if (i == 3)
+				o[i].xf = xf_keep(xf_then(xf_rotate(v3(10, 20, 30)), xf_translate(v3(0, 2, 0))));
+			top[i] = &o[i];
+		}
+		o[k] = mk_obj(OBJ_PLANE); /* a floor, unbounded */
+		o[k].g.plane.n = v3(0, 1, 0), o[k].g.plane.d = -1.5;
+		o[k + 1] = mk_obj(OBJ_SPHERE); /* far behind every ray's start */
+		o[k + 1].g.sphere.c = v3(0, 0, -500), o[k + 1].g.sphere.r = 1;
+		top[k] = &o[k], top[k + 1] = &o[k + 1];
+		struct bvh *small = bvh_build(top, k + 1), *big = bvh_build(top, k + 2);
+		int n5 = bvh_count(big, NULL);
+		CHECK(bvh_count(small, NULL) == k && n5 == k + 1);
+		for (int i = 0; i < 4000; i++) {
+			struct ray r = {rnd_vec(-4, 4), rnd_dir()};
+			if (r.d.z < 0)
+				r.d.z = -r.d.z;
+			if (i % 2) { /* from a surface */
+				const struct object *s = &o[(int)(rnd() * k) % k];
+				struct vec3 q;
+				shape_uv_point(s, rnd(), rnd(), &q, NULL, NULL);
+				r.o = q;
+			}
+			double tmin = i % 3 ? 1e-9 : 0, tmax = i % 4 ? INFINITY : rndr(0.01, 10);
+			struct hit hb, hs, he;
+			bool gb = brute(top, k + 1, &r, tmin, tmax, 0, &hb);
+			bool gs = bvh_intersect(small, &r, tmin, tmax, &hs);
+			bool ge = bvh_intersect(big, &r, tmin, tmax, &he);
+			hits += gs;
+			bool bad = gb != gs || gs != ge ||
+			           (gs && (hb.t != hs.t || hb.obj != hs.obj || he.t != hs.t || he.obj != hs.obj ||
+			                   he.u != hs.u || he.v != hs.v || he.n.x != hs.n.x || he.p.y != hs.p.y ||
+			                   he.dpdu.z != hs.dpdu.z || he.entering != hs.entering));
+			bad |= bvh_occluded(small, &r, tmin, tmax) != gb || bvh_occluded(big, &r, tmin, tmax) != gb;
+			if (bad && mism < 5)
+				printf("#   %d leaves, ray %d: brute %d t=%.17g, small %d t=%.17g, embree %d t=%.17g\n", k, i, gb,
+				       gb ? hb.t : 0, gs, gs ? hs.t : 0, ge, ge ? he.t : 0);
+			mism += bad;
+		}
+		bvh_free(small), bvh_free(big);
+	}
+	printf("# %d hits of %d rays in scenes of 1-4 leaves, %d mismatches\n", hits, NK * 4000, mism);
+	CHECK(mism == 0);
+	CHECK(hits > NK * 2000);
+}
+
+static bool never(const void *ctx, const struct object *o)
+{
+	(void)ctx, (void)o;
+	return false;
+}
+
+static bool always(const void *ctx, const struct object *o)
+{
+	(void)ctx, (void)o;
+	return true;
+}
+
+/* bvh_intersect_lazy: with full saying no, the object and t of the nearest
+ * hit (a sphere or plane found by its t alone, or any other leaf in full);
+ * with full saying yes, the whole hit, bit for bit. On the random scene
+ * (Embree) and on a sphere over a plane (no Embree). */
+static void t_lazy(void)
+{
+	static struct scene_fixture s;
+	rng_seed(26);
+	build_scene(&s);
+	struct object small[2] = {mk_obj(OBJ_SPHERE), mk_obj(OBJ_PLANE)};
+	small[0].g.sphere.c = v3(0, 3, 0), small[0].g.sphere.r = 1;
+	small[1].g.plane.n = v3(0, 1, 0);
+	struct object *stop[2] = {&small[0], &small[1]};
+	int mism = 0, hits = 0;
+	for (int k = 0; k < 2; k++) {
+		struct bvh *b = k ? bvh_build(stop, 2) : bvh_build(s.top, s.ntop);
+		for (int i = 0; i < 10000; i++) {
+			struct ray r = k ? (struct ray){v3(rndr(-0.5, 0.5), 10, rndr(-0.5, 0.5)), v3(rndr(-0.3, 0.3), -1, rndr(-0.3, 0.3))}
+			                 : rnd_ray();
+			if (k && i % 2) /* from inside the sphere */
+				r.o = v3(0, 3, 0);
+			struct hit hf, hn, ha;
+			bool gf = bvh_intersect_skip(b, &r, 1e-9, INFINITY, BVH_NO_UV, &hf);
+			bool gn = bvh_intersect_lazy(b, &r, 1e-9, INFINITY, BVH_NO_UV, &hn, never, NULL);
+			bool ga = bvh_intersect_lazy(b, &r, 1e-9, INFINITY, BVH_NO_UV, &ha, always, NULL);
+			hits += gf;
+			bool bad = gf != gn || gf != ga ||
+			           (gf && (hn.obj != hf.obj || hn.t != hf.t || ha.obj != hf.obj || ha.t != hf.t ||
+			                   ha.p.x != hf.p.x || ha.p.y != hf.p.y || ha.n.z != hf.n.z || ha.entering != hf.entering));
+			if (bad && mism < 5)
+				printf("#   scene %d ray %d: full %d t=%.17g, lazy %d t=%.17g\n", k, i, gf, gf ? hf.t : 0, gn,
+				       gn ? hn.t : 0);
+			mism += bad;
+		}
+		bvh_free(b);
+	}
+	printf("# %d hits of 20000 rays, %d mismatches\n", hits, mism);
+	CHECK(mism == 0);
+	CHECK(hits > 12000);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -334,6 +478,8 @@ int main(void)
 	RUN(t_degenerate_and_empty);
 	RUN(t_axis_rays);
 	RUN(t_from_surfaces);
+	RUN(t_small_scenes);
+	RUN(t_lazy);
 	RUN(t_occluded_packet);
 	return test_done();
 }

@@ -33,7 +33,7 @@ struct fx {
 };
 
 /* Rounds d (≥ 0) to the nearest quantum; saturates at 2^32. */
-static struct fx fx_from(double d)
+static inline struct fx fx_from(double d)
 {
 	struct fx r = {0, 0};
 	double m = d * 0x1p96; /* scaling by powers of two is exact here */
@@ -645,6 +645,8 @@ static bool energy_clean(const double energy[3], double e[3])
 static int band_of(long j, int nb)
 {
 	long t = floordiv(j), s = t >= 0 ? t / 16 : -((-t + 15) / 16);
+	if ((nb & (nb - 1)) == 0) /* the same, without two divisions (unsigned: s modulo 2^64) */
+		return (int)((unsigned long)s & (unsigned long)(nb - 1));
 	return (int)(((s % nb) + nb) % nb);
 }
 
@@ -1581,6 +1583,8 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 	return true;
 }
 
+#define FINISH_CHUNK 2048 /* tiles per illum_finish_mt item */
+
 struct finish_job {
 	struct illum_map *m;
 	long k0, k1;      /* tiles [k0, k1) */
@@ -1712,20 +1716,22 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 			m->tiles[k]->area = ARENA_ARRAY(&m->pool, double, TN);
 	if (plane && m->ntiles) /* its one area, before threads read it */
 		node_area(m, 0, 0);
-	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
-	if (m->ntiles < 4096)
-		nb = 1;
-	struct finish_job jobs[64];
-	for (int b = 0; b < nb; b++)
+	/* chunks of FINISH_CHUNK tiles, claimed by the threads as they come
+	 * free (one held up elsewhere on a busy machine then holds up nothing);
+	 * the sums are exact, so the chunks change no bit */
+	long nb = m->ntiles < 4096 || threads <= 1 ? 1 : (m->ntiles + FINISH_CHUNK - 1) / FINISH_CHUNK;
+	struct finish_job *jobs = mem_alloc(sizeof *jobs * (size_t)nb);
+	for (long b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
 		                              {{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
-	parallel_for(nb, nb, finish_work, jobs);
+	parallel_for(nb, threads, finish_work, jobs);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
 	memset(m->total, 0, sizeof m->total);
-	for (int b = 0; b < nb; b++) {
+	for (long b = 0; b < nb; b++) {
 		for (int c = 0; c < 3; c++)
 			fx_add(&rem[c], jobs[b].rem[c]), fx_add(&m->total[c], jobs[b].tot[c]);
 	}
+	free(jobs);
 	if (removed)
 		for (int c = 0; c < 3; c++)
 			removed[c] = fx_to_double(rem[c]) * m->unit;

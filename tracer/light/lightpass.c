@@ -161,6 +161,11 @@ struct worker {
 	long long segments;
 	double emitted[3];
 	double deposited[3], direct[3], absorbed[3], escaped[3], cut[3]; /* lp_stats */
+	struct oinfo {              /* what trace asks of a surface, kept for a few (oinfo_of) */
+		const struct object *o;
+		const struct finish *dull; /* dull(o) */
+		bool quiet;                /* no pass_through, no fade (inert) */
+	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
 
@@ -342,6 +347,63 @@ static double max3(double a, double b, double c)
 	return a > m ? a : m;
 }
 
+/* The finish of o when light can neither reflect from nor pass through it
+ * anywhere (one solid pigment without filter or transmit, a constant zero
+ * reflection): surf_scatter would give R = T = 0 and the opacity is 1, so
+ * trace needs neither it nor surf_prepare (most rays end on such a floor).
+ * NULL otherwise. */
+static const struct finish *dull(const struct object *o)
+{
+	const struct texture *t = mat_texture(o);
+	const struct colour *c = &t->pigment.c[0];
+	if (tex_map(t) || t->pigment.kind != PIG_SOLID || c->f != 0 || c->t != 0 || !isfinite(c->r) ||
+	    !isfinite(c->g) || !isfinite(c->b)) /* (an infinite colour times f = 0 is NaN) */
+		return NULL;
+	const struct finish *f = tex_finish(t);
+	if (f->refl_fresnel || f->refl_metallic || f->refl_min.r != 0 || f->refl_min.g != 0 || f->refl_min.b != 0 ||
+	    f->refl_max.r != 0 || f->refl_max.g != 0 || f->refl_max.b != 0)
+		return NULL;
+	return f;
+}
+
+/* dull(o) and whether o lets nothing pass (photons { pass_through }) and
+ * fades nothing, from the worker's small cache of them (a ray meets the
+ * same few surfaces over and over). */
+static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
+{
+	const struct photon_spec *ph = obj_photons(o);
+	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0)};
+}
+
+static inline const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
+{
+	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7];
+	if (x->o != o)
+		oinfo_fill(x, o);
+	return x;
+}
+
+/* What trace needs of a hit on o by a ray with nspec specular bounces.
+ * Inert: a dull surface the ray reaches before any bounce (it is not
+ * recorded, unless the pass deposits direct light) that is quiet: all of
+ * the ray's light is direct or absorbed there, whatever the point, normal
+ * or side, so the query need not work them out (bvh_intersect_lazy). */
+struct need {
+	struct worker *w;
+	int nspec;
+};
+
+static bool inert(const struct need *n, const struct oinfo *x)
+{
+	return n->nspec == 0 && !n->w->job->o->deposit_direct && x->dull && x->quiet;
+}
+
+static bool full_hit(const void *ctx, const struct object *o)
+{
+	const struct need *n = ctx;
+	return !inert(n, oinfo_of(n->w, o));
+}
+
 /* Follows one light ray; nspec counts its specular bounces so far (a
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
@@ -352,8 +414,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	if (!bvh_intersect_skip(J->b, &r, 0, INFINITY, BVH_NO_UV, &h)) {
+	struct need nd = {w, nspec};
+	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)) {
 		add3(w->escaped, e, 1);
+		return;
+	}
+	const struct oinfo *hx = oinfo_of(w, h.obj);
+	if (inert(&nd, hx)) { /* h holds only obj and t */
+		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e, 1);
 		return;
 	}
 	/* POV-Ray's photons { } on the object: pass_through lets light by
@@ -375,6 +443,16 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		for (int c = 0; c < 3; c++)
 			w->absorbed[c] += e[c] - ea[c];
 		e = ea;
+	}
+	const struct finish *df = hx->dull;
+	if (df) { /* all of it stays here (rest = e); nothing goes on */
+		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
+			record(w, &h, &r, e, sig);
+			add3(w->deposited, e, 1);
+		} else {
+			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e, 1);
+		}
+		return;
 	}
 	struct surf_in si;
 	struct surf_out so;
@@ -791,8 +869,9 @@ static void run_item(struct worker *w, const struct item *it)
 	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
 	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
-		double sx = ((double)col + smp_get(key, (uint32_t)i, 0)) / (double)t->side;
-		double sy = ((double)row + smp_get(key, (uint32_t)i, 1)) / (double)t->side;
+		struct smp_stream ss = smp_start(key, (uint32_t)i); /* smp_get's dimensions 0 and 1, one key */
+		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
+		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
 		double ph = 2 * M_PI * sy;
 		struct vec3 o = l->pos, d = t->axis;
 		if (beam) {

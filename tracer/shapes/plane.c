@@ -56,14 +56,19 @@ static bool pl_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
+static bool pl_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax, double *t)
+{
+	return prim_plane_root(n, d, r, tmin, tmax, t);
+}
+
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
 	double l = pl_norm(o); /* as pl_frame, without the in-plane axes */
 	if (!(l > 0))
 		return false;
 	if (l == 1)
-		return prim_plane_root(o->g.plane.n, o->g.plane.d, r, tmin, tmax, t);
-	return prim_plane_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
+		return pl_root(o->g.plane.n, o->g.plane.d, r, tmin, tmax, t);
+	return pl_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
 }
 
 /* The hit at root t, from frame f: rebuilt from its (u,v) so it lies in
@@ -86,7 +91,7 @@ static bool pl_intersect(const struct object *o, const struct ray *r, double tmi
 {
 	struct pframe f;
 	double t;
-	if (!pl_frame(o, &f) || !prim_plane_root(f.n, f.d, r, tmin, tmax, &t))
+	if (!pl_frame(o, &f) || !pl_root(f.n, f.d, r, tmin, tmax, &t))
 		return false;
 	pl_hit(&f, r, t, lh);
 	return true;
@@ -101,14 +106,14 @@ void pl_prep(const struct object *o, struct pl_prep *p)
 
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t)
 {
-	return p->ok && prim_plane_root(p->n, p->d, r, tmin, tmax, t);
+	return p->ok && pl_root(p->n, p->d, r, tmin, tmax, t);
 }
 
 bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
                        struct local_hit *lh)
 {
 	double t;
-	if (!p->ok || !prim_plane_root(p->n, p->d, r, tmin, tmax, &t))
+	if (!p->ok || !pl_root(p->n, p->d, r, tmin, tmax, &t))
 		return false;
 	pl_hit(&(struct pframe){p->n, p->e1, p->e2, p->d}, r, t, lh);
 	return true;

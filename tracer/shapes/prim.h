@@ -156,7 +156,7 @@ __attribute__((always_inline)) static inline bool prim_sphere_t(struct vec3 c, d
 }
 
 /* The root t in (tmin, tmax) of the ray and the plane n̂·p = d. Inline: the
- * plane primitive and the hierarchy's unbounded planes (bvh.c) share it. */
+ * plane primitive and the hierarchy's plane leaves (bvh.c) share it. */
 static inline bool prim_plane_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax,
                                    double *t)
 {
