@@ -479,6 +479,8 @@ struct builtin {
 	const char *name;
 	int min, max; /* argument counts */
 	struct value (*fn)(struct call *);
+	double (*f1)(double); /* the same as a plain function of one float (sin, exp …), for
+	                       * eval_num (builtin_float_fn); NULL for the others */
 };
 
 /* min_extent(O), max_extent(O): the corners of an object's bounding box
@@ -529,24 +531,24 @@ static struct value f_trace(struct call *c)
 static struct value f_max_extent(struct call *c) { return extent(c, 1); }
 
 static const struct builtin table[] = {
-	{"abs", 1, 1, f_abs}, {"acos", 1, 1, f_acos}, {"acosh", 1, 1, f_acosh},
-	{"asc", 1, 1, f_asc}, {"asin", 1, 1, f_asin}, {"asinh", 1, 1, f_asinh},
-	{"atan", 1, 1, f_atan}, {"atan2", 2, 2, f_atan2}, {"atanh", 1, 1, f_atanh},
-	{"ceil", 1, 1, f_ceil}, {"chr", 1, 1, f_chr}, {"concat", 1, 16, f_concat},
-	{"cos", 1, 1, f_cos}, {"cosh", 1, 1, f_cosh}, {"degrees", 1, 1, f_degrees},
-	{"dimension_size", 2, 2, f_dimension_size}, {"dimensions", 1, 1, f_dimensions},
-	{"div", 2, 2, f_div}, {"exp", 1, 1, f_exp}, {"floor", 1, 1, f_floor},
-	{"int", 1, 1, f_int}, {"ln", 1, 1, f_ln}, {"log", 1, 1, f_log},
-	{"max", 2, 16, f_max}, {"max_extent", 1, 1, f_max_extent}, {"min", 2, 16, f_min},
-	{"min_extent", 1, 1, f_min_extent}, {"inside", 2, 2, f_inside}, {"trace", 3, 4, f_trace}, {"mod", 2, 2, f_mod},
-	{"pow", 2, 2, f_pow}, {"radians", 1, 1, f_radians}, {"rand", 1, 1, f_rand},
-	{"seed", 1, 1, f_seed}, {"select", 3, 4, f_select}, {"sin", 1, 1, f_sin},
-	{"sinh", 1, 1, f_sinh}, {"sqrt", 1, 1, f_sqrt}, {"str", 3, 3, f_str},
-	{"strcmp", 2, 2, f_strcmp}, {"strlen", 1, 1, f_strlen}, {"strlwr", 1, 1, f_strlwr},
-	{"strupr", 1, 1, f_strupr}, {"substr", 3, 3, f_substr}, {"tan", 1, 1, f_tan},
-	{"tanh", 1, 1, f_tanh}, {"val", 1, 1, f_val}, {"vaxis_rotate", 3, 3, f_vaxis_rotate},
-	{"vcross", 2, 2, f_vcross}, {"vdot", 2, 2, f_vdot}, {"vlength", 1, 1, f_vlength},
-	{"vnormalize", 1, 1, f_vnormalize}, {"vrotate", 2, 2, f_vrotate}, {"vturbulence", 4, 4, f_vturbulence}, {"vstr", 5, 5, f_vstr},
+	{"abs", 1, 1, f_abs, fabs}, {"acos", 1, 1, f_acos, NULL}, {"acosh", 1, 1, f_acosh, NULL},
+	{"asc", 1, 1, f_asc, NULL}, {"asin", 1, 1, f_asin, NULL}, {"asinh", 1, 1, f_asinh, asinh},
+	{"atan", 1, 1, f_atan, atan}, {"atan2", 2, 2, f_atan2, NULL}, {"atanh", 1, 1, f_atanh, NULL},
+	{"ceil", 1, 1, f_ceil, ceil}, {"chr", 1, 1, f_chr, NULL}, {"concat", 1, 16, f_concat, NULL},
+	{"cos", 1, 1, f_cos, cos}, {"cosh", 1, 1, f_cosh, cosh}, {"degrees", 1, 1, f_degrees, NULL},
+	{"dimension_size", 2, 2, f_dimension_size, NULL}, {"dimensions", 1, 1, f_dimensions, NULL},
+	{"div", 2, 2, f_div, NULL}, {"exp", 1, 1, f_exp, exp}, {"floor", 1, 1, f_floor, floor},
+	{"int", 1, 1, f_int, NULL}, {"ln", 1, 1, f_ln, NULL}, {"log", 1, 1, f_log, NULL},
+	{"max", 2, 16, f_max, NULL}, {"max_extent", 1, 1, f_max_extent, NULL}, {"min", 2, 16, f_min, NULL},
+	{"min_extent", 1, 1, f_min_extent, NULL}, {"inside", 2, 2, f_inside, NULL}, {"trace", 3, 4, f_trace, NULL}, {"mod", 2, 2, f_mod, NULL},
+	{"pow", 2, 2, f_pow, NULL}, {"radians", 1, 1, f_radians, NULL}, {"rand", 1, 1, f_rand, NULL},
+	{"seed", 1, 1, f_seed, NULL}, {"select", 3, 4, f_select, NULL}, {"sin", 1, 1, f_sin, sin},
+	{"sinh", 1, 1, f_sinh, sinh}, {"sqrt", 1, 1, f_sqrt, NULL}, {"str", 3, 3, f_str, NULL},
+	{"strcmp", 2, 2, f_strcmp, NULL}, {"strlen", 1, 1, f_strlen, NULL}, {"strlwr", 1, 1, f_strlwr, NULL},
+	{"strupr", 1, 1, f_strupr, NULL}, {"substr", 3, 3, f_substr, NULL}, {"tan", 1, 1, f_tan, tan},
+	{"tanh", 1, 1, f_tanh, tanh}, {"val", 1, 1, f_val, NULL}, {"vaxis_rotate", 3, 3, f_vaxis_rotate, NULL},
+	{"vcross", 2, 2, f_vcross, NULL}, {"vdot", 2, 2, f_vdot, NULL}, {"vlength", 1, 1, f_vlength, NULL},
+	{"vnormalize", 1, 1, f_vnormalize, NULL}, {"vrotate", 2, 2, f_vrotate, NULL}, {"vturbulence", 4, 4, f_vturbulence, NULL}, {"vstr", 5, 5, f_vstr, NULL},
 };
 
 /* Every built-in name (the functions above and the constants below) in one
@@ -604,10 +606,15 @@ static const struct slot *lookup(const char *name)
 	}
 }
 
-static const struct builtin *find(const char *name)
+const struct builtin *builtin_find(const char *name)
 {
 	const struct slot *sl = lookup(name);
 	return sl ? sl->b : NULL;
+}
+
+double (*builtin_float_fn(const struct builtin *b))(double)
+{
+	return b ? b->f1 : NULL;
 }
 
 bool builtin_is_name(const char *name)
@@ -623,7 +630,7 @@ bool builtin_call(struct eval *E, const struct node *n, struct value *out)
 		*out = val_float(env_lookup(E, n->kids[0]->str) != NULL || env_macro(E, n->kids[0]->str) != NULL);
 		return true;
 	}
-	const struct builtin *b = find(n->str);
+	const struct builtin *b = env_call_builtin(E, n);
 	if (!b)
 		return false;
 	if (n->nkids < b->min || n->nkids > b->max) {

@@ -211,47 +211,74 @@ bool env_undef(struct eval *E, const char *name)
  * changes, and a node keeps what its name resolved to with the count it was
  * found at (a loop body's names are looked up once, not once per pass). */
 
-struct value *env_lookup_node(struct eval *E, const struct node *n)
+/* env_lookup_node and env_declare_node (internal.h) when the memo is stale. */
+struct value *env_lookup_again(struct eval *E, const struct node *n)
 {
 	struct node *w = (struct node *)n;
-	if (w->memo_gen != E->env_gen) {
-		w->memo = env_lookup(E, n->str);
-		w->memo_gen = E->env_gen;
-	}
+	w->memo = env_lookup(E, n->str);
+	w->memo_gen = E->env_gen;
 	return w->memo;
 }
 
-struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
+struct value *env_declare_again(struct eval *E, const struct node *n, bool local)
 {
 	struct node *w = (struct node *)n;
-	if (w->memo_gen != E->env_gen) {
-		w->memo = env_declare(E, n->str, local);
-		w->memo_gen = E->env_gen; /* after the insert's own change */
-	}
+	w->memo = env_declare(E, n->str, local);
+	w->memo_gen = E->env_gen; /* after the insert's own change */
 	return w->memo;
-}
-
-bool env_declared_before(struct eval *E, const struct node *n)
-{
-	return n->memo && n->memo_gen == E->env_gen;
 }
 
 struct call_memo {
 	const struct node *macro;
 	struct value *var;
+	const struct builtin *builtin; /* the built-in of that name, once found */
+	double (*float_fn)(double);    /* and builtin_float_fn of it */
+	bool builtin_found;            /* builtin was looked up (it stays valid) */
 };
+
+static struct call_memo *call_memo(struct eval *E, const struct node *n)
+{
+	struct node *w = (struct node *)n;
+	if (!w->memo) {
+		w->memo = ARENA_NEW(&E->arena, struct call_memo);
+		w->memo_gen = 0; /* env_gen starts at 1: the names are looked up */
+	}
+	return w->memo;
+}
+
+/* The memo m of a call of name, with its built-in looked up. */
+static struct call_memo *with_builtin(struct call_memo *m, const char *name)
+{
+	if (!m->builtin_found) {
+		m->builtin = builtin_find(name);
+		m->float_fn = builtin_float_fn(m->builtin);
+		m->builtin_found = true;
+	}
+	return m;
+}
+
+const struct builtin *env_call_builtin(struct eval *E, const struct node *n)
+{
+	return with_builtin(call_memo(E, n), n->str)->builtin;
+}
 
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var)
 {
 	struct node *w = (struct node *)n;
-	struct call_memo *m = w->memo;
-	if (!m || w->memo_gen != E->env_gen) {
-		if (!m)
-			w->memo = m = ARENA_NEW(&E->arena, struct call_memo);
+	struct call_memo *m = call_memo(E, n);
+	if (w->memo_gen != E->env_gen) {
 		m->macro = env_macro(E, n->str);
 		m->var = m->macro ? NULL : env_lookup(E, n->str);
 		w->memo_gen = E->env_gen;
 	}
 	*var = m->var;
 	return m->macro;
+}
+
+double (*env_call_float_fn(struct eval *E, const struct node *n))(double)
+{
+	struct value *var;
+	if (env_call_lookup(E, n, &var) || (var && var->kind == V_FUNCTION))
+		return NULL;
+	return with_builtin(n->memo, n->str)->float_fn;
 }

@@ -63,9 +63,19 @@ struct colour val_want_colour(struct eval *E, const struct value *v, struct srcl
 }
 
 static bool eval_num(struct eval *E, const struct node *n, double *f, struct value *v);
+/* The kinds eval_expr hands to eval_num. */
+static inline bool is_num_kind(const struct node *n)
+{
+	return n->kind == N_NUM || n->kind == N_IDENT || n->kind == N_UNARY || n->kind == N_BINARY;
+}
 static inline bool leaf_num(struct eval *E, const struct node *n, double *f);
+static bool vector_in_place(struct eval *E, const struct node *n, struct value *v);
+static inline void enter(struct eval *E, const struct node *n);
+static inline void check_finite(struct eval *E, const struct node *n, const struct value *v);
 
-double eval_float(struct eval *E, const struct node *n)
+/* eval_float, inline where floats are read most: a vector's components, a
+ * loop's test, the operands of & and |. */
+static inline double float_of(struct eval *E, const struct node *n)
 {
 	double f;
 	struct value v;
@@ -74,9 +84,16 @@ double eval_float(struct eval *E, const struct node *n)
 	return val_want_float(E, &v, n->loc);
 }
 
+double eval_float(struct eval *E, const struct node *n)
+{
+	return float_of(E, n);
+}
+
 struct vec3 eval_vec3(struct eval *E, const struct node *n)
 {
-	struct value v = eval_expr(E, n);
+	struct value v;
+	if (!vector_in_place(E, n, &v))
+		v = eval_expr(E, n);
 	return val_want_vec3(E, &v, n->loc);
 }
 
@@ -98,12 +115,11 @@ const char *eval_string(struct eval *E, const struct node *n, int *len)
 
 /* ==== operators =========================================================== */
 
-/* Widens a float/vector/colour to n components as POV-Ray promotes them. */
-static void widen(const struct value *v, int n, double out[5])
+/* Component i of a float, vector or colour widened as POV-Ray promotes
+ * them: a float is the same in every component, a short vector has zeros. */
+static inline double component(const struct value *v, int i)
 {
-	for (int i = 0; i < 5; i++)
-		out[i] = v->kind == V_FLOAT ? v->v[0] : (i < v->n ? v->v[i] : 0);
-	(void)n;
+	return v->kind == V_FLOAT ? v->v[0] : i < v->n ? v->v[i] : 0;
 }
 
 static int is_numeric(const struct value *v)
@@ -133,19 +149,26 @@ static struct value arith(struct eval *E, enum tok op, const struct value *a, co
 		if (a->kind == V_VECTOR && b->kind == V_VECTOR && b->n > r.n)
 			r.n = b->n;
 	}
-	double x[5], y[5];
-	widen(a, r.n, x);
-	widen(b, r.n, y);
 	for (int i = 0; i < 5; i++) {
-		if (op == TK_SLASH && y[i] == 0 && i < r.n)
+		if (i >= r.n) {
+			r.v[i] = 0;
+			continue;
+		}
+		double x = component(a, i), y = component(b, i);
+		if (op == TK_SLASH && y == 0)
 			eval_fail(E, loc, "division by zero");
-		r.v[i] = i >= r.n ? 0 : op == TK_PLUS ? x[i] + y[i] : op == TK_MINUS ? x[i] - y[i] : op == TK_STAR ? x[i] * y[i] : x[i] / y[i];
+		r.v[i] = op == TK_PLUS ? x + y : op == TK_MINUS ? x - y : op == TK_STAR ? x * y : x / y;
 	}
 	return r;
 }
 
+static _Noreturn __attribute__((noinline, cold)) void division_by_zero(struct eval *E, const struct node *n)
+{
+	eval_fail(E, n->loc, "division by zero");
+}
+
 /* A binary operator other than & and | on two floats (eval_num). */
-static double binary_floats(struct eval *E, const struct node *n, double x, double y)
+static inline double binary_floats(struct eval *E, const struct node *n, double x, double y)
 {
 	switch (n->op) {
 	case TK_PLUS: return x + y;
@@ -153,7 +176,7 @@ static double binary_floats(struct eval *E, const struct node *n, double x, doub
 	case TK_STAR: return x * y;
 	case TK_SLASH:
 		if (y == 0)
-			eval_fail(E, n->loc, "division by zero");
+			division_by_zero(E, n);
 		return x / y;
 	case TK_EQ: return x == y;
 	case TK_NE: return x != y;
@@ -216,13 +239,19 @@ static struct value colour_prefix(struct eval *E, const struct node *n)
 		default: v.v[4] = f; break;
 		}
 	}
+	/* the components are checked numbers, copied, but for what the sRGB
+	 * conversion computes: only those are checked again (not eval_expr) */
+	if (n->op == TK_SRGB || n->op == TK_SRGBF || n->op == TK_SRGBT || n->op == TK_SRGBFT)
+		check_finite(E, n, &v);
 	return v;
 }
 
 /* rgb/rgbf/rgbt/rgbft/srgb…/color prefix applied to its operand. */
 static struct value colour_base(struct eval *E, const struct node *n)
 {
-	struct value a = eval_expr(E, n->a);
+	struct value a;
+	if (!vector_in_place(E, n->a, &a))
+		a = eval_expr(E, n->a);
 	if (n->op == TK_COLOR || n->op == TK_COLOUR)
 		return val_colour(val_want_colour(E, &a, n->a->loc));
 	int srgb = n->op == TK_SRGB || n->op == TK_SRGBF || n->op == TK_SRGBT || n->op == TK_SRGBFT;
@@ -273,6 +302,24 @@ static struct value vector_literal(struct eval *E, const struct node *n)
 	for (int i = 0; i < n->nkids; i++)
 		c[i] = eval_float(E, n->kids[i]);
 	return val_vector(n->nkids, c);
+}
+
+/* eval_expr of a vector literal <a, b, …> of 2 to 5 components, written
+ * into *v in place (the commonest vectors: a colour's, a translate's, an
+ * operand's) with the same count and nesting; false, having done nothing,
+ * for anything else. */
+static bool vector_in_place(struct eval *E, const struct node *n, struct value *v)
+{
+	if (n->kind != N_VEC || n->nkids < 2 || n->nkids > 5)
+		return false;
+	enter(E, n);
+	v->kind = V_VECTOR;
+	v->n = n->nkids;
+	v->p.s = NULL;
+	for (int i = 0; i < 5; i++) /* a vector's components are checked each */
+		v->v[i] = i < n->nkids ? float_of(E, n->kids[i]) : 0;
+	E->depth--;
+	return true;
 }
 
 static struct value member(struct eval *E, const struct node *n)
@@ -465,17 +512,18 @@ static __attribute__((noinline)) struct value dir_value(struct eval *E, const st
 	return s.result;
 }
 
-static struct value identifier(struct eval *E, const struct node *n)
+/* The value of name n in *out (a declared one, else a built-in constant). */
+static void identifier(struct eval *E, const struct node *n, struct value *out)
 {
 	struct value *v = env_lookup_node(E, n);
 	if (v) {
 		if (v->kind == V_NONE)
 			eval_fail(E, n->loc, "'%s' has no value", n->str);
-		return *v;
+		*out = *v;
+		return;
 	}
-	struct value c;
-	if (builtin_constant(E, n->str, &c))
-		return c;
+	if (builtin_constant(E, n->str, out))
+		return;
 	if (env_macro(E, n->str))
 		eval_fail(E, n->loc, "macro '%s' used without arguments", n->str);
 	if (tok_is_pov_word(n->str))
@@ -485,8 +533,9 @@ static struct value identifier(struct eval *E, const struct node *n)
 
 static struct value eval_expr_node(struct eval *E, const struct node *n);
 
-static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E, struct srcloc loc, int why)
+static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E, const struct node *n, int why)
 {
+	struct srcloc loc = n->loc;
 	if (why == 0)
 		eval_fail(E, loc, "nesting too deep (more than %d levels of blocks, directives, macro calls, includes and expressions)",
 		          MAX_EVAL_DEPTH);
@@ -495,20 +544,32 @@ static _Noreturn __attribute__((noinline, cold)) void enter_fail(struct eval *E,
 	eval_fail(E, loc, "evaluation step limit (%ld) exceeded; raise it with --max-steps", E->opt->max_steps);
 }
 
-/* Counts one level of the evaluator's recursion at loc: the count bounds
+/* Counts one level of the evaluator's recursion at node n: the count bounds
  * it at MAX_EVAL_DEPTH wherever the nesting comes from (directives, blocks,
  * macro calls, includes, expressions), and the stack in use is checked
  * against three quarters of the stack limit as a second guard (docs/design.md §9). */
-static inline void enter(struct eval *E, struct srcloc loc)
+static inline void enter(struct eval *E, const struct node *n)
 {
 	char here;
 	if (E->depth >= MAX_EVAL_DEPTH)
-		enter_fail(E, loc, 0);
-	if ((size_t)(E->stack_base - &here) > E->stack_max)
-		enter_fail(E, loc, 1);
-	if (++E->steps > E->opt->max_steps) /* bounds the time any scene can take */
-		enter_fail(E, loc, 2);
+		enter_fail(E, n, 0);
+	if ((uintptr_t)&here < E->stack_floor)
+		enter_fail(E, n, 1);
+	if (++E->steps > E->max_steps) /* bounds the time any scene can take */
+		enter_fail(E, n, 2);
 	E->depth++;
+}
+
+/* enter() for a number or a name: they nest nothing and take no stack of
+ * their own (they are read in the frame of the expression that holds them,
+ * or one frame below a checked one), so they count against the depth and
+ * the step limits but skip the stack guard. */
+static inline void enter_leaf(struct eval *E, const struct node *n)
+{
+	if (E->depth >= MAX_EVAL_DEPTH)
+		enter_fail(E, n, 0);
+	if (++E->steps > E->max_steps)
+		enter_fail(E, n, 2);
 }
 
 static _Noreturn __attribute__((noinline, cold)) void not_finite(struct eval *E, const struct node *n, double x)
@@ -519,7 +580,7 @@ static _Noreturn __attribute__((noinline, cold)) void not_finite(struct eval *E,
 /* Every number the language computes passes here: an infinity or a NaN
  * (1e200 * 1e200, exp(1000), inf - inf) is an error where it was made, so no
  * non-finite number reaches the scene (docs/design.md §8). */
-static void check_finite(struct eval *E, const struct node *n, const struct value *v)
+static inline void check_finite(struct eval *E, const struct node *n, const struct value *v)
 {
 	if (v->kind == V_FLOAT) {
 		if (!isfinite(v->v[0]))
@@ -558,12 +619,19 @@ static inline bool leaf_num(struct eval *E, const struct node *n, double *f)
 	} else {
 		return false;
 	}
-	enter(E, n->loc);
-	E->depth--;
+	enter_leaf(E, n);
 	if (!isfinite(r))
 		not_finite(E, n, r);
 	*f = r;
 	return true;
+}
+
+/* The plain function of N_CALL n when the call is one of a built-in like
+ * sin() with its one argument (not a macro or a declared function of that
+ * name): eval_num calls it directly. NULL otherwise. */
+static inline double (*float_builtin(struct eval *E, const struct node *n))(double)
+{
+	return n->nkids == 1 && n->kids[0] ? env_call_float_fn(E, n) : NULL;
 }
 
 /* eval_expr for the expressions that are mostly floats (numbers, names,
@@ -577,23 +645,25 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 	struct value a, b;
 	switch (n->kind) {
 	case N_NUM:
-		enter(E, n->loc);
-		E->depth--;
+		enter_leaf(E, n);
 		r = n->num;
 		break;
 	case N_IDENT: {
-		enter(E, n->loc);
+		enter_leaf(E, n);
 		const struct value *p = env_lookup_node(E, n);
 		if (!p || p->kind != V_FLOAT) {
-			*v = identifier(E, n);
-			return num_or_value(E, n, v, f);
+			identifier(E, n, v);
+			check_finite(E, n, v);
+			if (v->kind != V_FLOAT)
+				return false;
+			*f = v->v[0];
+			return true;
 		}
-		E->depth--;
 		r = p->v[0];
 		break;
 	}
 	case N_UNARY:
-		enter(E, n->loc);
+		enter(E, n);
 		if (!eval_num(E, n->a, &x, &a)) {
 			*v = unary_value(E, n, a);
 			return num_or_value(E, n, v, f);
@@ -602,12 +672,12 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		r = n->op == TK_BANG ? x == 0 : n->op == TK_MINUS ? -x : x;
 		break;
 	case N_BINARY: {
-		enter(E, n->loc);
+		enter(E, n);
 		bool fa = leaf_num(E, n->a, &x) || eval_num(E, n->a, &x, &a);
 		if (n->op == TK_AMP || n->op == TK_PIPE) {
 			if (!fa)
 				x = val_want_float(E, &a, n->a->loc);
-			y = eval_float(E, n->b); /* both sides are evaluated, as in POV-Ray */
+			y = float_of(E, n->b); /* both sides are evaluated, as in POV-Ray */
 			E->depth--;
 			r = n->op == TK_AMP ? (x != 0 && y != 0) : (x != 0 || y != 0);
 			break;
@@ -625,7 +695,25 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 		E->depth--;
 		break;
 	}
+	case N_CALL: {
+		double (*fn)(double) = float_builtin(E, n);
+		if (!fn)
+			goto general;
+		/* as eval_expr and builtin_call would: the call counted, then its
+		 * argument, which must be a float (the message of their F()) */
+		enter(E, n);
+		if (!(leaf_num(E, n->kids[0], &x) || eval_num(E, n->kids[0], &x, &a)))
+			x = val_want_float(E, &a, n->kids[0]->loc);
+		E->depth--;
+		r = fn(x);
+		break;
+	}
+	case N_VEC:
+		if (!vector_in_place(E, n, v))
+			goto general;
+		return false;
 	default:
+	general:
 		*v = eval_expr(E, n);
 		if (v->kind != V_FLOAT)
 			return false;
@@ -640,15 +728,15 @@ static bool eval_num(struct eval *E, const struct node *n, double *f, struct val
 
 struct value eval_expr(struct eval *E, const struct node *n)
 {
-	if (n->kind == N_NUM || n->kind == N_IDENT || n->kind == N_UNARY || n->kind == N_BINARY) {
+	if (is_num_kind(n)) {
 		double f;
 		struct value v;
 		return eval_num(E, n, &f, &v) ? val_float(f) : v;
 	}
-	enter(E, n->loc);
+	enter(E, n);
 	struct value v = eval_expr_node(E, n);
 	E->depth--;
-	if (n->kind != N_VEC) /* a vector's components were checked each */
+	if (n->kind != N_VEC && n->kind != N_COLOUR) /* their components were checked each */
 		check_finite(E, n, &v);
 	return v;
 }
@@ -712,28 +800,41 @@ void eval_count_object(struct eval *E, struct srcloc loc)
 		eval_fail(E, loc, "object limit (%ld objects and lights) exceeded; raise it with --max-objects", E->opt->max_objects);
 }
 
+/* #declare A[i][j] = v: the element's slot, found as A[i][j] would be. */
+static __attribute__((noinline)) void declare_element(struct eval *E, const struct node *n)
+{
+	const struct node *chain = NULL;
+	/* rebuild A[i][j] as index nodes on the stack */
+	struct node id = {.kind = N_IDENT, .loc = n->loc, .str = n->str, .len = n->len};
+	struct node ix[5];
+	if (n->nkids > 5)
+		eval_fail(E, n->loc, "too many indices (an array has at most 5 dimensions)");
+	chain = &id;
+	for (int i = 0; i < n->nkids; i++) {
+		ix[i] = (struct node){.kind = N_INDEX, .loc = n->kids[i]->loc, .a = (struct node *)chain, .b = n->kids[i]};
+		chain = &ix[i];
+	}
+	struct value v = eval_expr(E, n->a);
+	*index_slot(E, chain) = v;
+}
+
 static __attribute__((noinline)) void exec_declare(struct eval *E, const struct node *n)
 {
 	bool local = n->op == TK_DIR_LOCAL;
 	if (!env_declared_before(E, n) && builtin_is_name(n->str))
 		eval_fail(E, n->b ? n->b->loc : n->loc, "'%s' is a built-in name and cannot be declared", n->str);
 	if (n->nkids > 0) { /* #declare A[i] = v */
-		const struct node *chain = NULL;
-		/* rebuild A[i][j] as index nodes on the stack */
-		struct node id = {.kind = N_IDENT, .loc = n->loc, .str = n->str, .len = n->len};
-		struct node ix[5];
-		if (n->nkids > 5)
-			eval_fail(E, n->loc, "too many indices (an array has at most 5 dimensions)");
-		chain = &id;
-		for (int i = 0; i < n->nkids; i++) {
-			ix[i] = (struct node){.kind = N_INDEX, .loc = n->kids[i]->loc, .a = (struct node *)chain, .b = n->kids[i]};
-			chain = &ix[i];
-		}
-		struct value v = eval_expr(E, n->a);
-		*index_slot(E, chain) = v;
+		declare_element(E, n);
 		return;
 	}
-	struct value v = eval_expr(E, n->a);
+	struct value v;
+	double f;
+	if (!is_num_kind(n->a)) {
+		v = eval_expr(E, n->a);
+	} else if (eval_num(E, n->a, &f, &v)) { /* eval_expr's float, stored without a copy */
+		*env_declare_node(E, n, local) = val_float(f);
+		return;
+	}
 	if (v.kind == V_ARRAY)
 		v = array_copy(E, v);
 	if (v.kind == V_NONE)
@@ -898,78 +999,74 @@ static __attribute__((noinline)) void exec_include(struct eval *E, const struct 
  * counter bounds the evaluator's recursion whatever mix makes it. */
 void eval_items(struct eval *E, const struct node *list, struct sink *s)
 {
-	enter(E, list->loc);
+	enter(E, list);
 	for (int i = 0; i < list->nkids && !E->breaking; i++)
 		eval_item(E, list->kids[i], s);
 	E->depth--;
 }
 
-void eval_item(struct eval *E, const struct node *n, struct sink *s)
+/* The directives and items eval_item hands on, each a function of its own,
+ * so that eval_item is a dispatch that saves no registers of its own (it
+ * runs for every item of every loop body and block). */
+static __attribute__((noinline)) void exec_if(struct eval *E, const struct node *n, struct sink *s)
 {
-	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
-		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
-	switch (n->kind) {
-	case N_DECLARE: exec_declare(E, n); return;
-	case N_UNDEF: env_undef(E, n->str); return;
-	case N_INCLUDE: exec_include(E, n, s); return;
-	case N_IF:
-		if (eval_float(E, n->a) != 0)
-			eval_items(E, n->b, s);
-		else if (n->c)
-			n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
-		return;
-	case N_IFDEF: {
-		int def = ifdef_test(E, n->a);
-		if (def == (n->op == TK_DIR_IFDEF))
-			eval_items(E, n->b, s);
-		else if (n->c)
-			eval_items(E, n->c, s);
-		return;
-	}
-	case N_WHILE:
-		while (eval_float(E, n->a) != 0) {
-			count_iteration(E, n->loc);
-			eval_items(E, n->b, s);
-			if (E->breaking) {
-				E->breaking = 0;
-				break;
-			}
+	if (float_of(E, n->a) != 0)
+		eval_items(E, n->b, s);
+	else if (n->c)
+		n->c->kind == N_IF ? eval_item(E, n->c, s) : eval_items(E, n->c, s);
+}
+
+static __attribute__((noinline)) void exec_ifdef(struct eval *E, const struct node *n, struct sink *s)
+{
+	int def = ifdef_test(E, n->a);
+	if (def == (n->op == TK_DIR_IFDEF))
+		eval_items(E, n->b, s);
+	else if (n->c)
+		eval_items(E, n->c, s);
+}
+
+static __attribute__((noinline)) void exec_while(struct eval *E, const struct node *n, struct sink *s)
+{
+	while (float_of(E, n->a) != 0) {
+		count_iteration(E, n->loc);
+		eval_items(E, n->b, s);
+		if (E->breaking) {
+			E->breaking = 0;
+			break;
 		}
-		return;
-	case N_FOR: exec_for(E, n, s); return;
-	case N_SWITCH: exec_switch(E, n, s); return;
-	case N_BREAK: E->breaking = 1; return;
-	case N_MACRO:
-		if (builtin_is_name(n->str))
-			eval_fail(E, n->loc, "'%s' is a built-in name and cannot be a macro", n->str);
-		env_define_macro(E, n->str, n);
-		return;
-	case N_VERSION: {
-		double v = eval_float(E, n->a);
-		E->scene->version = v;
-		if (E->include_depth == 0 && v < 4.0) {
-			E->scene->legacy_lights = true;
-			/* a POV-Ray scene: arvo's library then reads POV-Ray's files
-			 * of the same names after itself (docs/design.md §2) */
-			if (E->opt->pov_include_dir)
-				*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
-		}
-		return;
 	}
-	case N_MESSAGE: exec_message(E, n); return;
-	case N_DEFAULT: case N_BLOCK: case N_MOD: case N_WORD: case N_SKIPPED: case N_ENTRY:
-		sink_keyword(E, s, n);
-		return;
-	case N_CALL: {
+}
+
+static __attribute__((noinline)) void exec_macro(struct eval *E, const struct node *n)
+{
+	if (builtin_is_name(n->str))
+		eval_fail(E, n->loc, "'%s' is a built-in name and cannot be a macro", n->str);
+	env_define_macro(E, n->str, n);
+}
+
+static __attribute__((noinline)) void exec_version(struct eval *E, const struct node *n)
+{
+	double v = eval_float(E, n->a);
+	E->scene->version = v;
+	if (E->include_depth == 0 && v < 4.0) {
+		E->scene->legacy_lights = true;
+		/* a POV-Ray scene: arvo's library then reads POV-Ray's files
+		 * of the same names after itself (docs/design.md §2) */
+		if (E->opt->pov_include_dir)
+			*env_declare(E, "Arvo_Povray_Includes", false) = val_float(1);
+	}
+}
+
+/* An item that is an expression (or a macro call, which may yield items). */
+static __attribute__((noinline)) void item_value(struct eval *E, const struct node *n, struct sink *s)
+{
+	if (n->kind == N_CALL) {
 		struct value *fv;
 		const struct node *def = env_call_lookup(E, n, &fv);
 		if (def) {
 			call_macro(E, def, n, s);
 			return;
 		}
-		break;
-	}
-	default: break;
 	}
 	struct value ignored;
 	if (s->kind == SK_NORMAL && n->kind == N_IDENT && !env_lookup(E, n->str) &&
@@ -983,6 +1080,30 @@ void eval_item(struct eval *E, const struct node *n, struct sink *s)
 		return;
 	struct value v = eval_expr(E, n);
 	sink_value(E, s, &v, n->loc);
+}
+
+void eval_item(struct eval *E, const struct node *n, struct sink *s)
+{
+	if (s->kind == SK_SCENE || s->kind == SK_VALUE || n->kind >= N_DECLARE)
+		E->stmt = n->loc; /* a statement or a directive, not a block's inner item */
+	switch (n->kind) {
+	case N_DECLARE: exec_declare(E, n); return;
+	case N_UNDEF: env_undef(E, n->str); return;
+	case N_INCLUDE: exec_include(E, n, s); return;
+	case N_IF: exec_if(E, n, s); return;
+	case N_IFDEF: exec_ifdef(E, n, s); return;
+	case N_WHILE: exec_while(E, n, s); return;
+	case N_FOR: exec_for(E, n, s); return;
+	case N_SWITCH: exec_switch(E, n, s); return;
+	case N_BREAK: E->breaking = 1; return;
+	case N_MACRO: exec_macro(E, n); return;
+	case N_VERSION: exec_version(E, n); return;
+	case N_MESSAGE: exec_message(E, n); return;
+	case N_DEFAULT: case N_BLOCK: case N_MOD: case N_WORD: case N_SKIPPED: case N_ENTRY:
+		sink_keyword(E, s, n);
+		return;
+	default: item_value(E, n, s); return;
+	}
 }
 
 /* ==== driver ============================================================== */
@@ -1053,11 +1174,12 @@ int eval_scene(const char *path, const struct eval_options *opt, struct diag *di
 	jmp_buf jb;
 	char base;
 	struct rlimit rl;
-	E->stack_base = &base;
-	E->stack_max = (size_t)64 << 20;
-	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < E->stack_max)
-		E->stack_max = (size_t)rl.rlim_cur;
-	E->stack_max = E->stack_max / 4 * 3;
+	size_t stack_max = (size_t)64 << 20;
+	if (getrlimit(RLIMIT_STACK, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < stack_max)
+		stack_max = (size_t)rl.rlim_cur;
+	stack_max = stack_max / 4 * 3;
+	E->stack_floor = (uintptr_t)&base > stack_max ? (uintptr_t)&base - stack_max : 0;
+	E->max_steps = opt->max_steps;
 	E->diag = diag;
 	E->opt = opt;
 	E->scene = out;

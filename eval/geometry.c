@@ -525,7 +525,7 @@ void object_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	struct object *o = object_target(E, s, n->loc);
-	if (!s->modified && outline_keyword(E, s, o, n))
+	if (!s->modified && is_outline_kind(o->kind) && outline_keyword(E, s, o, n))
 		return;
 	s->modified = 1;
 	switch (n->op) {
@@ -678,7 +678,7 @@ void object_value(struct eval *E, struct sink *s, const struct value *v, struct 
 	}
 	if (s->modified)
 		eval_fail(E, loc, "%s parameters must come before its modifiers", tok_name(s->kw));
-	if (outline_value(E, s, o, v, loc))
+	if (is_outline_kind(o->kind) && outline_value(E, s, o, v, loc))
 		return;
 	if (v->kind != V_FLOAT && v->kind != V_VECTOR)
 		eval_fail(E, loc, "expected a float or vector parameter in %s, found %s", tok_name(s->kw), val_type_name(v));

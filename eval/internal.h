@@ -23,6 +23,7 @@
 struct scope;
 struct entry;
 struct inc_cache;
+struct builtin;
 
 /* What a block's items are being evaluated into. */
 enum sink_kind {
@@ -68,10 +69,11 @@ struct eval {
 	int include_depth;
 	int macro_depth;
 	int depth;                 /* evaluator recursion (eval_items, eval_expr) */
-	const char *stack_base;    /* a local of eval_scene: the stack in use is measured from it */
-	size_t stack_max;          /* 3/4 of the stack limit (of 64 MiB at most) */
+	uintptr_t stack_floor;     /* the lowest stack address enter() allows: 3/4 of the
+	                            * stack limit (of 64 MiB at most) below a local of eval_scene */
 	long calls;                /* macro calls so far */
 	long steps;                /* item lists and expressions evaluated so far */
+	long max_steps;            /* opt->max_steps, beside steps (enter() reads both) */
 	long objects;              /* objects and lights made so far */
 	struct srcloc stmt;        /* the item being evaluated (out-of-memory errors) */
 	int out_of_memory;         /* the budget ran out: exit status 70 */
@@ -142,13 +144,31 @@ const struct node *env_macro(struct eval *E, const char *name);
 struct value *env_declare(struct eval *E, const char *name, bool local);
 void env_define_macro(struct eval *E, const char *name, const struct node *def);
 /* The same through a node's memo (N_IDENT, N_DECLARE): looked up again only
- * when the scopes changed since. */
-struct value *env_lookup_node(struct eval *E, const struct node *n);
-struct value *env_declare_node(struct eval *E, const struct node *n, bool local);
+ * when the scopes changed since (the memo is checked here, inline: a loop's
+ * names are read on every pass; env.c looks them up). */
+struct value *env_lookup_again(struct eval *E, const struct node *n);
+struct value *env_declare_again(struct eval *E, const struct node *n, bool local);
+static inline struct value *env_lookup_node(struct eval *E, const struct node *n)
+{
+	return n->memo_gen == E->env_gen ? n->memo : env_lookup_again(E, n);
+}
+static inline struct value *env_declare_node(struct eval *E, const struct node *n, bool local)
+{
+	return n->memo_gen == E->env_gen ? n->memo : env_declare_again(E, n, local);
+}
 /* N_DECLARE n declared its name already, and the scopes are as they were. */
-bool env_declared_before(struct eval *E, const struct node *n);
+static inline bool env_declared_before(struct eval *E, const struct node *n)
+{
+	return n->memo && n->memo_gen == E->env_gen;
+}
 /* N_CALL n's macro (NULL: none), and else in *var its variable (NULL: none). */
 const struct node *env_call_lookup(struct eval *E, const struct node *n, struct value **var);
+/* N_CALL n's built-in function (NULL: none): looked up once per node, since
+ * built-in names never change. */
+const struct builtin *env_call_builtin(struct eval *E, const struct node *n);
+/* builtin_float_fn of N_CALL n's built-in, when the name is not a macro or a
+ * declared function now; else NULL. */
+double (*env_call_float_fn(struct eval *E, const struct node *n))(double);
 bool env_undef(struct eval *E, const char *name);
 
 /* ---- builtins.c ---- */
@@ -157,6 +177,11 @@ bool builtin_constant(struct eval *E, const char *name, struct value *out);
 /* Calls built-in function `name`; false when there is no such function. */
 bool builtin_call(struct eval *E, const struct node *call, struct value *out);
 bool builtin_is_name(const char *name);
+/* The built-in function named name; NULL when there is none. */
+const struct builtin *builtin_find(const char *name);
+/* b's plain function of one float when b is one (sin, exp …: a float
+ * argument, a float result, no check of its own), else NULL. */
+double (*builtin_float_fn(const struct builtin *b))(double);
 
 /* ---- function.c: function { } ---- */
 /* Compiles a function { } node into a V_FUNCTION value. */
@@ -234,6 +259,12 @@ struct value object_block(struct eval *E, const struct node *blk);
 void propagate(struct eval *E, struct object *o, struct texture *tex);
 
 /* ---- outlines.c, font.c: text, prism, polygon, lathe, sor ---- */
+/* Whether objects of kind k are built by outlines.c (checked before its
+ * calls, which every other object's items would pay for). */
+static inline bool is_outline_kind(enum object_kind k)
+{
+	return k == OBJ_TEXT || k == OBJ_PRISM || k == OBJ_POLYGON || k == OBJ_LATHE || k == OBJ_SOR;
+}
 /* Takes a positional value or a leading keyword (linear_spline, conic_sweep,
  * ttf …) of those primitives; false when o is not one of them or n is not
  * such a keyword. */

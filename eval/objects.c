@@ -344,9 +344,10 @@ struct value eval_block(struct eval *E, const struct node *blk)
 		v.p.nrm = blk->kind == N_SKIPPED ? NULL : normal_block(E, blk);
 		return v;
 	}
-	if (is_object_kw(blk->op) || blk->op == TK_LIGHT_SOURCE)
+	bool object = is_object_kw(blk->op);
+	if (object || blk->op == TK_LIGHT_SOURCE)
 		eval_count_object(E, blk->loc);
-	if (is_object_kw(blk->op))
+	if (object)
 		return object_block(E, blk);
 	switch (blk->op) {
 	case TK_TEXTURE:
@@ -512,13 +513,69 @@ static void default_keyword(struct eval *E, struct sink *s, const struct node *n
 	}
 }
 
+/* sink_keyword's rarer items, each a function of its own so that
+ * sink_keyword itself is a dispatch (it runs for every block in a loop). */
+static __attribute__((noinline)) void skipped_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	if (s->kind != SK_OBJECT && s->kind != SK_TEXTURE && s->kind != SK_DEFAULT && s->kind != SK_MATERIAL)
+		misplaced(E, s, n);
+	if (!E->warned_normal++)
+		diag_warning(E->diag, n->loc, "'normal' is not supported yet; ignored");
+}
+
+static __attribute__((noinline)) void default_block(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct sink sub;
+	if (s->kind != SK_SCENE)
+		eval_fail(E, n->loc, "'#default' is only valid at the top level");
+	sink_init(&sub, SK_DEFAULT, TK_DIR_DEFAULT, n->loc, NULL);
+	eval_items(E, n, &sub);
+}
+
+static __attribute__((noinline)) void transform_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct xform X;
+	if (n->op == TK_INVERSE) {
+		*(struct xform *)s->target = xf_inverse(*(struct xform *)s->target);
+		return;
+	}
+	if (!transform_of(E, n, &X))
+		misplaced(E, s, n);
+	*(struct xform *)s->target = xf_then(*(struct xform *)s->target, X);
+	xform_finite(E, s->target, n->loc);
+}
+
+static __attribute__((noinline)) void material_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	struct xform X;
+	struct material *m = s->target;
+	if (transform_of(E, n, &X)) {
+		if (m->tex) {
+			m->tex = texture_copy(E, m->tex);
+			texture_transform(E, m->tex, &X);
+		}
+		return;
+	}
+	if (n->op == TK_TEXTURE)
+		m->tex = eval_block(E, n).p.tex;
+	else if (n->op == TK_INTERIOR)
+		m->interior = eval_block(E, n).p.in;
+	else
+		misplaced(E, s, n);
+}
+
+static __attribute__((noinline)) void value_keyword(struct eval *E, struct sink *s, const struct node *n)
+{
+	if (n->kind != N_BLOCK && n->op != TK_TRANSFORM)
+		misplaced(E, s, n);
+	struct value v = eval_block(E, n);
+	sink_value(E, s, &v, n->loc);
+}
+
 void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 {
 	if (n->kind == N_SKIPPED) {
-		if (s->kind != SK_OBJECT && s->kind != SK_TEXTURE && s->kind != SK_DEFAULT && s->kind != SK_MATERIAL)
-			misplaced(E, s, n);
-		if (!E->warned_normal++)
-			diag_warning(E->diag, n->loc, "'normal' is not supported yet; ignored");
+		skipped_keyword(E, s, n);
 		return;
 	}
 	if (n->kind == N_ENTRY) {
@@ -528,14 +585,9 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 		return;
 	}
 	if (n->kind == N_DEFAULT) {
-		struct sink sub;
-		if (s->kind != SK_SCENE)
-			eval_fail(E, n->loc, "'#default' is only valid at the top level");
-		sink_init(&sub, SK_DEFAULT, TK_DIR_DEFAULT, n->loc, NULL);
-		eval_items(E, n, &sub);
+		default_block(E, s, n);
 		return;
 	}
-	struct xform X;
 	switch (s->kind) {
 	case SK_SCENE: scene_keyword(E, s, n); return;
 	case SK_OBJECT: object_keyword(E, s, n); return;
@@ -557,40 +609,9 @@ void sink_keyword(struct eval *E, struct sink *s, const struct node *n)
 	case SK_WARP: warp_keyword(E, s, n); return;
 	case SK_DEFAULT: default_keyword(E, s, n); return;
 	case SK_LIST: list_keyword(E, s, n); return;
-	case SK_TRANSFORM:
-		if (n->op == TK_INVERSE) {
-			*(struct xform *)s->target = xf_inverse(*(struct xform *)s->target);
-			return;
-		}
-		if (!transform_of(E, n, &X))
-			misplaced(E, s, n);
-		*(struct xform *)s->target = xf_then(*(struct xform *)s->target, X);
-		xform_finite(E, s->target, n->loc);
-		return;
-	case SK_MATERIAL: {
-		struct material *m = s->target;
-		if (transform_of(E, n, &X)) {
-			if (m->tex) {
-				m->tex = texture_copy(E, m->tex);
-				texture_transform(E, m->tex, &X);
-			}
-			return;
-		}
-		if (n->op == TK_TEXTURE)
-			m->tex = eval_block(E, n).p.tex;
-		else if (n->op == TK_INTERIOR)
-			m->interior = eval_block(E, n).p.in;
-		else
-			misplaced(E, s, n);
-		return;
-	}
-	case SK_VALUE: {
-		if (n->kind != N_BLOCK && n->op != TK_TRANSFORM)
-			misplaced(E, s, n);
-		struct value v = eval_block(E, n);
-		sink_value(E, s, &v, n->loc);
-		return;
-	}
+	case SK_TRANSFORM: transform_keyword(E, s, n); return;
+	case SK_MATERIAL: material_keyword(E, s, n); return;
+	case SK_VALUE: value_keyword(E, s, n); return;
 	default: misplaced(E, s, n);
 	}
 }

@@ -32,11 +32,6 @@ struct pieces {
 	int n, cap;
 };
 
-static bool is_outline_kind(enum object_kind k)
-{
-	return k == OBJ_TEXT || k == OBJ_PRISM || k == OBJ_POLYGON || k == OBJ_LATHE || k == OBJ_SOR;
-}
-
 static struct outline_build *build_of(struct eval *E, struct sink *s)
 {
 	if (!s->ob)
