@@ -54,6 +54,7 @@ struct bvh {
 	struct bbox bounds;            /* world bounds of the bounded leaves */
 	double pad;                    /* float safety margin of every box */
 	struct bbox padded;            /* bounds grown by pad (float_ray) */
+	bool brute;                    /* few cheap leaves: tested in order, without Embree */
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
@@ -161,9 +162,23 @@ static void collect(struct builder *B, const struct object *o)
 		add_leaf(B, o, b);
 }
 
-/* Scenes with at most this many bounded leaves are traced without Embree
- * (brute). */
+/* Scenes with at most this many bounded leaves, each of a kind whose exact
+ * test is a closed form (cheap_kind), are traced without Embree (brute). */
 #define BRUTE_MAX 4
+
+/* A leaf whose exact test costs about what Embree's box test would: without
+ * Embree's culling every ray tests every leaf, and four tori or isosurfaces
+ * tested on every ray cost more than Embree's walk (a fifth more on a test
+ * scene of two tori and an isosurface). */
+static bool cheap_kind(const struct object *o)
+{
+	switch (o->kind) {
+	case OBJ_SPHERE: case OBJ_BOX: case OBJ_TRIANGLE: case OBJ_DISC: case OBJ_CYLINDER: case OBJ_CONE:
+		return true;
+	default:
+		return false;
+	}
+}
 
 /* ==== callbacks ========================================================== */
 
@@ -316,6 +331,11 @@ struct bvh *bvh_build(struct object **objs, int n)
 	t->pad = ldexp(mag, -18) + 1e-30;
 	t->padded = (struct bbox){v_sub(t->bounds.lo, v3(t->pad, t->pad, t->pad)),
 	                          v_add(t->bounds.hi, v3(t->pad, t->pad, t->pad))};
+	t->brute = t->nprims <= BRUTE_MAX;
+	for (int i = 0; i < t->nprims && t->brute; i++)
+		t->brute = cheap_kind(t->prims[i]);
+	if (t->brute)
+		return t; /* tested in order (brute): no Embree scene */
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
@@ -450,8 +470,9 @@ static void walk(struct query *q, bool any)
 
 /* Every bounded leaf in order, as the callbacks test them: without a
  * device (Embree failed to start), and for a scene of at most BRUTE_MAX
- * leaves, where setting up Embree's float ray and walk costs more than
- * testing them all (a sphere's t is ~80 instructions; Embree's query ~500).
+ * cheap leaves, where setting up Embree's float ray and walk costs more
+ * than testing them all (a sphere's t is ~80 instructions; Embree's query
+ * ~500).
  * The hit is the same either way (see the top of this file). */
 static void brute(struct query *q, bool any)
 {
@@ -538,7 +559,7 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	new_query(&q, b, r, tmin, tmax, skip, h);
 	if (unbounded(&q, any))
 		return q.found;
-	if (b->nprims > 0 && b->scene && b->nprims > BRUTE_MAX)
+	if (b->nprims > 0 && b->scene)
 		walk(&q, any);
 	else if (b->nprims > 0)
 		brute(&q, any);
@@ -572,7 +593,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		unbounded(q, false);
 		if (b->nprims == 0)
 			continue;
-		if (!b->scene || b->nprims <= BRUTE_MAX) {
+		if (!b->scene) {
 			brute(q, false);
 			continue;
 		}
