@@ -637,7 +637,7 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 		valid[i] = 0;
 		if (i >= n || unbounded(q, true) || b->nprims == 0)
 			continue;
-		if (!b->scene || b->nprims <= BRUTE_MAX) {
+		if (!b->scene) {
 			brute(q, true);
 			continue;
 		}
