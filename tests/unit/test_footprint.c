@@ -679,12 +679,12 @@ static void t_bookkeeping(void)
 /* ==== threads ============================================================= */
 
 /* illum_deposit_poly_all gives the same map, bit for bit (energies, Σw²,
- * counts, drops), for 1, 2, 3 and 7 threads as one by one: on a plane with
- * polygons spanning several bands and a few huge ones, and on a torus with
- * seam crossings. */
+ * counts, drops), for 1, 2, 3 and 7 threads as one by one, over more than
+ * one of its rounds: on a plane with polygons spanning several bands and a
+ * few huge ones, and on a torus with seam crossings. */
 static void t_threads(void)
 {
-	enum { N = 3000 };
+	enum { N = 17000 }; /* more than one round of illum_deposit_poly_all (POLY_ROUND) */
 	static double corners[N][6][2];
 	static struct illum_poly p[N];
 	for (int shape = 0; shape < 2; shape++) {

@@ -1396,20 +1396,33 @@ static bool fp_any_mine(const struct fp *F)
 	return false;
 }
 
-/* Integrates, then quantises the rows in the band; false (nothing written)
- * when no node has a share. Every thread computes all the weights, so the
- * rounding of a row never depends on who writes it. */
-static bool fp_run(struct fp *F)
+/* Integrates the node weights and their row sums; false when no node has
+ * a share. */
+static bool fp_weights(struct fp *F)
 {
 	fp_alloc(F);
 	for (long cv = F->ax[1].c0; cv <= F->ax[1].c1; cv++)
 		fp_cell_row(F, cv);
 	fp_row_sums(F);
-	if (!(F->total > 0))
-		return false;
+	return F->total > 0;
+}
+
+/* Quantises the rows in the band, from the weights. */
+static void fp_emit_mine(struct fp *F)
+{
 	for (long J = F->ax[1].n0; J <= F->ax[1].n1; J++)
 		if (row_mine(F, J))
 			fp_emit(F, J - F->ax[1].n0);
+}
+
+/* Integrates, then quantises the rows in the band; false (nothing written)
+ * when no node has a share. The weights are the same whoever computes
+ * them, so the rounding of a row never depends on who writes it. */
+static bool fp_run(struct fp *F)
+{
+	if (!fp_weights(F))
+		return false;
+	fp_emit_mine(F);
 	return true;
 }
 
@@ -1461,20 +1474,111 @@ void illum_deposit_poly(struct illum_map *m, const double (*uv)[2], int n, const
 	poly_band(m, uv, n, energy, 0, 1);
 }
 
-struct poly_job {
-	struct illum_map *part;
-	const struct illum_poly *p;
-	long n;
-	int band, nb;
+/* A footprint of illum_deposit_poly_all with its node weights, integrated
+ * once (step 1) for the bands to write (step 2). */
+struct fp_done {
+	bool dropped;         /* corners not finite: counted, nothing written */
+	bool live;            /* energy to deposit: set up */
+	bool ok;              /* weights with a positive sum: the bands write them */
+	struct vaxis mine;    /* the v axis by which poly_band asks whether a band has rows */
+	struct vaxis ax[2];   /* the weights' axes */
+	double e[3], total;
+	long cols;
+	double *pre, *w;      /* in the step's arena of its item */
 };
 
-/* Job k of the array at ctx (a parallel_for item). */
-static void poly_work(void *ctx, long k, int worker)
+/* Footprints per round of the two steps (bounds the weights held), and per
+ * step-1 item. */
+#define POLY_ROUND 16384
+#define POLY_ITEM 256
+
+struct poly_round {
+	struct illum_map *m;
+	const struct illum_poly *p;       /* the round's footprints */
+	long n;
+	struct fp_done *done;             /* one per footprint */
+	struct illum_map **scratch;       /* per worker: buffers for step 1 */
+	struct arena *keep;               /* per step-1 item: the weights */
+	struct illum_map **part;          /* per band: the tiles it writes */
+	int nb;
+};
+
+/* Step 1 for item k (a parallel_for item): poly_band's set-up and
+ * integration for its footprints, on the worker's scratch map, the weights
+ * kept in the item's arena. */
+static void poly_weigh(void *ctx, long k, int worker)
+{
+	struct poly_round *R = ctx;
+	struct illum_map *m = R->scratch[worker];
+	for (long i = k * POLY_ITEM; i < R->n && i < (k + 1) * POLY_ITEM; i++) {
+		const struct illum_poly *p = &R->p[i];
+		struct fp_done *d = &R->done[i];
+		memset(d, 0, sizeof *d);
+		if (!p->uv || p->n < 1 || !corners_finite(p->uv, p->n)) {
+			d->dropped = true;
+			continue;
+		}
+		struct fp F = {.m = m, .band = 0, .nb = 1, .n = p->n};
+		if (!energy_clean(p->e, F.e))
+			continue;
+		d->live = true;
+		for (int c = 0; c < 3; c++)
+			F.e[c] *= m->inv_unit;
+		m->pts = grow(m->pts, &m->cap_pts, 30 * (size_t)p->n + 8, sizeof *m->pts);
+		struct pt2 *c = m->pts, *v = c + p->n;
+		F.slab = v + p->n;
+		F.cell = F.slab + 4 * p->n;
+		F.tmp = F.cell + 16 * p->n;
+		corner_nodes(m, p->uv, p->n, c);
+		bool poly = p->n >= 3 && fp_polygon(&F, c, v);
+		if (!poly)
+			fp_point(&F, c);
+		d->mine = F.ax[1];
+		d->ok = fp_weights(&F);
+		if (!d->ok && poly) { /* as poly_band */
+			fp_point(&F, c);
+			d->ok = fp_weights(&F);
+		}
+		if (!d->ok)
+			continue;
+		size_t rows = (size_t)(F.ax[1].n1 - F.ax[1].n0 + 1), cols = (size_t)F.cols;
+		d->pre = arena_alloc8(&R->keep[k], (rows + 1 + rows * cols) * sizeof *d->pre);
+		d->w = d->pre + rows + 1;
+		memcpy(d->pre, F.pre, (rows + 1) * sizeof *d->pre);
+		memcpy(d->w, F.w, rows * cols * sizeof *d->w);
+		d->ax[0] = F.ax[0], d->ax[1] = F.ax[1];
+		memcpy(d->e, F.e, sizeof d->e);
+		d->total = F.total, d->cols = F.cols;
+	}
+}
+
+/* Step 2 for band k (a parallel_for item): the round's footprints in
+ * order, each writing its rows in the band, as poly_band does. */
+static void poly_write(void *ctx, long k, int worker)
 {
 	(void)worker;
-	struct poly_job *b = (struct poly_job *)ctx + k;
-	for (long i = 0; i < b->n; i++)
-		poly_band(b->part, b->p[i].uv, b->p[i].n, b->p[i].e, b->band, b->nb);
+	struct poly_round *R = ctx;
+	struct illum_map *part = R->part[k];
+	for (long i = 0; i < R->n; i++) {
+		const struct fp_done *d = &R->done[i];
+		if (d->dropped) {
+			if (k == 0)
+				part->dropped++;
+			continue;
+		}
+		struct fp F = {.m = part, .band = (int)k, .nb = R->nb, .ax = {d->mine, d->mine}}; /* the band test reads ax[1] */
+		if (!d->live) /* no energy */
+			continue;
+		if (!fp_any_mine(&F))
+			continue;
+		if (d->ok) {
+			F.ax[0] = d->ax[0], F.ax[1] = d->ax[1];
+			memcpy(F.e, d->e, sizeof F.e);
+			F.total = d->total, F.cols = d->cols, F.pre = d->pre, F.w = d->w;
+			fp_emit_mine(&F);
+		}
+		part->finished = false;
+	}
 }
 
 void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)
@@ -1489,12 +1593,36 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 			poly_band(m, p[i].uv, p[i].n, p[i].e, 0, 1);
 		return;
 	}
-	struct poly_job jobs[64];
+	/* in rounds: step 1 integrates every footprint once, on all threads;
+	 * step 2 writes them, one thread per band of node rows (band_of), each
+	 * band's footprints in order: what poly_band does band by band, with
+	 * the integration shared (a caustic in one band no longer keeps one
+	 * thread busy alone) */
+	long nround = n < POLY_ROUND ? n : POLY_ROUND, nitems = (nround + POLY_ITEM - 1) / POLY_ITEM;
+	struct poly_round R = {.m = m, .nb = nb};
+	R.done = mem_alloc(sizeof *R.done * (size_t)nround);
+	R.scratch = mem_alloc(sizeof *R.scratch * (size_t)nb);
+	R.part = mem_alloc(sizeof *R.part * (size_t)nb);
+	R.keep = mem_alloc(sizeof *R.keep * (size_t)nitems);
 	for (int b = 0; b < nb; b++)
-		jobs[b] = (struct poly_job){illum_new_like(m), p, n, b, nb};
-	parallel_for(nb, nb, poly_work, jobs);
-	for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
-		adopt(m, jobs[b].part);
+		R.scratch[b] = illum_new_like(m), R.part[b] = illum_new_like(m);
+	for (long k = 0; k < nitems; k++)
+		arena_init(&R.keep[k]);
+	for (long at = 0; at < n; at += nround) {
+		R.p = p + at;
+		R.n = n - at < nround ? n - at : nround;
+		parallel_for((R.n + POLY_ITEM - 1) / POLY_ITEM, nb, poly_weigh, &R);
+		parallel_for(nb, nb, poly_write, &R);
+		for (long k = 0; k < nitems; k++)
+			arena_reset(&R.keep[k]);
+	}
+	for (long k = 0; k < nitems; k++)
+		arena_free(&R.keep[k]);
+	for (int b = 0; b < nb; b++) { /* bands hold disjoint tiles: the order is free */
+		adopt(m, R.part[b]);
+		illum_free(R.scratch[b]);
+	}
+	free(R.done), free(R.scratch), free(R.part), free(R.keep);
 }
 
 /* ==== finish: energy → irradiance ========================================= */
