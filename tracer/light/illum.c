@@ -1435,31 +1435,43 @@ static bool corners_finite(const double (*uv)[2], int n)
 	return true;
 }
 
-/* illum_deposit_poly, restricted to the node rows of band `band` of nb. */
-static void poly_band(struct illum_map *m, const double (*uv)[2], int n, const double energy[3], int band, int nb)
+/* Sets F (on map m: its unit, its scratch) up for the footprint uv[0..n)
+ * of energy e: false when it has no energy. Its corners in node units go to *corners (m's scratch, for a
+ * retry as a point); *poly says whether it has an area. */
+static bool fp_setup(struct fp *F, struct illum_map *m, const double (*uv)[2], int n, const double e[3],
+                     struct pt2 **corners, bool *poly)
 {
-	if (!uv || n < 1 || !corners_finite(uv, n)) {
-		if (band == 0)
-			m->dropped++;
-		return;
-	}
-	struct fp F = {.m = m, .band = band, .nb = nb, .n = n};
-	if (!energy_clean(energy, F.e))
-		return;
+	*F = (struct fp){.m = m, .band = 0, .nb = 1, .n = n};
+	if (!energy_clean(e, F->e))
+		return false;
 	for (int k = 0; k < 3; k++) /* in the map's unit (map_reserve, done by the caller) */
-		F.e[k] *= m->inv_unit;
+		F->e[k] *= m->inv_unit;
 	/* corners, their virtual copy, and clip buffers for loops of ≤ n corners:
 	 * slab 4n, cell 16n, tmp 8n (each Sutherland–Hodgman pass at most doubles) */
 	m->pts = grow(m->pts, &m->cap_pts, 30 * (size_t)n + 8, sizeof *m->pts);
 	struct pt2 *c = m->pts, *v = c + n;
-	F.slab = v + n;
-	F.cell = F.slab + 4 * n;
-	F.tmp = F.cell + 16 * n;
+	F->slab = v + n;
+	F->cell = F->slab + 4 * n;
+	F->tmp = F->cell + 16 * n;
 	corner_nodes(m, uv, n, c);
-	bool poly = n >= 3 && fp_polygon(&F, c, v);
-	if (!poly)
-		fp_point(&F, c);
-	if (nb > 1 && !fp_any_mine(&F))
+	*poly = n >= 3 && fp_polygon(F, c, v);
+	if (!*poly)
+		fp_point(F, c);
+	*corners = c;
+	return true;
+}
+
+/* illum_deposit_poly, one footprint at a time. */
+static void poly_one(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
+{
+	if (!uv || n < 1 || !corners_finite(uv, n)) {
+		m->dropped++;
+		return;
+	}
+	struct fp F;
+	struct pt2 *c;
+	bool poly;
+	if (!fp_setup(&F, m, uv, n, energy, &c, &poly))
 		return;
 	if (!fp_run(&F) && poly) { /* every row below noise: cannot happen for a real area */
 		fp_point(&F, c);
@@ -1471,16 +1483,17 @@ static void poly_band(struct illum_map *m, const double (*uv)[2], int n, const d
 void illum_deposit_poly(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
 {
 	map_reserve(m, energy_max(energy));
-	poly_band(m, uv, n, energy, 0, 1);
+	poly_one(m, uv, n, energy);
 }
 
 /* A footprint of illum_deposit_poly_all with its node weights, integrated
- * once (step 1) for the bands to write (step 2). */
+ * once (step 1) for the bands to write (step 2), as poly_one would. */
 struct fp_done {
 	bool dropped;         /* corners not finite: counted, nothing written */
 	bool live;            /* energy to deposit: set up */
 	bool ok;              /* weights with a positive sum: the bands write them */
-	struct vaxis mine;    /* the v axis by which poly_band asks whether a band has rows */
+	struct vaxis mine;    /* the v axis by which a band asks whether it has rows (the
+	                         polygon's, before any retry as a point) */
 	struct vaxis ax[2];   /* the weights' axes */
 	double e[3], total;
 	long cols;
@@ -1493,7 +1506,6 @@ struct fp_done {
 #define POLY_ITEM 256
 
 struct poly_round {
-	struct illum_map *m;
 	const struct illum_poly *p;       /* the round's footprints */
 	long n;
 	struct fp_done *done;             /* one per footprint */
@@ -1503,7 +1515,7 @@ struct poly_round {
 	int nb;
 };
 
-/* Step 1 for item k (a parallel_for item): poly_band's set-up and
+/* Step 1 for item k (a parallel_for item): poly_one's set-up and
  * integration for its footprints, on the worker's scratch map, the weights
  * kept in the item's arena. */
 static void poly_weigh(void *ctx, long k, int worker)
@@ -1518,24 +1530,15 @@ static void poly_weigh(void *ctx, long k, int worker)
 			d->dropped = true;
 			continue;
 		}
-		struct fp F = {.m = m, .band = 0, .nb = 1, .n = p->n};
-		if (!energy_clean(p->e, F.e))
+		struct fp F;
+		struct pt2 *c;
+		bool poly;
+		if (!fp_setup(&F, m, p->uv, p->n, p->e, &c, &poly))
 			continue;
 		d->live = true;
-		for (int c = 0; c < 3; c++)
-			F.e[c] *= m->inv_unit;
-		m->pts = grow(m->pts, &m->cap_pts, 30 * (size_t)p->n + 8, sizeof *m->pts);
-		struct pt2 *c = m->pts, *v = c + p->n;
-		F.slab = v + p->n;
-		F.cell = F.slab + 4 * p->n;
-		F.tmp = F.cell + 16 * p->n;
-		corner_nodes(m, p->uv, p->n, c);
-		bool poly = p->n >= 3 && fp_polygon(&F, c, v);
-		if (!poly)
-			fp_point(&F, c);
 		d->mine = F.ax[1];
 		d->ok = fp_weights(&F);
-		if (!d->ok && poly) { /* as poly_band */
+		if (!d->ok && poly) { /* as poly_one */
 			fp_point(&F, c);
 			d->ok = fp_weights(&F);
 		}
@@ -1553,7 +1556,7 @@ static void poly_weigh(void *ctx, long k, int worker)
 }
 
 /* Step 2 for band k (a parallel_for item): the round's footprints in
- * order, each writing its rows in the band, as poly_band does. */
+ * order, each writing its rows in the band. */
 static void poly_write(void *ctx, long k, int worker)
 {
 	(void)worker;
@@ -1590,16 +1593,16 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 	map_reserve(m, more); /* the unit for them all, before any of them (order-free) */
 	if (nb == 1 || n < 1024) {
 		for (long i = 0; i < n; i++)
-			poly_band(m, p[i].uv, p[i].n, p[i].e, 0, 1);
+			poly_one(m, p[i].uv, p[i].n, p[i].e);
 		return;
 	}
 	/* in rounds: step 1 integrates every footprint once, on all threads;
 	 * step 2 writes them, one thread per band of node rows (band_of), each
-	 * band's footprints in order: what poly_band does band by band, with
+	 * band's footprints in order: what poly_one does, band by band, with
 	 * the integration shared (a caustic in one band no longer keeps one
 	 * thread busy alone) */
 	long nround = n < POLY_ROUND ? n : POLY_ROUND, nitems = (nround + POLY_ITEM - 1) / POLY_ITEM;
-	struct poly_round R = {.m = m, .nb = nb};
+	struct poly_round R = {.nb = nb};
 	R.done = mem_alloc(sizeof *R.done * (size_t)nround);
 	R.scratch = mem_alloc(sizeof *R.scratch * (size_t)nb);
 	R.part = mem_alloc(sizeof *R.part * (size_t)nb);
