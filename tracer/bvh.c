@@ -567,6 +567,29 @@ static bool traverse(const struct bvh *b, const struct ray *r, double tmin, doub
 	return q.found;
 }
 
+/* Lane i of a packet gets query q's float ray (into rh, or into rh8
+ * without native 16-wide packets); valid[i] says whether it has one (false:
+ * it misses the scene's box). */
+static bool packet_lane(struct query *q, int i, int *valid, struct RTCRayHit16 *rh, struct RTCRayHit8 *rh8)
+{
+	float row[9];
+	valid[i] = float_ray(q, row) ? -1 : 0;
+	if (valid[i] && native16)
+		put_lane((float *)rh, BVH_PACKET, (unsigned)i, row);
+	else if (valid[i])
+		put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
+	return valid[i] != 0;
+}
+
+/* Embree's context for a packet of camera or shadow rays (coherent). */
+static void packet_start(struct packet *Q)
+{
+	rtcInitIntersectContext(&Q->rc);
+	Q->rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+	Q->lanes = BVH_PACKET;
+	Q->base = 0;
+}
+
 /* The packet's hits, completed (finish), and whether each lane hit. */
 static void done(struct packet *Q, int n, bool *found)
 {
@@ -597,22 +620,13 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 			brute(q, false);
 			continue;
 		}
-		float row[9];
-		valid[i] = float_ray(q, row) ? -1 : 0;
-		if (valid[i] && native16)
-			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
-		else if (valid[i])
-			put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
-		any |= valid[i] != 0;
+		any |= packet_lane(q, i, valid, &rh, rh8);
 	}
 	if (!any) {
 		done(&Q, n, found);
 		return;
 	}
-	rtcInitIntersectContext(&Q.rc);
-	Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-	Q.lanes = BVH_PACKET;
-	Q.base = 0;
+	packet_start(&Q);
 	if (native16) {
 		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
 	} else {
@@ -641,19 +655,10 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 			brute(q, true);
 			continue;
 		}
-		float row[9];
-		valid[i] = float_ray(q, row) ? -1 : 0;
-		if (valid[i] && native16)
-			put_lane((float *)&rh, BVH_PACKET, (unsigned)i, row);
-		else if (valid[i])
-			put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
-		any |= valid[i] != 0;
+		any |= packet_lane(q, i, valid, &rh, rh8);
 	}
 	if (any) {
-		rtcInitIntersectContext(&Q.rc);
-		Q.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-		Q.lanes = BVH_PACKET;
-		Q.base = 0;
+		packet_start(&Q);
 		if (native16) {
 			rtcOccluded16(valid, b->scene, &Q.rc, &rh.ray);
 		} else {

@@ -89,6 +89,22 @@ static int node_diffs(const struct nodes *s1, const struct nodes *s2)
 	return diff;
 }
 
+/* Map m, its deposits made on `threads` threads, finished the same way,
+ * is map one (nodes s1, energy removed by the isolated rule rem1) bit for
+ * bit, with one deposit dropped; m is freed. */
+static void check_same_map(const struct illum_map *one, const struct nodes *s1, const double rem1[3],
+                           struct illum_map *m, int threads)
+{
+	double rem[3];
+	illum_finish_mt(m, true, rem, threads);
+	struct nodes *s2 = nodes_of(m);
+	CHECK(node_diffs(s1, s2) == 0);
+	CHECK(memcmp(rem, rem1, 3 * sizeof *rem) == 0);
+	CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
+	free(s2);
+	illum_free(m);
+}
+
 /* Energy of node (i,j) in channel 0, 0 when absent. */
 static double node_e(const struct nodes *s, long i, long j)
 {
@@ -344,7 +360,7 @@ static void t_threads(void)
 		struct illum_map *one = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
 		for (int k = 0; k < N; k++)
 			illum_deposit(one, sp[k].u, sp[k].v, sp[k].e);
-		double rem1[3], rem[3];
+		double rem1[3];
 		illum_finish(one, true, rem1);
 		struct nodes *s1 = nodes_of(one);
 		CHECK(s1->n > 1000 && s1->n < MAXN && (rem1[0] > 0) == !shape);
@@ -353,13 +369,7 @@ static void t_threads(void)
 		for (int t = 0; t < 4; t++) {
 			struct illum_map *m = illum_new_like(one);
 			illum_deposit_all(m, sp, N, threads[t]);
-			illum_finish_mt(m, true, rem, threads[t]);
-			struct nodes *s2 = nodes_of(m);
-			CHECK(node_diffs(s1, s2) == 0);
-			CHECK(memcmp(rem, rem1, sizeof rem) == 0);
-			CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
-			free(s2);
-			illum_free(m);
+			check_same_map(one, s1, rem1, m, threads[t]);
 		}
 		free(s1);
 		illum_free(one);
@@ -402,7 +412,7 @@ static void t_runs(void)
 	CHECK(next == N && at == N + 2 * R);
 	struct illum_map *one = map_cell(&o, 0.01);
 	illum_deposit_all(one, sp, N, 1);
-	double rem1[3], rem[3];
+	double rem1[3];
 	illum_finish(one, true, rem1);
 	struct nodes *s1 = nodes_of(one);
 	CHECK(s1->n > 1000 && s1->n < MAXN && rem1[0] > 0);
@@ -410,13 +420,7 @@ static void t_runs(void)
 	for (int t = 0; t < 3; t++) {
 		struct illum_map *m = illum_new_like(one);
 		illum_deposit_runs(m, runs, R, threads[t]);
-		illum_finish_mt(m, true, rem, threads[t]);
-		struct nodes *s2 = nodes_of(m);
-		CHECK(node_diffs(s1, s2) == 0);
-		CHECK(memcmp(rem, rem1, sizeof rem) == 0);
-		CHECK(illum_dropped(m) == 1 && illum_tiles(m) == illum_tiles(one));
-		free(s2);
-		illum_free(m);
+		check_same_map(one, s1, rem1, m, threads[t]);
 	}
 	/* no splats at all: nothing happens */
 	struct illum_map *m = illum_new_like(one);
