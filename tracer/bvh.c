@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include "../common/arena.h"
+#include "leafbox.h"
 #include "shapes/prim.h"
 
 struct bvh {
@@ -54,7 +55,9 @@ struct bvh {
 	struct bbox bounds;            /* world bounds of the bounded leaves */
 	double pad;                    /* float safety margin of every box */
 	struct bbox padded;            /* bounds grown by pad (float_ray) */
-	bool brute;                    /* few cheap leaves: tested in order, without Embree */
+	bool brute;                    /* few leaves: tested without Embree (brute) */
+	struct leafbox *box;           /* the leaves' boxes grown by pad, when brute
+	                                  tests boxes first (NULL: it does not) */
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
@@ -162,8 +165,11 @@ static void collect(struct builder *B, const struct object *o)
 		add_leaf(B, o, b);
 }
 
-/* Scenes with at most this many bounded leaves, each of a kind whose exact
- * test is a closed form (cheap_kind), are traced without Embree (brute). */
+/* Scenes with at most BRUTE_MAX bounded leaves, each of a kind whose exact
+ * test is a closed form (cheap_kind), are traced without Embree (brute),
+ * every leaf tested on every ray. Other scenes of at most LEAFBOX_MAX
+ * leaves are traced without Embree too, the leaves' boxes tested first, in
+ * double, two at a time (boxed). */
 #define BRUTE_MAX 4
 
 /* A leaf whose exact test costs about what Embree's box test would: without
@@ -191,6 +197,21 @@ static float step_float(float f, bool towards_up)
 	b += (f > 0) == towards_up ? 1u : ~0u; /* away from or towards zero */
 	memcpy(&f, &b, sizeof f);
 	return f;
+}
+
+/* The next double above x (x not NaN): nextafter(x, INFINITY), without
+ * the call. */
+static inline double next_up(double x)
+{
+	if (x == INFINITY)
+		return x;
+	if (x == 0)
+		return 0x1p-1074;
+	uint64_t u;
+	memcpy(&u, &x, sizeof u);
+	u += x > 0 ? 1 : (uint64_t)-1;
+	memcpy(&x, &u, sizeof x);
+	return x;
 }
 
 /* x rounded to a float no greater (down) or no less (up) than it. */
@@ -237,7 +258,7 @@ static bool consider(struct query *q, int id)
 	if (o->flags & q->skip)
 		return false;
 	/* a tie with the best so far is looked at: the lower index wins */
-	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
+	double hi = q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax, t;
 	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return false;
@@ -334,8 +355,19 @@ struct bvh *bvh_build(struct object **objs, int n)
 	t->brute = t->nprims <= BRUTE_MAX;
 	for (int i = 0; i < t->nprims && t->brute; i++)
 		t->brute = cheap_kind(t->prims[i]);
+	if (!t->brute && t->nprims <= LEAFBOX_MAX) {
+		struct bbox bx[LEAFBOX_MAX];
+		for (int i = 0; i < t->nprims; i++) {
+			struct bbox b = shape_bounds(t->prims[i]); /* as collect found it */
+			bx[i] = (struct bbox){v_sub(b.lo, v3(t->pad, t->pad, t->pad)),
+			                      v_add(b.hi, v3(t->pad, t->pad, t->pad))};
+		}
+		t->box = mem_alloc(sizeof *t->box);
+		leafbox_set(t->box, t->nprims, bx);
+		t->brute = true;
+	}
 	if (t->brute)
-		return t; /* tested in order (brute): no Embree scene */
+		return t; /* tested without Embree (brute): no Embree scene */
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
@@ -363,7 +395,7 @@ void bvh_free(struct bvh *b)
 		rtcReleaseScene(b->scene);
 	if (b->own_prims)
 		free(b->prims);
-	free(b->unbound), free(b->uplane);
+	free(b->unbound), free(b->uplane), free(b->box);
 	free(b);
 }
 
@@ -468,14 +500,37 @@ static void walk(struct query *q, bool any)
 	}
 }
 
+/* The bounded leaves of a scene of at most LEAFBOX_MAX for query q, by their
+ * boxes first; the nearest hit skips a leaf whose box the ray enters
+ * beyond the best hit so far. The hit is that of the loop in order. */
+static void boxed(struct query *q, bool any)
+{
+	double at[LEAFBOX_MAX];
+	unsigned m = leafbox_hits(q->b->box, q->r, q->tmin, any ? q->tmax : next_up(q->tmax), at);
+	for (int i = 0; m; i++, m >>= 1) {
+		if (!(m & 1))
+			continue;
+		if (any && blocks(q, (unsigned)i)) {
+			q->found = true;
+			return;
+		}
+		if (!any && !(at[i] > next_up(q->tmax))) /* a tie is looked at */
+			consider(q, i);
+	}
+}
+
 /* Every bounded leaf in order, as the callbacks test them: without a
  * device (Embree failed to start), and for a scene of at most BRUTE_MAX
  * cheap leaves, where setting up Embree's float ray and walk costs more
  * than testing them all (a sphere's t is ~80 instructions; Embree's query
- * ~500).
+ * ~500); by their boxes (boxed) for other scenes of at most LEAFBOX_MAX.
  * The hit is the same either way (see the top of this file). */
 static void brute(struct query *q, bool any)
 {
+	if (q->b->box) {
+		boxed(q, any);
+		return;
+	}
 	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
 		if (!any) {
 			consider(q, i);
