@@ -406,6 +406,11 @@ int bvh_count(const struct bvh *b, int *unbounded)
 	return b->nprims;
 }
 
+bool bvh_walks(const struct bvh *b)
+{
+	return b->scene != NULL;
+}
+
 struct bbox bvh_bounds(const struct bvh *b)
 {
 	return b->bounds;
@@ -551,14 +556,17 @@ static bool unbounded(struct query *q, bool any)
 		const struct object *o = q->b->unbound[i];
 		if (o->flags & q->skip)
 			continue;
-		if (any && shape_occluded(o, q->r, q->tmin, q->tmax))
-			return q->found = true;
 		double t;
-		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
+		if (o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
 			const struct pl_prep *pp = &q->b->uplane[i]; /* inline without a transform */
-			if (o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
-			          : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t))
-				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+			if (!(o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
+			            : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t)))
+				continue;
+			if (any) /* as shape_occluded, without the plane's frame */
+				return q->found = true;
+			q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+		} else if (any && shape_occluded(o, q->r, q->tmin, q->tmax)) {
+			return q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
 		}

@@ -802,7 +802,7 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
-	if (!ctx->see_through && ctx->scene->nlights > 0)
+	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
 		shadow_packets(ctx, n, r, h, found, pa, memo);
 	for (int i = 0; i < n; i++)
 		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], &r[i], &h[i], found[i] ? 1 : -1);
