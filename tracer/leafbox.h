@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* leafbox.h: the boxes of a scene's few bounded leaves, tested against one
- * ray two at a time (bvh.c traces scenes of up to LEAFBOX_MAX leaves this
+ * ray two or four at a time (bvh.c traces scenes of up to LEAFBOX_MAX leaves this
  * way, without Embree; docs/design.md §5). */
 #ifndef ARVO_LEAFBOX_H
 #define ARVO_LEAFBOX_H
+
+#include <stdbool.h>
 
 #include "../common/vec.h"
 #include "shape.h"
@@ -14,8 +16,9 @@
  * vector operation. */
 struct leafbox {
 	int n;
-	_Alignas(16) double lo[3][LEAFBOX_MAX];
-	_Alignas(16) double hi[3][LEAFBOX_MAX];
+	bool wide;  /* the CPU runs AVX: four boxes per operation */
+	double lo[3][LEAFBOX_MAX];
+	double hi[3][LEAFBOX_MAX];
 };
 
 /* Sets the n <= LEAFBOX_MAX boxes of *lb to b[0..n). */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "../../tracer/bvh.h"
+#include "../../tracer/leafbox.h"
 #include "geo_rand.h"
 #include "test.h"
 
@@ -490,6 +491,61 @@ static void t_lazy(void)
 	CHECK(hits > 12000);
 }
 
+/* leafbox_hits (tracer/leafbox.h) never leaves out a box the ray meets:
+ * for random boxes and rays (some along axes, some from a face), every
+ * point of the ray over [tmin, tmax] found inside a box has that box's bit
+ * set and its entry no later; the SSE2 and the AVX versions (when the CPU
+ * has it) give the same bits and entries. */
+static void t_leafbox(void)
+{
+	rng_seed(27);
+	int missed = 0, differ = 0, inside = 0, set = 0;
+	for (int k = 0; k < 3000; k++) {
+		struct bbox b[LEAFBOX_MAX];
+		int n = 1 + k % LEAFBOX_MAX;
+		for (int i = 0; i < n; i++) {
+			struct vec3 c = rnd_vec(-3, 3), e = rnd_vec(0.05, 2);
+			b[i] = (struct bbox){v_sub(c, e), v_add(c, e)};
+		}
+		struct leafbox lb;
+		leafbox_set(&lb, n, b);
+		struct ray r = {rnd_vec(-6, 6), rnd_dir()};
+		if (k % 4 == 0) /* aimed at a box */
+			r.d = v_norm(v_sub(v_scale(v_add(b[k % n].lo, b[k % n].hi), 0.5), r.o));
+		if (k % 4 == 1)
+			r.d = v3(0, k % 8 == 1 ? 1 : -1, 0);
+		if (k % 4 == 2) /* from a face of box 0 */
+			r.o.x = b[0].lo.x, r.o.y = b[0].lo.y + 0.3 * (b[0].hi.y - b[0].lo.y);
+		double tmin = k % 3 ? 0 : rndr(0, 2), tmax = k % 5 ? INFINITY : rndr(2, 12), at[LEAFBOX_MAX];
+		unsigned m = leafbox_hits(&lb, &r, tmin, tmax, at);
+		for (int i = 0; i < n; i++)
+			for (int j = 0; j <= 200; j++) {
+				double t = tmin + (fmin(tmax, 20) - tmin) * j / 200;
+				struct vec3 p = ray_at(r, t);
+				if (p.x < b[i].lo.x || p.x > b[i].hi.x || p.y < b[i].lo.y || p.y > b[i].hi.y || p.z < b[i].lo.z ||
+				    p.z > b[i].hi.z)
+					continue;
+				inside++;
+				missed += !(m >> i & 1) || !(at[i] <= t);
+				break;
+			}
+		set += __builtin_popcount(m);
+		if (lb.wide) {
+			double at2[LEAFBOX_MAX];
+			lb.wide = false;
+			unsigned m2 = leafbox_hits(&lb, &r, tmin, tmax, at2);
+			bool same = m2 == m;
+			for (int i = 0; i < n; i++)
+				same &= !(m >> i & 1) || at2[i] == at[i];
+			differ += !same;
+		}
+	}
+	printf("# %d boxes met at a sampled point, %d bits set, %d missed, %d differ between SSE2 and AVX\n", inside,
+	       set, missed, differ);
+	CHECK(missed == 0 && differ == 0);
+	CHECK(inside > 1000 && set >= inside);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -500,5 +556,6 @@ int main(void)
 	RUN(t_small_scenes);
 	RUN(t_lazy);
 	RUN(t_occluded_packet);
+	RUN(t_leafbox);
 	return test_done();
 }
