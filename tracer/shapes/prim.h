@@ -43,6 +43,9 @@ struct prim_ops {
 	double (*cell_area)(const struct object *o, double u0, double u1, double v0, double v1);
 	/* The geometry on one line of --dump-scene, without the newline. */
 	void (*dump)(const struct object *o, FILE *out);
+	/* Whether intersect finds a hit, without filling it in (shadow rays);
+	 * NULL: intersect is asked. */
+	bool (*occluded)(const struct object *o, const struct ray *r, double tmin, double tmax);
 };
 
 #define PRIM(n, w) extern const struct prim_ops shape_##w##_ops;
