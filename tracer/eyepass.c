@@ -374,7 +374,7 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
+	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_neg(sf.v), depth, weight, skip); /* v_norm(d) */
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
@@ -559,7 +559,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	if (aov)
 		aov->z = hp->t * v_len(r.d);
 	struct vec3 c = shade(pa, hp, r.d, depth, weight, skip, aov);
-	if (!hp->entering) {
+	if (!hp->entering && mat_interior(hp->obj)->fade_distance > 0) { /* else the fade is 1 */
 		struct vec3 fade = opt_fade(mat_interior(hp->obj), hp->t * v_len(r.d));
 		c = v_mul(c, fade);
 		if (aov) {
