@@ -306,6 +306,14 @@ static struct vec3 disperse(struct path *pa, const struct surf *sf, const struct
 	return out;
 }
 
+/* Whether the surface reflects or transmits at all: else specular() gives 0
+ * (asked first: most surfaces do neither). */
+static bool scatters(const struct surf *sf)
+{
+	const struct finish *f = tex_finish(sf->tex);
+	return sf->pc.f > 0 || sf->pc.t > 0 || !no_colour(f->refl_min) || !no_colour(f->refl_max);
+}
+
 /* The reflected and transmitted light at a hit, as the surface step
  * (surface.h) splits it; dispersive glass splits a full-colour path first. */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
@@ -374,7 +382,7 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
+	struct vec3 spec = upper || !scatters(&sf) ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
