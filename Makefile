@@ -36,7 +36,7 @@ endif
 HOT_C = tracer/eyepass.c tracer/bvh.c tracer/camera.c tracer/shape.c tracer/shapes/sphere.c \
         tracer/render.c tracer/material.c
 ifneq ($(MODE),debug)
-$(HOT_C:%.c=$(BUILD)/%.o): OPT := $(subst -O2,-O3,$(OPT))
+$(HOT_C:%.c=$(BUILD)/%.o): OPT := $(subst -O2,-O3,$(OPT)) -fno-math-errno
 endif
 
 PKGS     = OpenEXR OpenColorIO libpng freetype2

@@ -814,7 +814,7 @@ static bool plain_miss(const struct eye_ctx *ctx)
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
-	struct ray r[BVH_PACKET] = {0};
+	struct ray r[BVH_PACKET]; /* lanes 0..n-1 are set and read */
 	struct hit h[BVH_PACKET];
 	struct path pa[BVH_PACKET];
 	bool found[BVH_PACKET];
