@@ -382,7 +382,8 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = upper || !scatters(&sf) ? v3(0, 0, 0) : specular(pa, &sf, v_neg(sf.v), depth, weight, skip); /* v_norm(d) */
+	struct vec3 spec = upper || !scatters(&sf) ? v3(0, 0, 0)
+	                                          : specular(pa, &sf, v_neg(sf.v), depth, weight, skip); /* v_norm(d) */
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
