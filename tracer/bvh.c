@@ -622,12 +622,13 @@ static void finish_if(struct query *q, bool (*full)(const void *ctx, const struc
 }
 
 /* The query shared by both kinds: with any set, stops at the first hit. */
-static bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
-                     struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+static inline bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                            bool any, struct hit *h, bool (*full)(const void *ctx, const struct object *o),
+                            const void *ctx)
 {
 	struct query q;
 	new_query(&q, b, r, tmin, tmax, skip, h);
-	if (unbounded(&q, any))
+	if (b->nunbound && unbounded(&q, any))
 		return q.found;
 	if (b->nprims > 0 && b->scene)
 		walk(&q, any);
