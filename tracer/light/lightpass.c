@@ -333,10 +333,13 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
 }
 
-static void add3(double acc[3], const double e[3], double k)
+/* acc += e (written out: GCC does not unroll the loop at -O2, and every
+ * segment counts its energy somewhere). */
+static inline void add3(double acc[3], const double e[3])
 {
-	for (int c = 0; c < 3; c++)
-		acc[c] += e[c] * k;
+	acc[0] += e[0];
+	acc[1] += e[1];
+	acc[2] += e[2];
 }
 
 /* The largest of three numbers that are not NaN, inline (fmax is a libm
@@ -390,18 +393,18 @@ static inline const struct oinfo *oinfo_of(struct worker *w, const struct object
  * or side, so the query need not work them out (bvh_intersect_lazy). */
 struct need {
 	struct worker *w;
-	int nspec;
+	bool direct; /* no bounce yet, and direct light is not deposited */
 };
 
 static bool inert(const struct need *n, const struct oinfo *x)
 {
-	return n->nspec == 0 && !n->w->job->o->deposit_direct && x->dull && x->quiet;
+	return n->direct && x->dull && x->quiet;
 }
 
 static bool full_hit(const void *ctx, const struct object *o)
 {
 	const struct need *n = ctx;
-	return !inert(n, oinfo_of(n->w, o));
+	return !n->direct || !inert(n, oinfo_of(n->w, o));
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
@@ -414,14 +417,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	struct need nd = {w, nspec};
+	struct need nd = {w, nspec == 0 && !J->o->deposit_direct};
 	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)) {
-		add3(w->escaped, e, 1);
+		add3(w->escaped, e);
 		return;
 	}
 	const struct oinfo *hx = oinfo_of(w, h.obj);
 	if (inert(&nd, hx)) { /* h holds only obj and t */
-		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e, 1);
+		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
 		return;
 	}
 	/* POV-Ray's photons { } on the object: pass_through lets light by
@@ -433,7 +436,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
 			      sig);
 		else
-			add3(w->cut, e, 1);
+			add3(w->cut, e);
 		return;
 	}
 	double ea[3] = {e[0], e[1], e[2]};
@@ -448,9 +451,9 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	if (df) { /* all of it stays here (rest = e); nothing goes on */
 		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 			record(w, &h, &r, e, sig);
-			add3(w->deposited, e, 1);
+			add3(w->deposited, e);
 		} else {
-			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e, 1);
+			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e);
 		}
 		return;
 	}
@@ -467,11 +470,11 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	bool diffuse = si.f->diffuse > 0 && opacity > 0;
 	if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 		record(w, &h, &r, e, sig);
-		add3(w->deposited, rest, 1);
+		add3(w->deposited, rest);
 	} else if (diffuse && nspec == 0) {
-		add3(w->direct, rest, 1);
+		add3(w->direct, rest);
 	} else {
-		add3(w->absorbed, rest, 1);
+		add3(w->absorbed, rest);
 	}
 	double tmax = max3(so.T.x, so.T.y, so.T.z), rmax = max3(so.R.x, so.R.y, so.R.z);
 	if (!(tmax > 0) && !(rmax > 0))
@@ -484,14 +487,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		if (refract && max3(te[0], te[1], te[2]) > cutoff)
 			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1, sig_mix(sig, h.obj, 1));
 		else
-			add3(w->cut, te, 1);
+			add3(w->cut, te);
 	}
 	if (rmax > 0) {
 		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
 		if (reflect && max3(re[0], re[1], re[2]) > cutoff)
 			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1, sig_mix(sig, h.obj, 2));
 		else
-			add3(w->cut, re, 1);
+			add3(w->cut, re);
 	}
 }
 
@@ -873,12 +876,14 @@ static void run_item(struct worker *w, const struct item *it)
 		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
 		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
 		double ph = 2 * M_PI * sy;
-		struct vec3 o = l->pos, d = t->axis;
+		struct vec3 o = l->pos, d;
 		if (beam) {
+			d = t->axis;
 			double rr = t->radius * sqrt(sx);
 			o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
 		} else {
-			double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct));
+			double ct = 1 - sx * (1 - t->cosmax), s2 = 1 - ct * ct;
+			double st = sqrt(s2 > 0 ? s2 : 0); /* fmax(0, s2), inline (s2 is never -0) */
 			d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
 		}
 		bool covered = false;
