@@ -144,7 +144,13 @@ struct illum_map {
 	size_t cap_pts, cap_rows; /* allocated lengths of pts and rows */
 };
 
-static long floordiv(long a) { return a >= 0 ? a / ILLUM_TILE : -((-a + ILLUM_TILE - 1) / ILLUM_TILE); }
+_Static_assert((ILLUM_TILE & (ILLUM_TILE - 1)) == 0, "ILLUM_TILE: a power of two");
+
+/* The tile of node index a (floor(a / ILLUM_TILE)), and a's place in it
+ * (a − ILLUM_TILE·floordiv(a), in [0, ILLUM_TILE)): masks, the tile a power
+ * of two (two's complement, as C11's intN_t are). */
+static inline long tile_rem(long a) { return (long)((unsigned long)a & (ILLUM_TILE - 1)); }
+static inline long floordiv(long a) { return (a - tile_rem(a)) / ILLUM_TILE; }
 
 static uint64_t tile_hash(int32_t ti, int32_t tj)
 {
@@ -342,7 +348,7 @@ static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
 		k = tile_add(m, (int32_t)ti, (int32_t)tj);
 	}
 	m->last = k;
-	return &m->tiles[k]->n[(j - tj * ILLUM_TILE) * ILLUM_TILE + (i - ti * ILLUM_TILE)];
+	return &m->tiles[k]->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
 }
 
 /* Read-only lookup of node (i,j): its tile and slot, or NULL. */
@@ -352,7 +358,7 @@ static const struct tile *node_tile(const struct illum_map *m, long i, long j, i
 	long k = tile_find(m, (int32_t)ti, (int32_t)tj);
 	if (k < 0)
 		return NULL;
-	*slot = (int)((j - tj * ILLUM_TILE) * ILLUM_TILE + (i - ti * ILLUM_TILE));
+	*slot = (int)(tile_rem(j) * ILLUM_TILE + tile_rem(i));
 	return m->tiles[k];
 }
 
@@ -371,7 +377,7 @@ static double snap(double t)
 /* Splits parameter x between nodes *i0 (weight 1 − *f) and *i1 (weight *f):
  * wrapped on periodic axes, clamped to the edges of bounded ones. A point
  * within SNAP spacings of a node is snapped onto it (then *f = 0). */
-static void axis_split(const struct axis *a, double x, long *i0, long *i1, double *f)
+static inline void axis_split(const struct axis *a, double x, long *i0, long *i1, double *f)
 {
 	double t = snap((x - a->lo) / a->step);
 	if (a->wraps) {
@@ -620,14 +626,16 @@ static inline void acc_add_fast(struct acc *n, double w, const double e[3], bool
 			fx_add_fast(&n->e[c], fx_from(x * inv_unit));
 			n->sq[c] += (float)(x * x);
 		}
-	} else {
+	} else { /* written out: GCC does not unroll the loop at -O2 */
 		double x = w * e[0];
 		struct fx f = fx_from(x * inv_unit);
 		float q = (float)(x * x);
-		for (int c = 0; c < 3; c++) {
-			fx_add_fast(&n->e[c], f);
-			n->sq[c] += q;
-		}
+		fx_add_fast(&n->e[0], f);
+		fx_add_fast(&n->e[1], f);
+		fx_add_fast(&n->e[2], f);
+		n->sq[0] += q;
+		n->sq[1] += q;
+		n->sq[2] += q;
 	}
 	n->count += n->count < UINT32_MAX;
 }
@@ -914,7 +922,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 				long ti = floordiv(iu[a]);
 				if (ti != lti || tj != ltj)
 					lt = band_tile(B, m, ti, tj), lti = ti, ltj = tj;
-				struct acc *n = &lt->n[(iv[b] - tj * ILLUM_TILE) * ILLUM_TILE + (iu[a] - ti * ILLUM_TILE)];
+				struct acc *n = &lt->n[tile_rem(iv[b]) * ILLUM_TILE + tile_rem(iu[a])];
 				if (finite)
 					acc_add_fast(n, w, e, white, inv);
 				else
@@ -1679,7 +1687,8 @@ static void near_fill(const struct illum_map *m, struct near *nb, long ti, long 
 	nb->tj = tj;
 	for (int b = 0; b < 3; b++)
 		for (int a = 0; a < 3; a++) {
-			long k = tile_find(m, (int32_t)(ti + a - 1), (int32_t)(tj + b - 1));
+			const int32_t *w = win_slot(m, ti + a - 1, tj + b - 1); /* tile_find, the window inline */
+			long k = w ? (long)*w - 1 : tile_find(m, (int32_t)(ti + a - 1), (int32_t)(tj + b - 1));
 			nb->t[b][a] = k < 0 ? NULL : m->tiles[k];
 		}
 }
@@ -1705,7 +1714,7 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 			if ((a < 0 && m->ax[0].bounded) || (b < 0 && m->ax[1].bounded))
 				continue; /* past a bounded edge (the plane's nodes go negative) */
 			long ta = floordiv(a) - nb->ti + 1, tb = floordiv(b) - nb->tj + 1;
-			int slot = (int)((b - floordiv(b) * ILLUM_TILE) * ILLUM_TILE + (a - floordiv(a) * ILLUM_TILE));
+			int slot = (int)(tile_rem(b) * ILLUM_TILE + tile_rem(a));
 			const struct tile *t = ta >= 0 && ta < 3 && tb >= 0 && tb < 3 ? nb->t[tb][ta]
 			                                                              : node_tile(m, a, b, &slot);
 			if (t && (sum += t->n[slot].count) > 4)
@@ -1759,20 +1768,21 @@ static uint64_t near_count(const struct near *nb)
 #define NEAR_N (3 * ILLUM_TILE) /* nodes a side of the 3×3 tiles of a struct near */
 
 /* The deposit counts of the 3×3 tiles nb holds, as one array of nodes
- * (zero where a tile is absent). */
-static void near_counts(const struct near *nb, uint64_t c[NEAR_N][NEAR_N])
+ * (zero where a tile is absent: most are, around a sparse map's tiles). */
+static void near_counts(const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
 {
+	memset(c, 0, sizeof c[0] * NEAR_N);
 	for (int b = 0; b < 3; b++)
 		for (int a = 0; a < 3; a++)
-			for (int q = 0; q < TN; q++)
-				c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] =
-					nb->t[b][a] ? nb->t[b][a]->n[q].count : 0;
+			if (nb->t[b][a])
+				for (int q = 0; q < TN; q++)
+					c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] = nb->t[b][a]->n[q].count;
 }
 
 /* node_isolated for node q of the middle tile of c (near_counts), when its
  * 5×5 neighbourhood lies inside c (near_closed, two nodes each way): the
  * same sum of counts, read from the array. */
-static bool near_isolated(uint64_t c[NEAR_N][NEAR_N], int q)
+static bool near_isolated(uint32_t c[NEAR_N][NEAR_N], int q)
 {
 	int x = ILLUM_TILE + q % ILLUM_TILE, y = ILLUM_TILE + q / ILLUM_TILE;
 	uint64_t sum = 0;
@@ -1791,16 +1801,17 @@ static void finish_work(void *ctx, long job, int worker)
 	/* node_isolated reaches two nodes each way on both axes (not fewer on
 	 * a short wrapping axis) */
 	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
+	struct fx tot[3] = {J->tot[0], J->tot[1], J->tot[2]}, rem[3] = {J->rem[0], J->rem[1], J->rem[2]};
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
 		for (int q = 0; q < TN; q++)
 			for (int c = 0; c < 3; c++)
-				fx_add(&J->tot[c], t->n[q].e[c]);
+				fx_add(&tot[c], t->n[q].e[c]);
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
 		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
 		struct near nb = {.ti = 0};
-		uint64_t cnt[NEAR_N][NEAR_N];
+		uint32_t cnt[NEAR_N][NEAR_N];
 		if (check) {
 			near_fill(m, &nb, t->ti, t->tj);
 			/* at most one splat in the tiles around: every node with a
@@ -1824,10 +1835,12 @@ static void finish_work(void *ctx, long job, int worker)
 			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
-					fx_add(&J->rem[c], t->n[q].e[c]);
+					fx_add(&rem[c], t->n[q].e[c]);
 			}
 		}
 	}
+	for (int c = 0; c < 3; c++)
+		J->tot[c] = tot[c], J->rem[c] = rem[c];
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "../../common/order.h"
 #include "../../common/pool.h"
 #include "../../common/progress.h"
 #include "../optics.h"
@@ -333,10 +334,13 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
 }
 
-static void add3(double acc[3], const double e[3], double k)
+/* acc += e (written out: GCC does not unroll the loop at -O2, and every
+ * segment counts its energy somewhere). */
+static inline void add3(double acc[3], const double e[3])
 {
-	for (int c = 0; c < 3; c++)
-		acc[c] += e[c] * k;
+	acc[0] += e[0];
+	acc[1] += e[1];
+	acc[2] += e[2];
 }
 
 /* The largest of three numbers that are not NaN, inline (fmax is a libm
@@ -390,18 +394,18 @@ static inline const struct oinfo *oinfo_of(struct worker *w, const struct object
  * or side, so the query need not work them out (bvh_intersect_lazy). */
 struct need {
 	struct worker *w;
-	int nspec;
+	bool direct; /* no bounce yet, and direct light is not deposited */
 };
 
 static bool inert(const struct need *n, const struct oinfo *x)
 {
-	return n->nspec == 0 && !n->w->job->o->deposit_direct && x->dull && x->quiet;
+	return n->direct && x->dull && x->quiet;
 }
 
 static bool full_hit(const void *ctx, const struct object *o)
 {
 	const struct need *n = ctx;
-	return !inert(n, oinfo_of(n->w, o));
+	return !n->direct || !inert(n, oinfo_of(n->w, o));
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
@@ -414,14 +418,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	const struct job *J = w->job;
 	struct hit h;
 	w->segments++;
-	struct need nd = {w, nspec};
+	struct need nd = {w, nspec == 0 && !J->o->deposit_direct};
 	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)) {
-		add3(w->escaped, e, 1);
+		add3(w->escaped, e);
 		return;
 	}
 	const struct oinfo *hx = oinfo_of(w, h.obj);
 	if (inert(&nd, hx)) { /* h holds only obj and t */
-		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e, 1);
+		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
 		return;
 	}
 	/* POV-Ray's photons { } on the object: pass_through lets light by
@@ -433,7 +437,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
 			      sig);
 		else
-			add3(w->cut, e, 1);
+			add3(w->cut, e);
 		return;
 	}
 	double ea[3] = {e[0], e[1], e[2]};
@@ -448,9 +452,9 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	if (df) { /* all of it stays here (rest = e); nothing goes on */
 		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 			record(w, &h, &r, e, sig);
-			add3(w->deposited, e, 1);
+			add3(w->deposited, e);
 		} else {
-			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e, 1);
+			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e);
 		}
 		return;
 	}
@@ -467,11 +471,11 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	bool diffuse = si.f->diffuse > 0 && opacity > 0;
 	if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 		record(w, &h, &r, e, sig);
-		add3(w->deposited, rest, 1);
+		add3(w->deposited, rest);
 	} else if (diffuse && nspec == 0) {
-		add3(w->direct, rest, 1);
+		add3(w->direct, rest);
 	} else {
-		add3(w->absorbed, rest, 1);
+		add3(w->absorbed, rest);
 	}
 	double tmax = max3(so.T.x, so.T.y, so.T.z), rmax = max3(so.R.x, so.R.y, so.R.z);
 	if (!(tmax > 0) && !(rmax > 0))
@@ -484,14 +488,14 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 		if (refract && max3(te[0], te[1], te[2]) > cutoff)
 			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1, sig_mix(sig, h.obj, 1));
 		else
-			add3(w->cut, te, 1);
+			add3(w->cut, te);
 	}
 	if (rmax > 0) {
 		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
 		if (reflect && max3(re[0], re[1], re[2]) > cutoff)
 			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1, sig_mix(sig, h.obj, 2));
 		else
-			add3(w->cut, re, 1);
+			add3(w->cut, re);
 	}
 }
 
@@ -873,12 +877,14 @@ static void run_item(struct worker *w, const struct item *it)
 		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
 		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
 		double ph = 2 * M_PI * sy;
-		struct vec3 o = l->pos, d = t->axis;
+		struct vec3 o = l->pos, d;
 		if (beam) {
+			d = t->axis;
 			double rr = t->radius * sqrt(sx);
 			o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
 		} else {
-			double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct));
+			double ct = 1 - sx * (1 - t->cosmax), s2 = 1 - ct * ct;
+			double st = sqrt(s2 > 0 ? s2 : 0); /* fmax(0, s2), inline (s2 is never -0) */
 			d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
 		}
 		bool covered = false;
@@ -1001,12 +1007,6 @@ static void index_maps(struct lp_result *r)
 			slot_put(r, k);
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
 /* The grid for a surface: its illum_map { }, else a cell size chosen from
  * the rays that reached it (pitfall 1): per_node rays per node (0: the
  * default ILLUM_RAYS_PER_NODE) over the region where most of them landed. The region is the 5th to 95th
@@ -1021,8 +1021,9 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 	for (int axis = 0; axis < 3; axis++) {
 		for (long i = 0; i < k; i++)
 			c[i] = v_comp(pts[i], axis);
-		qsort(c, (size_t)k, sizeof *c, cmp_double);
-		ex[axis] = k ? c[(long)(0.95 * (double)(k - 1))] - c[(long)(0.05 * (double)(k - 1))] : 0;
+		/* the 95th percentile, then the 5th among what lies below it */
+		long i95 = (long)(0.95 * (double)(k - 1)), i05 = (long)(0.05 * (double)(k - 1));
+		ex[axis] = k ? order_nth(c, k, i95) - order_nth(c, i95 + 1, i05) : 0;
 	}
 	free(c);
 	for (int i = 0; i < 2; i++) /* two largest extents first */
@@ -1054,15 +1055,13 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
-	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-	double cell = np ? 0.5 * sz[np / 10] : 0;
+	double cell = np ? 0.5 * order_nth(sz, np, np / 10) : 0;
 	/* no finer than a pixel of the image where the light lands (the eye
 	 * pass reads one point per sample: a finer map only adds noise) */
 	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
 		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i].p, opt->eye)) * opt->pixel_angle;
 	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
-		qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-		px = sz[np / 2];
+		px = order_nth(sz, np, np / 2);
 	}
 	cell = fmax(cell, px);
 	free(sz);
