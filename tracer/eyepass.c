@@ -182,7 +182,7 @@ static double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, s
 		struct vec3 hv = v_norm(v_add(L, v));
 		double c = v_dot(nf, hv);
 		if (c > 0)
-			k += f->specular * pow(c, 1 / fmax(f->roughness, 1e-6));
+			k += f->specular * pow(c, 1 / (f->roughness > 1e-6 ? f->roughness : 1e-6)); /* fmax, inline */
 	}
 	if (f->phong > 0) {
 		struct vec3 rv = v_sub(v_scale(nf, 2 * v_dot(nf, v)), v);
