@@ -276,10 +276,27 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	return true;
 }
 
-/* Sorts a[0..n) ascending: a radix sort, two passes of 16 bits (qsort's
- * comparisons cost ~25 times more on the window's samples). */
+/* Sorts a[0..n) ascending: by counting when the values span less than
+ * 2^16 (tile coordinates, the usual case), else a radix sort, two passes
+ * of 16 bits (qsort's comparisons cost ~25 times more on the window's
+ * samples). */
 static void sort_i32(int32_t *a, long n)
 {
+	if (n <= 0)
+		return;
+	int32_t lo = a[0], hi = a[0];
+	for (long i = 1; i < n; i++)
+		lo = a[i] < lo ? a[i] : lo, hi = a[i] > hi ? a[i] : hi;
+	if ((int64_t)hi - lo < 65536) { /* tile coordinates span little: count them */
+		long span = (long)((int64_t)hi - lo) + 1, *cnt = mem_calloc((size_t)span, sizeof *cnt);
+		for (long i = 0; i < n; i++)
+			cnt[a[i] - lo]++;
+		for (long v = 0, at = 0; v < span; v++)
+			for (long c = cnt[v]; c > 0; c--)
+				a[at++] = (int32_t)(lo + v);
+		free(cnt);
+		return;
+	}
 	uint32_t *x = (uint32_t *)a, *tmp = mem_alloc(sizeof *tmp * (size_t)(n ? n : 1));
 	long *cnt = mem_alloc(sizeof *cnt * 65536);
 	for (long i = 0; i < n; i++)
