@@ -1725,6 +1725,29 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 
 #define FINISH_CHUNK 2048 /* tiles per illum_finish_mt item */
 
+/* A sum of fixed-point numbers in 192 bits, which no sum of a map's nodes
+ * passes: added without saturating, then saturated once (wide_fx), which
+ * gives what fx_add gives added one by one (the least of the sum and the
+ * largest fx) for less work. */
+struct wide {
+	uint64_t lo, hi, top;
+};
+
+static inline void wide_add(struct wide *a, struct fx b)
+{
+	uint64_t lo = a->lo + b.lo, c1 = lo < b.lo;
+	uint64_t hi = a->hi + b.hi, c2 = hi < b.hi;
+	uint64_t hi2 = hi + c1;
+	a->lo = lo;
+	a->hi = hi2;
+	a->top += c2 + (hi2 < c1);
+}
+
+static struct fx wide_fx(struct wide a)
+{
+	return a.top ? (struct fx){UINT64_MAX, UINT64_MAX} : (struct fx){a.lo, a.hi};
+}
+
 struct finish_job {
 	struct illum_map *m;
 	long k0, k1;      /* tiles [k0, k1) */
@@ -1773,10 +1796,13 @@ static void near_counts(const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
 {
 	memset(c, 0, sizeof c[0] * NEAR_N);
 	for (int b = 0; b < 3; b++)
-		for (int a = 0; a < 3; a++)
-			if (nb->t[b][a])
-				for (int q = 0; q < TN; q++)
-					c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] = nb->t[b][a]->n[q].count;
+		for (int a = 0; a < 3; a++) {
+			const struct tile *t = nb->t[b][a];
+			if (t)
+				for (int y = 0; y < ILLUM_TILE; y++)
+					for (int x = 0; x < ILLUM_TILE; x++)
+						c[b * ILLUM_TILE + y][a * ILLUM_TILE + x] = t->n[y * ILLUM_TILE + x].count;
+		}
 }
 
 /* node_isolated for node q of the middle tile of c (near_counts), when its
@@ -1801,12 +1827,14 @@ static void finish_work(void *ctx, long job, int worker)
 	/* node_isolated reaches two nodes each way on both axes (not fewer on
 	 * a short wrapping axis) */
 	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
-	struct fx tot[3] = {J->tot[0], J->tot[1], J->tot[2]}, rem[3] = {J->rem[0], J->rem[1], J->rem[2]};
+	struct wide tot[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rem[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
-		for (int q = 0; q < TN; q++)
-			for (int c = 0; c < 3; c++)
-				fx_add(&tot[c], t->n[q].e[c]);
+		for (int q = 0; q < TN; q++) {
+			wide_add(&tot[0], t->n[q].e[0]);
+			wide_add(&tot[1], t->n[q].e[1]);
+			wide_add(&tot[2], t->n[q].e[2]);
+		}
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
 		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
@@ -1835,12 +1863,12 @@ static void finish_work(void *ctx, long job, int worker)
 			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
-					fx_add(&rem[c], t->n[q].e[c]);
+					wide_add(&rem[c], t->n[q].e[c]);
 			}
 		}
 	}
-	for (int c = 0; c < 3; c++)
-		J->tot[c] = tot[c], J->rem[c] = rem[c];
+	for (int c = 0; c < 3; c++) /* (J's sums start at 0) */
+		J->tot[c] = wide_fx(tot[c]), J->rem[c] = wide_fx(rem[c]);
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
