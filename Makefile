@@ -31,6 +31,14 @@ else ifdef SANITIZE
   LDSAN = -fsanitize=address,undefined,float-cast-overflow
 endif
 
+# The eye pass's hot path (camera rays, ray packets, shading) at -O3 in
+# release builds: fewer instructions per pixel, the same bits (no fast-math)
+HOT_C = tracer/eyepass.c tracer/bvh.c tracer/camera.c tracer/shape.c tracer/shapes/sphere.c \
+        tracer/render.c tracer/material.c
+ifneq ($(MODE),debug)
+$(HOT_C:%.c=$(BUILD)/%.o): OPT := $(subst -O2,-O3,$(OPT)) -fno-math-errno
+endif
+
 PKGS     = OpenEXR OpenColorIO libpng freetype2
 PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)

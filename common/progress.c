@@ -83,9 +83,13 @@ void progress_step(struct progress *p, long n)
 	if (step <= last)
 		return;
 	pthread_mutex_lock(&p->lock);
-	if (step > atomic_load(&p->shown)) { /* another thread may have drawn it */
+	/* another thread may have drawn it, or a later step: the lines show
+	 * every tenth passed, in order, the bar only the latest */
+	int from = atomic_load(&p->shown) + 1;
+	if (step >= from) {
 		atomic_store(&p->shown, step);
-		draw(p, done, step);
+		for (int s = p->mode == PROGRESS_LINES ? from : step; s <= step; s++)
+			draw(p, done, s);
 	}
 	pthread_mutex_unlock(&p->lock);
 }

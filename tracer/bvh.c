@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include "../common/arena.h"
+#include "leafbox.h"
 #include "shapes/prim.h"
 
 struct bvh {
@@ -54,7 +55,9 @@ struct bvh {
 	struct bbox bounds;            /* world bounds of the bounded leaves */
 	double pad;                    /* float safety margin of every box */
 	struct bbox padded;            /* bounds grown by pad (float_ray) */
-	bool brute;                    /* few cheap leaves: tested in order, without Embree */
+	bool brute;                    /* few leaves: tested without Embree (brute) */
+	struct leafbox *box;           /* the leaves' boxes grown by pad, when brute
+	                                  tests boxes first (NULL: it does not) */
 };
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
@@ -162,8 +165,11 @@ static void collect(struct builder *B, const struct object *o)
 		add_leaf(B, o, b);
 }
 
-/* Scenes with at most this many bounded leaves, each of a kind whose exact
- * test is a closed form (cheap_kind), are traced without Embree (brute). */
+/* Scenes with at most BRUTE_MAX bounded leaves, each of a kind whose exact
+ * test is a closed form (cheap_kind), are traced without Embree (brute),
+ * every leaf tested on every ray. Other scenes of at most LEAFBOX_MAX
+ * leaves are traced without Embree too, the leaves' boxes tested first, in
+ * double, two at a time (boxed). */
 #define BRUTE_MAX 4
 
 /* A leaf whose exact test costs about what Embree's box test would: without
@@ -198,6 +204,21 @@ static float step_float(float f, bool towards_up)
 	b += (f > 0) == towards_up ? 1u : ~0u; /* away from or towards zero */
 	memcpy(&f, &b, sizeof f);
 	return f;
+}
+
+/* The next double above x (x not NaN): nextafter(x, INFINITY), without
+ * the call. */
+static inline double next_up(double x)
+{
+	if (x == INFINITY)
+		return x;
+	if (x == 0)
+		return 0x1p-1074;
+	uint64_t u;
+	memcpy(&u, &x, sizeof u);
+	u += x > 0 ? 1 : (uint64_t)-1;
+	memcpy(&x, &u, sizeof x);
+	return x;
 }
 
 /* x rounded to a float no greater (down) or no less (up) than it. */
@@ -237,13 +258,12 @@ HOT bool sphere_t(const struct object *o, const struct ray *r, double tmin, doub
 
 /* Tests primitive id for query q: on a better hit, records it (a sphere by
  * its t alone; traverse fills *h at the end) and returns true. */
-HOT bool consider(struct query *q, int id)
+HOT bool consider_obj(struct query *q, int id, const struct object *o)
 {
-	const struct object *o = q->b->prims[id];
 	if (o->flags & q->skip)
 		return false;
 	/* a tie with the best so far is looked at: the lower index wins */
-	double hi = q->found && q->best >= 0 && id < q->best ? nextafter(q->tmax, INFINITY) : q->tmax, t;
+	double hi = q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax, t;
 	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return false;
@@ -264,13 +284,18 @@ HOT bool consider(struct query *q, int id)
 	return true;
 }
 
+HOT bool consider(struct query *q, int id)
+{
+	return consider_obj(q, id, q->b->prims[id]);
+}
+
 /* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
  * single ray) for query q: on a better hit, records it and shrinks the
  * lane's tfar just past it. */
-static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
-                      unsigned geom)
+static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
+                      unsigned i, unsigned geom)
 {
-	if (!consider(q, id))
+	if (!consider_obj(q, id, o))
 		return;
 	/* RTCRayHitN is a structure of arrays: tfar is float row 8, the hit's
 	 * primID and geomID are rows 12 + 5 and 12 + 6 */
@@ -283,9 +308,11 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
+	struct query *lane = P ? &P->q[P->base] : q; /* lane i's query: lane[i], or q alone */
+	const struct object *o = lane->b->prims[a->primID]; /* looked up once for every lane */
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i])
-			test_lane(P ? &P->q[P->base + (int)i] : q, (int)a->primID, a->rayhit, a->N, i, a->geomID);
+			test_lane(P ? &lane[i] : q, (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
 }
 
 /* Whether primitive id blocks query q's ray over its interval. */
@@ -340,8 +367,19 @@ struct bvh *bvh_build(struct object **objs, int n)
 	t->brute = t->nprims <= BRUTE_MAX;
 	for (int i = 0; i < t->nprims && t->brute; i++)
 		t->brute = cheap_kind(t->prims[i]);
+	if (!t->brute && t->nprims <= LEAFBOX_MAX) {
+		struct bbox bx[LEAFBOX_MAX];
+		for (int i = 0; i < t->nprims; i++) {
+			struct bbox b = shape_bounds(t->prims[i]); /* as collect found it */
+			bx[i] = (struct bbox){v_sub(b.lo, v3(t->pad, t->pad, t->pad)),
+			                      v_add(b.hi, v3(t->pad, t->pad, t->pad))};
+		}
+		t->box = mem_alloc(sizeof *t->box);
+		leafbox_set(t->box, t->nprims, bx);
+		t->brute = true;
+	}
 	if (t->brute)
-		return t; /* tested in order (brute): no Embree scene */
+		return t; /* tested without Embree (brute): no Embree scene */
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
@@ -369,7 +407,7 @@ void bvh_free(struct bvh *b)
 		rtcReleaseScene(b->scene);
 	if (b->own_prims)
 		free(b->prims);
-	free(b->unbound), free(b->uplane);
+	free(b->unbound), free(b->uplane), free(b->box);
 	free(b);
 }
 
@@ -378,6 +416,11 @@ int bvh_count(const struct bvh *b, int *unbounded)
 	if (unbounded)
 		*unbounded = b->nunbound;
 	return b->nprims;
+}
+
+bool bvh_walks(const struct bvh *b)
+{
+	return b->scene != NULL;
 }
 
 struct bbox bvh_bounds(const struct bvh *b)
@@ -416,43 +459,39 @@ static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, 
 	return true;
 }
 
-/* The float ray of query q, as the nine rows of an RTCRay (org xyz,
- * tnear, dir xyz, time, tfar): it starts where q's ray enters the padded
- * box of everything bounded, and its interval is rounded outward. False
- * (and no ray) when the ray misses that box within q's interval. */
-static bool float_ray(struct query *q, float row[9])
+/* The float ray of query q, written as lane i of a packet of N rays (N = 1:
+ * an RTCRayHit or RTCRay): the nine rows of an RTCRay (org xyz, tnear, dir
+ * xyz, time, tfar), then mask, id, flags and the hit's geomID (words 9,
+ * 10, 11 and 12 + 6, written for an RTCRayHit only: hit set). It starts
+ * where q's ray enters the padded box of everything bounded, and its
+ * interval is rounded outward. False (and no ray) when the ray misses
+ * that box within q's interval. */
+static inline bool float_ray(struct query *q, float *f, unsigned N, unsigned i, bool hit)
 {
-	const struct bbox bx = q->b->padded;
-	struct vec3 ro = q->r->o;
+	const struct bbox *bx = &q->b->padded;
+	const struct ray *r = q->r;
 	double te = 0; /* a ray starting inside the box enters it at t <= 0 */
-	bool inside = ro.x >= bx.lo.x && ro.x <= bx.hi.x && ro.y >= bx.lo.y && ro.y <= bx.hi.y &&
-	              ro.z >= bx.lo.z && ro.z <= bx.hi.z;
-	if (!inside && !enter(bx, q->r, -INFINITY, INFINITY, &te))
+	bool inside = r->o.x >= bx->lo.x && r->o.x <= bx->hi.x && r->o.y >= bx->lo.y && r->o.y <= bx->hi.y &&
+	              r->o.z >= bx->lo.z && r->o.z <= bx->hi.z;
+	if (!inside && !enter(*bx, r, -INFINITY, INFINITY, &te))
 		return false;
 	if (!(te < q->tmax))
 		return false;
-	q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
-	struct vec3 o = v_add(q->r->o, v_scale(q->r->d, q->t0));
-	double lo = q->tmin - q->t0;
-	row[0] = (float)o.x, row[1] = (float)o.y, row[2] = (float)o.z;
-	row[3] = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
-	row[4] = (float)q->r->d.x, row[5] = (float)q->r->d.y, row[6] = (float)q->r->d.z, row[7] = 0;
-	row[8] = isinf(q->tmax) ? INFINITY : up((q->tmax - q->t0) * (1 + 1e-6));
-	return true;
-}
-
-/* Writes a float ray as lane i of a packet of N rays (N = 1: an RTCRayHit).
- * RTCRayN's rows: the nine of float_ray, then mask, id, flags and the hit's
- * geomID as words 9, 10, 11 and 12 + 6. */
-static inline void put_lane(float *f, unsigned N, unsigned i, const float row[9])
-{
-	for (unsigned k = 0; k < 9; k++)
-		f[k * N + i] = row[k];
+	double t0 = q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
+	struct vec3 o = v_add(r->o, v_scale(r->d, t0));
+	double lo = q->tmin - t0;
+	f[0 * N + i] = (float)o.x, f[1 * N + i] = (float)o.y, f[2 * N + i] = (float)o.z;
+	f[3 * N + i] = lo > 0 ? down(lo * (1 - 1e-6)) : 0;
+	f[4 * N + i] = (float)r->d.x, f[5 * N + i] = (float)r->d.y, f[6 * N + i] = (float)r->d.z;
+	f[7 * N + i] = 0;
+	f[8 * N + i] = isinf(q->tmax) ? INFINITY : up((q->tmax - t0) * (1 + 1e-6));
 	unsigned *u = (unsigned *)f;
 	u[9 * N + i] = ~0u;
 	u[10 * N + i] = 0;
 	u[11 * N + i] = 0;
-	u[18 * N + i] = RTC_INVALID_GEOMETRY_ID;
+	if (hit)
+		u[18 * N + i] = RTC_INVALID_GEOMETRY_ID;
+	return true;
 }
 
 /* The bounded leaves through Embree; q holds the interval and the result. */
@@ -460,10 +499,8 @@ static void walk(struct query *q, bool any)
 {
 	const struct bvh *b = q->b;
 	struct RTCRayHit rh;
-	float row[9];
-	if (!float_ray(q, row))
+	if (!float_ray(q, (float *)&rh, 1, 0, !any))
 		return;
-	put_lane((float *)&rh, 1, 0, row);
 	rtcInitIntersectContext(&q->rc);
 	q->lanes = 1;
 	if (any) {
@@ -474,14 +511,37 @@ static void walk(struct query *q, bool any)
 	}
 }
 
+/* The bounded leaves of a scene of at most LEAFBOX_MAX for query q, by their
+ * boxes first; the nearest hit skips a leaf whose box the ray enters
+ * beyond the best hit so far. The hit is that of the loop in order. */
+static void boxed(struct query *q, bool any)
+{
+	double at[LEAFBOX_MAX];
+	unsigned m = leafbox_hits(q->b->box, q->r, q->tmin, any ? q->tmax : next_up(q->tmax), at);
+	for (int i = 0; m; i++, m >>= 1) {
+		if (!(m & 1))
+			continue;
+		if (any && blocks(q, (unsigned)i)) {
+			q->found = true;
+			return;
+		}
+		if (!any && !(at[i] > next_up(q->tmax))) /* a tie is looked at */
+			consider(q, i);
+	}
+}
+
 /* Every bounded leaf in order, as the callbacks test them: without a
  * device (Embree failed to start), and for a scene of at most BRUTE_MAX
  * cheap leaves, where setting up Embree's float ray and walk costs more
  * than testing them all (a sphere's t is ~80 instructions; Embree's query
- * ~500).
+ * ~500); by their boxes (boxed) for other scenes of at most LEAFBOX_MAX.
  * The hit is the same either way (see the top of this file). */
 HOT void brute(struct query *q, bool any)
 {
+	if (q->b->box) {
+		boxed(q, any);
+		return;
+	}
 	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
 		if (!any) {
 			consider(q, i);
@@ -502,14 +562,17 @@ HOT bool unbounded(struct query *q, bool any)
 		const struct object *o = q->b->unbound[i];
 		if (o->flags & q->skip)
 			continue;
-		if (any && shape_occluded(o, q->r, q->tmin, q->tmax))
-			return q->found = true;
 		double t;
-		if (!any && o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
+		if (o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
 			const struct pl_prep *pp = &q->b->uplane[i]; /* inline without a transform */
-			if (o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
-			          : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t))
-				q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+			if (!(o->xf ? shape_plane_hit_t(o, pp, q->r, q->tmin, q->tmax, &t)
+			            : pp->ok && prim_plane_root(pp->n, pp->d, q->r, q->tmin, q->tmax, &t)))
+				continue;
+			if (any) /* as shape_occluded, without the plane's frame */
+				return q->found = true;
+			q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+		} else if (any && shape_occluded(o, q->r, q->tmin, q->tmax)) {
+			return q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
 			*q->h = tmp, q->tmax = tmp.t, q->found = true, q->ubest = -1;
 		}
@@ -519,7 +582,14 @@ HOT bool unbounded(struct query *q, bool any)
 
 /* The hit of a sphere that won with its t alone: the same test over the
  * same interval, in full. */
-static void finish(struct query *q)
+static void finish_hit(struct query *q);
+static inline void finish(struct query *q)
+{
+	if (q->deferred || (q->best < 0 && q->ubest >= 0))
+		finish_hit(q);
+}
+
+static void finish_hit(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
@@ -579,13 +649,10 @@ HOT bool traverse(const struct bvh *b, const struct ray *r, double tmin, double 
  * it misses the scene's box). */
 static bool packet_lane(struct query *q, int i, int *valid, struct RTCRayHit16 *rh, struct RTCRayHit8 *rh8)
 {
-	float row[9];
-	valid[i] = float_ray(q, row) ? -1 : 0;
-	if (valid[i] && native16)
-		put_lane((float *)rh, BVH_PACKET, (unsigned)i, row);
-	else if (valid[i])
-		put_lane((float *)&rh8[i / 8], 8, (unsigned)i % 8, row);
-	return valid[i] != 0;
+	bool ok = native16 ? float_ray(q, (float *)rh, BVH_PACKET, (unsigned)i, true)
+	                   : float_ray(q, (float *)&rh8[i / 8], 8, (unsigned)i % 8, true);
+	valid[i] = ok ? -1 : 0;
+	return ok;
 }
 
 /* Embree's context for a packet of camera or shadow rays (coherent). */
@@ -620,7 +687,8 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		valid[i] = 0;
 		if (i >= n)
 			continue;
-		unbounded(q, false);
+		if (b->nunbound)
+			unbounded(q, false);
 		if (b->nprims == 0)
 			continue;
 		if (!b->scene) {

@@ -53,6 +53,10 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
  * light, which stay together). */
 void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const double *tmax,
                          unsigned skip, bool *blocked);
+/* Whether Embree walks b's queries: false for a scene traced leaf by leaf
+ * (a few leaves, bvh.c), where a packet costs what its rays cost one by
+ * one, plus the packet's set-up. */
+bool bvh_walks(const struct bvh *b);
 /* Leaves after flattening: bounded ones in the tree, and unbounded ones. */
 int bvh_count(const struct bvh *b, int *unbounded);
 /* World bounds of everything bounded in the tree (empty when none). */

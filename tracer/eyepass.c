@@ -306,17 +306,25 @@ static struct vec3 disperse(struct path *pa, const struct surf *sf, const struct
 	return out;
 }
 
+/* Whether the surface reflects or transmits at all: else specular() gives 0
+ * (asked first: most surfaces do neither). */
+static bool scatters(const struct surf *sf)
+{
+	const struct finish *f = tex_finish(sf->tex);
+	return sf->pc.f > 0 || sf->pc.t > 0 || !no_colour(f->refl_min) || !no_colour(f->refl_max);
+}
+
 /* The reflected and transmitted light at a hit, as the surface step
  * (surface.h) splits it; dispersive glass splits a full-colour path first. */
 static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
                             double weight, unsigned skip)
 {
-	const struct interior *in = mat_interior(sf->h->obj);
-	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
 	const struct finish *f = tex_finish(sf->tex);
 	if (!clear && no_colour(f->refl_min) && no_colour(f->refl_max))
 		return v3(0, 0, 0); /* neither reflects nor transmits: R = T = 0 */
+	const struct interior *in = mat_interior(sf->h->obj);
+	bool disperses = in->dispersion > 0 && in->dispersion != 1;
 	if (disperses && clear && pa->band.channel < 0 && !(pa->band.lambda > 0))
 		return disperse(pa, sf, in, d, depth, weight, skip);
 	struct surf_in si = {sf->h, tex_finish(sf->tex), sf->pc, in, d, sf->nf,
@@ -361,7 +369,7 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 		sf.nf = pattern_perturb(tex_normal(sf.tex), h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
 	if (!s->legacy_lights) /* POV-Ray does not clamp: transmit 100 amplifies contrast */
-		sf.opacity = fmin(1, fmax(0, sf.opacity));
+		sf.opacity = sf.opacity > 0 ? d_min(sf.opacity, 1) : 0; /* NaN → 0; never -0 */
 	const struct finish *f = tex_finish(sf.tex);
 	struct vec3 pc = col3(sf.pc), E = v3(0, 0, 0), H = v3(0, 0, 0), lit = v3(0, 0, 0);
 	struct vec3 emis = v_mul(pc, v_add(v_mul(col3(f->ambient), col3(s->gs.ambient_light)),
@@ -374,7 +382,8 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 	if (f->diffuse > 0 && v_maxc(Ec) > 0) /* the maps as one more diffuse light: ρ·E/π */
 		diffuse = v_add(diffuse, v_scale(v_mul(v_scale(pc, f->diffuse), Ec),
 		                                 (s->legacy_lights ? 1 : 1 / M_PI) * sf.opacity));
-	struct vec3 spec = upper ? v3(0, 0, 0) : specular(pa, &sf, v_norm(d), depth, weight, skip);
+	struct vec3 spec = upper || !scatters(&sf) ? v3(0, 0, 0)
+	                                          : specular(pa, &sf, v_neg(sf.v), depth, weight, skip); /* v_norm(d) */
 	if (aov) {
 		aov->hit = true;
 		aov->caustic = Ec;
@@ -559,7 +568,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	if (aov)
 		aov->z = hp->t * v_len(r.d);
 	struct vec3 c = shade(pa, hp, r.d, depth, weight, skip, aov);
-	if (!hp->entering) {
+	if (!hp->entering && mat_interior(hp->obj)->fade_distance > 0) { /* else the fade is 1 */
 		struct vec3 fade = opt_fade(mat_interior(hp->obj), hp->t * v_len(r.d));
 		c = v_mul(c, fade);
 		if (aov) {
@@ -628,7 +637,7 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 		l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
 	else
 		pa->rng.dim += 2; /* the numbers after it stay the same */
-	return cam_ray(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+	return cam_ray_fast(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
 }
 
 /* Sample i's path and camera ray: sample 0's as eye_pixels started and
@@ -652,9 +661,7 @@ static struct ray sample_start(const struct eye_ctx *ctx, int x, int y, int i, c
 static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, long long *rays,
                   struct path *pa0, const struct ray *r0, const struct hit *pre, int pre_state)
 {
-	struct vec3 sum = v3(0, 0, 0), E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
-	struct aov near = {.z = INFINITY};
-	int hits = 0;
+	struct vec3 sum = v3(0, 0, 0);
 	if (ctx->beauty_only) { /* the same radiance, without the layers (left unset) */
 		for (int i = 0; i < ctx->spp; i++) {
 			struct path own, *pa = &own;
@@ -673,6 +680,9 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 		put3(out->rgb, sum, 1.0 / ctx->spp);
 		return;
 	}
+	struct vec3 E = v3(0, 0, 0), C = v3(0, 0, 0), S = v3(0, 0, 0), M = v3(0, 0, 0);
+	struct aov near = {.z = INFINITY};
+	int hits = 0;
 	for (int i = 0; i < ctx->spp; i++) {
 		struct path pa;
 		struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
@@ -721,7 +731,7 @@ static bool coherent(int n, const struct hit *h, const bool *found)
 	for (int i = 0; i < n; i++) {
 		if (!found[i])
 			continue;
-		t0 = fmin(t0, h[i].t), t1 = fmax(t1, h[i].t);
+		t0 = d_min(t0, h[i].t), t1 = d_max(t1, h[i].t); /* hits: finite, > 0 */
 		int k = 0;
 		while (k < nseen && seen[k] != h[i].obj)
 			k++;
@@ -791,10 +801,21 @@ static void shadow_packets(const struct eye_ctx *ctx, int n, const struct ray *r
 	}
 }
 
+/* Whether a camera ray that misses everything gives its pixel the plain
+ * background, with nothing else to compute: one sample and no AOVs, no sky
+ * or fog, and trace() lets a camera ray through (depth 1, weight 1). */
+static bool plain_miss(const struct eye_ctx *ctx)
+{
+	const struct scene *s = ctx->scene;
+	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5;
+	return ctx->beauty_only && ctx->spp == 1 && !s->nsky && !s->fog.type && 1 <= maxd &&
+	       !(1 < s->gs.adc_bailout);
+}
+
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
-	struct ray r[BVH_PACKET] = {0};
+	struct ray r[BVH_PACKET]; /* lanes 0..n-1 are set and read */
 	struct hit h[BVH_PACKET];
 	struct path pa[BVH_PACKET];
 	bool found[BVH_PACKET];
@@ -802,8 +823,15 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
-	if (!ctx->see_through && ctx->scene->nlights > 0)
+	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
 		shadow_packets(ctx, n, r, h, found, pa, memo);
-	for (int i = 0; i < n; i++)
+	bool bg = plain_miss(ctx);
+	for (int i = 0; i < n; i++) {
+		if (bg && !found[i] && v_dot(r[i].d, r[i].d) > 0) { /* pixel() and trace() would give */
+			put3(out[i].rgb, v_add(v3(0, 0, 0), col3(ctx->scene->background)), 1.0 / ctx->spp);
+			*rays += 1;
+			continue;
+		}
 		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], &r[i], &h[i], found[i] ? 1 : -1);
+	}
 }

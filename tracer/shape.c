@@ -131,7 +131,7 @@ bool shape_occluded(const struct object *o, const struct ray *r, double tmin, do
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	return p->intersect(o, lr, tmin, tmax, &lh);
+	return p->occluded ? p->occluded(o, lr, tmin, tmax) : p->intersect(o, lr, tmin, tmax, &lh);
 }
 
 bool shape_inside(const struct object *o, struct vec3 world_p)

@@ -98,7 +98,35 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 	si->straight = straight(s, h->obj, si->in);
 }
 
-/* Can o, or a part of it, pass light straight through? */
+static bool opaque(struct colour c) { return c.f == 0 && c.t == 0; }
+
+/* Can pattern pigment p give a colour with filter or transmit anywhere?
+ * False only when every colour it can give, or blend from, has neither
+ * (a checker of two plain colours, a colour_map without them): then an
+ * object of it passes no light (opt_transmission is 0). Image maps (alpha)
+ * and pigments nested deeper than pigment_at looks always may. */
+static bool may_pass(const struct pigment *p, int depth)
+{
+	if (p->kind == PIG_SOLID)
+		return !opaque(p->c[0]);
+	const struct pattern *pt = pig_pattern(p);
+	if (p->kind == PIG_IMAGE || depth > 32)
+		return true;
+	for (int i = 0; pt->pmap && i < pt->npmap; i++)
+		if (may_pass(pt->pmap[i].pig, depth + 1))
+			return true;
+	if (p->kind == PIG_CHECKER || p->kind == PIG_HEXAGON || p->kind == PIG_BRICK)
+		return !opaque(p->c[0]) || !opaque(pt->more[0]) || (p->kind == PIG_HEXAGON && !opaque(pt->more[1]));
+	for (int i = 0; pt->map && i < pt->nmap; i++) /* else a default map: opaque */
+		if (!opaque(pt->map[i].c))
+			return true;
+	return false;
+}
+
+/* Can o, or a part of it, pass light straight through? A texture_map, a
+ * layered texture or an interior that fades (whose fade a shadow ray
+ * multiplies in) counts as clear unless its pigment is a plain opaque
+ * colour. */
 static bool straight_in(const struct scene *s, const struct object *o)
 {
 	if (o->kind >= OBJ_FIRST_CSG) {
@@ -107,8 +135,11 @@ static bool straight_in(const struct scene *s, const struct object *o)
 				return true;
 		return false;
 	}
-	const struct pigment *p = &mat_texture(o)->pigment;
-	bool clear = p->kind != PIG_SOLID || p->c[0].f + p->c[0].t > 0;
+	const struct texture *t = mat_texture(o);
+	const struct pigment *p = &t->pigment;
+	bool clear = p->kind == PIG_SOLID ? p->c[0].f + p->c[0].t > 0
+	                                  : tex_map(t) || tex_below(t) || mat_interior(o)->fade_distance > 0 ||
+	                                        may_pass(p, 0);
 	return clear && surf_straight(s, o);
 }
 

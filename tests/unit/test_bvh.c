@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "../../tracer/bvh.h"
+#include "../../tracer/leafbox.h"
 #include "geo_rand.h"
 #include "test.h"
 
@@ -353,25 +354,34 @@ static void t_occluded_packet(void)
 	bvh_free(b);
 }
 
-/* Scenes of at most four bounded leaves are traced without Embree (bvh.c's
- * BRUTE_MAX): the hits are those of brute force and of the same leaves
- * with a fifth, out of every ray's way, which puts Embree back, bit for
- * bit (nearest, any hit, and the full hit filled in at the end). */
+/* Scenes of at most four cheap bounded leaves are traced without Embree
+ * (bvh.c's BRUTE_MAX), and so are scenes of at most eight of any kind, by
+ * their boxes (LEAFBOX_MAX): the hits are those of brute force and of the
+ * same leaves with eight more, out of every ray's way, which puts Embree
+ * back, bit for bit (nearest, any hit, and the full hit filled in at the
+ * end), for rays in any direction and along the axes. A torus's t is the
+ * same to 1e-12 (of 1 + t) only: its root is refined within the interval asked, which
+ * ends at the best hit so far, found in a different order each way. */
 static void t_small_scenes(void)
 {
-	enum { NK = 4 };
-	static struct object o[NK + 2];
-	struct object *top[NK + 2];
+	enum { NK = 8, FAR = 8 };
+	static struct object o[NK + 1 + FAR];
+	struct object *top[NK + 1 + FAR];
+	const enum object_kind kind[NK] = {OBJ_SPHERE, OBJ_SPHERE, OBJ_BOX,      OBJ_SPHERE,
+	                                OBJ_TORUS,  OBJ_CONE,   OBJ_CYLINDER, OBJ_BOX};
 	rng_seed(25);
-	int mism = 0, hits = 0;
+	int mism = 0, hits = 0, torus_hits = 0;
 	for (int k = 1; k <= NK; k++) {
-		for (int i = 0; i < k; i++) { /* touching spheres, one moved, and a box */
-			o[i] = mk_obj(i == 2 ? OBJ_BOX : OBJ_SPHERE);
+		for (int i = 0; i < k; i++) { /* touching spheres, one moved, a box, a torus… */
+			o[i] = mk_obj(kind[i]);
 			if (i == 2) {
 				o[i].g.box.lo = v3(-1, -1, -1), o[i].g.box.hi = v3(0.5, 1, 2);
-			} else {
+			} else if (kind[i] == OBJ_SPHERE) {
 				o[i].g.sphere.c = v3(1.5 * i, 0.3 * i, 0);
 				o[i].g.sphere.r = 1 - 0.1 * i;
+			} else {
+				o[i] = rnd_prim(kind[i], false);
+				o[i].xf = xf_keep(xf_then(rnd_xform(false, true), xf_translate(rnd_vec(-2, 2))));
 			}
 			if (i == 3)
 				o[i].xf = xf_keep(xf_then(xf_rotate(v3(10, 20, 30)), xf_translate(v3(0, 2, 0))));
@@ -379,12 +389,15 @@ static void t_small_scenes(void)
 		}
 		o[k] = mk_obj(OBJ_PLANE); /* a floor, unbounded */
 		o[k].g.plane.n = v3(0, 1, 0), o[k].g.plane.d = -1.5;
-		o[k + 1] = mk_obj(OBJ_SPHERE); /* far behind every ray's start */
-		o[k + 1].g.sphere.c = v3(0, 0, -500), o[k + 1].g.sphere.r = 1;
-		top[k] = &o[k], top[k + 1] = &o[k + 1];
-		struct bvh *small = bvh_build(top, k + 1), *big = bvh_build(top, k + 2);
-		int n5 = bvh_count(big, NULL);
-		CHECK(bvh_count(small, NULL) == k && n5 == k + 1);
+		top[k] = &o[k];
+		for (int i = 0; i < FAR; i++) { /* far behind every ray's start */
+			o[k + 1 + i] = mk_obj(OBJ_SPHERE);
+			o[k + 1 + i].g.sphere.c = v3(3 * i, 0, -500), o[k + 1 + i].g.sphere.r = 1;
+			top[k + 1 + i] = &o[k + 1 + i];
+		}
+		struct bvh *small = bvh_build(top, k + 1), *big = bvh_build(top, k + 1 + FAR);
+		int nb = bvh_count(big, NULL);
+		CHECK(bvh_count(small, NULL) == k && nb == k + FAR);
 		for (int i = 0; i < 4000; i++) {
 			struct ray r = {rnd_vec(-4, 4), rnd_dir()};
 			if (r.d.z < 0)
@@ -395,17 +408,22 @@ static void t_small_scenes(void)
 				shape_uv_point(s, rnd(), rnd(), &q, NULL, NULL);
 				r.o = q;
 			}
+			if (i % 5 == 0) /* along an axis or a plane of two */
+				r.d = i % 10 ? v3(0, r.d.y, r.d.z < 0.1 ? 0 : r.d.z) : v3(i % 20 ? -1 : 1, 0, 0);
 			double tmin = i % 3 ? 1e-9 : 0, tmax = i % 4 ? INFINITY : rndr(0.01, 10);
 			struct hit hb, hs, he;
 			bool gb = brute(top, k + 1, &r, tmin, tmax, 0, &hb);
 			bool gs = bvh_intersect(small, &r, tmin, tmax, &hs);
 			bool ge = bvh_intersect(big, &r, tmin, tmax, &he);
 			hits += gs;
-			bool bad = gb != gs || gs != ge ||
-			           (gs && (hb.t != hs.t || hb.obj != hs.obj || he.t != hs.t || he.obj != hs.obj ||
-			                   he.u != hs.u || he.v != hs.v || he.n.x != hs.n.x || he.p.y != hs.p.y ||
-			                   he.dpdu.z != hs.dpdu.z || he.entering != hs.entering));
+			bool bad = gb != gs || gs != ge || (gs && (hb.obj != hs.obj || he.obj != hs.obj));
+			if (gs && !bad && hs.obj->kind == OBJ_TORUS) /* see above */
+				bad = !(fabs(hb.t - hs.t) <= 1e-12 * (1 + hs.t) && fabs(he.t - hs.t) <= 1e-12 * (1 + hs.t));
+			else if (gs && !bad)
+				bad = hb.t != hs.t || he.t != hs.t || he.u != hs.u || he.v != hs.v || he.n.x != hs.n.x ||
+				      he.p.y != hs.p.y || he.dpdu.z != hs.dpdu.z || he.entering != hs.entering;
 			bad |= bvh_occluded(small, &r, tmin, tmax) != gb || bvh_occluded(big, &r, tmin, tmax) != gb;
+			torus_hits += gs && hs.obj->kind == OBJ_TORUS;
 			if (bad && mism < 5)
 				printf("#   %d leaves, ray %d: brute %d t=%.17g, small %d t=%.17g, embree %d t=%.17g\n", k, i, gb,
 				       gb ? hb.t : 0, gs, gs ? hs.t : 0, ge, ge ? he.t : 0);
@@ -413,9 +431,11 @@ static void t_small_scenes(void)
 		}
 		bvh_free(small), bvh_free(big);
 	}
-	printf("# %d hits of %d rays in scenes of 1-4 leaves, %d mismatches\n", hits, NK * 4000, mism);
+	printf("# %d hits (%d on a torus) of %d rays in scenes of 1-8 leaves, %d mismatches\n", hits, torus_hits,
+	       NK * 4000, mism);
 	CHECK(mism == 0);
 	CHECK(hits > NK * 2000);
+	CHECK(torus_hits > 1000);
 }
 
 static bool never(const void *ctx, const struct object *o)
@@ -471,6 +491,61 @@ static void t_lazy(void)
 	CHECK(hits > 12000);
 }
 
+/* leafbox_hits (tracer/leafbox.h) never leaves out a box the ray meets:
+ * for random boxes and rays (some along axes, some from a face), every
+ * point of the ray over [tmin, tmax] found inside a box has that box's bit
+ * set and its entry no later; the SSE2 and the AVX versions (when the CPU
+ * has it) give the same bits and entries. */
+static void t_leafbox(void)
+{
+	rng_seed(27);
+	int missed = 0, differ = 0, inside = 0, set = 0;
+	for (int k = 0; k < 3000; k++) {
+		struct bbox b[LEAFBOX_MAX];
+		int n = 1 + k % LEAFBOX_MAX;
+		for (int i = 0; i < n; i++) {
+			struct vec3 c = rnd_vec(-3, 3), e = rnd_vec(0.05, 2);
+			b[i] = (struct bbox){v_sub(c, e), v_add(c, e)};
+		}
+		struct leafbox lb;
+		leafbox_set(&lb, n, b);
+		struct ray r = {rnd_vec(-6, 6), rnd_dir()};
+		if (k % 4 == 0) /* aimed at a box */
+			r.d = v_norm(v_sub(v_scale(v_add(b[k % n].lo, b[k % n].hi), 0.5), r.o));
+		if (k % 4 == 1)
+			r.d = v3(0, k % 8 == 1 ? 1 : -1, 0);
+		if (k % 4 == 2) /* from a face of box 0 */
+			r.o.x = b[0].lo.x, r.o.y = b[0].lo.y + 0.3 * (b[0].hi.y - b[0].lo.y);
+		double tmin = k % 3 ? 0 : rndr(0, 2), tmax = k % 5 ? INFINITY : rndr(2, 12), at[LEAFBOX_MAX];
+		unsigned m = leafbox_hits(&lb, &r, tmin, tmax, at);
+		for (int i = 0; i < n; i++)
+			for (int j = 0; j <= 200; j++) {
+				double t = tmin + (fmin(tmax, 20) - tmin) * j / 200;
+				struct vec3 p = ray_at(r, t);
+				if (p.x < b[i].lo.x || p.x > b[i].hi.x || p.y < b[i].lo.y || p.y > b[i].hi.y || p.z < b[i].lo.z ||
+				    p.z > b[i].hi.z)
+					continue;
+				inside++;
+				missed += !(m >> i & 1) || !(at[i] <= t);
+				break;
+			}
+		set += __builtin_popcount(m);
+		if (lb.wide) {
+			double at2[LEAFBOX_MAX];
+			lb.wide = false;
+			unsigned m2 = leafbox_hits(&lb, &r, tmin, tmax, at2);
+			bool same = m2 == m;
+			for (int i = 0; i < n; i++)
+				same &= !(m >> i & 1) || at2[i] == at[i];
+			differ += !same;
+		}
+	}
+	printf("# %d boxes met at a sampled point, %d bits set, %d missed, %d differ between SSE2 and AVX\n", inside,
+	       set, missed, differ);
+	CHECK(missed == 0 && differ == 0);
+	CHECK(inside > 1000 && set >= inside);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -481,5 +556,6 @@ int main(void)
 	RUN(t_small_scenes);
 	RUN(t_lazy);
 	RUN(t_occluded_packet);
+	RUN(t_leafbox);
 	return test_done();
 }

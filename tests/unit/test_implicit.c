@@ -4,8 +4,9 @@
  * <1,1> against the sphere, a one-component blob against the sphere of
  * radius r·√(1 − √(T/s)), their (u,v) round trips and areas through the
  * radial parametrisation, a mesh cube against the box (hits, inside, atlas
- * areas) and a large random mesh against brute force, and the camera
- * types' central and edge rays. */
+ * areas) and a large random mesh against brute force, the camera types'
+ * central and edge rays, and the inline perspective ray (cam_ray_fast)
+ * against cam_ray, bit for bit. */
 #include <stdio.h>
 
 #include "../../tracer/camera.h"
@@ -332,6 +333,35 @@ static void t_cameras(void)
 	CHECK_NEAR(r.d.y, 0, 1e-12);
 }
 
+/* cam_ray_fast (the eye pass's inline camera ray) gives cam_ray's bits:
+ * a perspective camera with skewed, unnormalised vectors over the whole
+ * film, and the cameras it hands back to cam_ray (a lens, orthographic). */
+static void t_cam_ray_fast(void)
+{
+	struct camera sc = scene_default_camera();
+	sc.location = v3(0.3, -1.7, 2.9);
+	sc.direction = v3(0.1, 0.2, 1.3);
+	sc.right = v3(1.31, 0.05, -0.2);
+	sc.up = v3(0.02, 0.97, 0.11);
+	struct cam c;
+	int same = 0, n = 0, fast = 0;
+	for (int k = 0; k < 3; k++) {
+		sc.kind = k == 2 ? CAM_ORTHOGRAPHIC : CAM_PERSPECTIVE;
+		sc.aperture = k == 1 ? 0.2 : 0;
+		cam_setup(&c, &sc);
+		fast += c.kind == CAM_PERSPECTIVE && !(c.aperture > 0);
+		for (int y = 0; y < 37; y++)
+			for (int x = 0; x < 53; x++, n++) {
+				double sx = (x + 0.5) / 53, sy = (y + 0.5) / 37, l1 = x / 53.0, l2 = y / 37.0;
+				struct ray a = cam_ray(&c, sx, sy, l1, l2), b = cam_ray_fast(&c, sx, sy, l1, l2);
+				same += !memcmp(&a.o, &b.o, sizeof a.o) && !memcmp(&a.d, &b.d, sizeof a.d);
+			}
+	}
+	CHECK(fast == 1);
+	CHECK(same == n);
+	CHECK(n == 3 * 53 * 37);
+}
+
 int main(void)
 {
 	RUN(t_quartic_torus);
@@ -341,5 +371,6 @@ int main(void)
 	RUN(t_mesh_cube);
 	RUN(t_mesh_brute);
 	RUN(t_cameras);
+	RUN(t_cam_ray_fast);
 	return test_done();
 }

@@ -9,7 +9,8 @@
  *   - flags: no_image objects still cast shadows, no_shadow ones do not;
  *   - fn_pattern: a function pattern shows the function's value;
  *   - iso_sphere_a/b: the isosurface of x² + y² + z² = 1 renders as the
- *     sphere does, its caustic included. */
+ *     sphere does, its caustic included;
+ *   - g_glass, flags: a beauty-only render has the R G B of a full one. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -238,6 +239,67 @@ static void t_isosurface_sphere(void)
 		fb_free(b);
 }
 
+/* Renders tests/render/<name>.scn in-process (no file), R G B alone when
+ * beauty_only is set. */
+static struct framebuffer *render_only(const char *name, int w, int h, int spp, bool beauty_only)
+{
+	char path[256];
+	snprintf(path, sizeof path, "tests/render/%s.scn", name);
+	struct eval_options eo;
+	eval_default_options(&eo);
+	eo.width = w;
+	eo.height = h;
+	struct diag dg;
+	diag_init(&dg, stdout);
+	struct scene s;
+	if (eval_scene(path, &eo, &dg, &s) != 0)
+		return NULL;
+	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = 2, .quiet = 1,
+	                         .beauty_only = beauty_only};
+	struct framebuffer *fb = NULL;
+	const char *err = MSG(render(&s, &ro, TDG, &fb, NULL));
+	if (err)
+		printf("#   %s: %s\n", name, err);
+	scene_free(&s);
+	return fb;
+}
+
+/* A beauty-only render (PNG output: no AOV layers, misses written as the
+ * background without shading) has exactly the R G B of a full render, with
+ * one sample per pixel and with several: background, diffuse, glass and
+ * mirror pixels alike. */
+static void t_beauty_only(void)
+{
+	const char *names[] = {"g_glass", "flags"};
+	for (int k = 0; k < 2; k++)
+		for (int spp = 1; spp <= 4; spp += 3) {
+			struct framebuffer *full = render_only(names[k], 48, 36, spp, false);
+			struct framebuffer *rgb = render_only(names[k], 48, 36, spp, true);
+			CHECK(full && rgb);
+			if (!full || !rgb)
+				continue;
+			CHECK(fb_find(rgb, "A") == NULL && fb_find(full, "A") != NULL);
+			int differ = 0, bg = 0, bg_off = 0;
+			const double sky[3] = {0.05, 0.07, 0.1}; /* g_glass's background */
+			for (int c = 0; c < 3; c++) {
+				const char *ch[] = {"R", "G", "B"};
+				const float *a = fb_find(full, ch[c]), *b = fb_find(rgb, ch[c]);
+				const float *alpha = fb_find(full, "A");
+				for (int i = 0; i < 48 * 36; i++) {
+					differ += memcmp(&a[i], &b[i], sizeof a[i]) != 0;
+					bg += c == 0 && alpha[i] == 0;
+					bg_off += k == 0 && spp == 1 && alpha[i] == 0 && b[i] != (float)sky[c];
+				}
+			}
+			CHECK(differ == 0);
+			if (k == 0) /* g_glass shows the background above the horizon: 144 pixels */
+				CHECK(bg == 144);
+			CHECK(bg_off == 0);
+			fb_free(full);
+			fb_free(rgb);
+		}
+}
+
 int main(void)
 {
 	RUN(t_plane_direct);
@@ -247,5 +309,6 @@ int main(void)
 	RUN(t_flags);
 	RUN(t_function_pattern);
 	RUN(t_isosurface_sphere);
+	RUN(t_beauty_only);
 	return test_done();
 }

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "../../common/order.h"
 #include "../../common/pool.h"
 #include "../../common/progress.h"
 #include "../optics.h"
@@ -1006,12 +1007,6 @@ static void index_maps(struct lp_result *r)
 			slot_put(r, k);
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
 /* The grid for a surface: its illum_map { }, else a cell size chosen from
  * the rays that reached it (pitfall 1): per_node rays per node (0: the
  * default ILLUM_RAYS_PER_NODE) over the region where most of them landed. The region is the 5th to 95th
@@ -1026,8 +1021,9 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 	for (int axis = 0; axis < 3; axis++) {
 		for (long i = 0; i < k; i++)
 			c[i] = v_comp(pts[i], axis);
-		qsort(c, (size_t)k, sizeof *c, cmp_double);
-		ex[axis] = k ? c[(long)(0.95 * (double)(k - 1))] - c[(long)(0.05 * (double)(k - 1))] : 0;
+		/* the 95th percentile, then the 5th among what lies below it */
+		long i95 = (long)(0.95 * (double)(k - 1)), i05 = (long)(0.05 * (double)(k - 1));
+		ex[axis] = k ? order_nth(c, k, i95) - order_nth(c, i95 + 1, i05) : 0;
 	}
 	free(c);
 	for (int i = 0; i < 2; i++) /* two largest extents first */
@@ -1059,15 +1055,13 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
 		sz[i] = p[i].size;
-	qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-	double cell = np ? 0.5 * sz[np / 10] : 0;
+	double cell = np ? 0.5 * order_nth(sz, np, np / 10) : 0;
 	/* no finer than a pixel of the image where the light lands (the eye
 	 * pass reads one point per sample: a finer map only adds noise) */
 	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
 		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i].p, opt->eye)) * opt->pixel_angle;
 	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
-		qsort(sz, (size_t)np, sizeof *sz, cmp_double);
-		px = sz[np / 2];
+		px = order_nth(sz, np, np / 2);
 	}
 	cell = fmax(cell, px);
 	free(sz);

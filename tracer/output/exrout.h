@@ -67,7 +67,7 @@ void out_meta_add(struct out_exr_meta *m, const char *key, const char *fmt, ...)
     ;
 
 /* The zlib level of ZIP and ZIPS files (exrout.c). */
-#define EXR_ZIP_LEVEL 4
+#define EXR_ZIP_LEVEL 1
 
 /* Parses "none" "zip" "zips" "piz" "rle" into *out; returns 0, or -1 when the
  * name is unknown (out untouched). */

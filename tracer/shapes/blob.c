@@ -251,5 +251,5 @@ static void bl_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_blob_ops = {
-	bl_intersect, bl_inside, bl_bounds, bl_uv_point, bl_uv_range, bl_cell_area, bl_dump,
+	bl_intersect, bl_inside, bl_bounds, bl_uv_point, bl_uv_range, bl_cell_area, bl_dump, NULL,
 };

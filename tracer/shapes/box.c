@@ -110,20 +110,30 @@ static void bx_fill(const struct object *o, const struct ray *r, double t, int k
 	lh->n = axis(k, side ? 1 : -1);
 }
 
-/* Slabs: the entry face when the entry is in range, else the exit face. */
-static bool bx_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                         struct local_hit *lh)
+/* Slabs: the ray's entry (t0, through face axis k0) and exit (t1, k1), or
+ * false when it misses the box. */
+static bool bx_span(const struct object *o, const struct ray *r, double *t0, double *t1, int *k0, int *k1)
 {
 	struct vec3 lo, hi;
 	bx_corners(o, &lo, &hi);
 	if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
 		return false;
-	double t0 = -INFINITY, t1 = INFINITY;
-	int k0 = -1, k1 = -1;
+	*t0 = -INFINITY, *t1 = INFINITY;
+	*k0 = -1, *k1 = -1;
 	for (int k = 0; k < 3; k++)
-		if (!slab(v_comp(r->o, k), v_comp(r->d, k), v_comp(lo, k), v_comp(hi, k), k, &t0, &t1,
-		          &k0, &k1))
+		if (!slab(v_comp(r->o, k), v_comp(r->d, k), v_comp(lo, k), v_comp(hi, k), k, t0, t1, k0, k1))
 			return false;
+	return true;
+}
+
+/* The entry face when the entry is in range, else the exit face. */
+static bool bx_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	double t0, t1;
+	int k0, k1;
+	if (!bx_span(o, r, &t0, &t1, &k0, &k1))
+		return false;
 	/* entering through the face looking at the ray, leaving through the other */
 	if (t0 > tmin && t0 < tmax && k0 >= 0)
 		bx_fill(o, r, t0, k0, v_comp(r->d, k0) < 0, lh);
@@ -132,6 +142,14 @@ static bool bx_intersect(const struct object *o, const struct ray *r, double tmi
 	else
 		return false;
 	return true;
+}
+
+static bool bx_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
+{
+	double t0, t1;
+	int k0, k1;
+	return bx_span(o, r, &t0, &t1, &k0, &k1) &&
+	       ((t0 > tmin && t0 < tmax && k0 >= 0) || (t1 > tmin && t1 < tmax && k1 >= 0));
 }
 
 static bool bx_inside(const struct object *o, struct vec3 p)
@@ -180,5 +198,5 @@ static void bx_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_box_ops = {
-	bx_intersect, bx_inside, bx_bounds, bx_uv_point, bx_uv_range, bx_cell_area, bx_dump,
+	bx_intersect, bx_inside, bx_bounds, bx_uv_point, bx_uv_range, bx_cell_area, bx_dump, bx_occluded,
 };

@@ -266,5 +266,5 @@ static void kn_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_cone_ops = {
-	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area, kn_dump,
+	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area, kn_dump, NULL,
 };

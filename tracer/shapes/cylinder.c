@@ -234,5 +234,5 @@ static void cy_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_cylinder_ops = {
-	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area, cy_dump,
+	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area, cy_dump, NULL,
 };

@@ -130,5 +130,5 @@ static void dc_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_disc_ops = {
-	dc_intersect, dc_inside, dc_bounds, dc_uv_point, dc_uv_range, dc_cell_area, dc_dump,
+	dc_intersect, dc_inside, dc_bounds, dc_uv_point, dc_uv_range, dc_cell_area, dc_dump, NULL,
 };

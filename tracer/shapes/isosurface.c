@@ -225,5 +225,5 @@ static double iso_cell_area(const struct object *o, double u0, double u1, double
 }
 
 const struct prim_ops shape_isosurface_ops = {
-	iso_intersect, iso_inside, iso_bounds, iso_uv_point, iso_uv_range, iso_cell_area, iso_dump,
+	iso_intersect, iso_inside, iso_bounds, iso_uv_point, iso_uv_range, iso_cell_area, iso_dump, NULL,
 };

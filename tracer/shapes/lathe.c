@@ -199,5 +199,5 @@ static void la_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_lathe_ops = {
-	la_intersect, la_inside, la_bounds, la_uv_point, la_uv_range, la_cell_area, la_dump,
+	la_intersect, la_inside, la_bounds, la_uv_point, la_uv_range, la_cell_area, la_dump, NULL,
 };

@@ -372,5 +372,5 @@ static void me_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_mesh_ops = {
-	me_intersect, me_inside, me_bounds, me_uv_point, me_uv_range, me_cell_area, me_dump,
+	me_intersect, me_inside, me_bounds, me_uv_point, me_uv_range, me_cell_area, me_dump, NULL,
 };

@@ -147,5 +147,5 @@ static void pl_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_plane_ops = {
-	pl_intersect, pl_inside, pl_bounds, pl_uv_point, pl_uv_range, pl_cell_area, pl_dump,
+	pl_intersect, pl_inside, pl_bounds, pl_uv_point, pl_uv_range, pl_cell_area, pl_dump, NULL,
 };

@@ -161,5 +161,5 @@ static void po_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_poly_ops = {
-	po_intersect, po_inside, po_bounds, po_uv_point, po_uv_range, po_cell_area, po_dump,
+	po_intersect, po_inside, po_bounds, po_uv_point, po_uv_range, po_cell_area, po_dump, NULL,
 };

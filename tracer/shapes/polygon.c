@@ -100,5 +100,5 @@ static void pg_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_polygon_ops = {
-	pg_intersect, pg_inside, pg_bounds, pg_uv_point, pg_uv_range, pg_cell_area, pg_dump,
+	pg_intersect, pg_inside, pg_bounds, pg_uv_point, pg_uv_range, pg_cell_area, pg_dump, NULL,
 };

@@ -43,6 +43,9 @@ struct prim_ops {
 	double (*cell_area)(const struct object *o, double u0, double u1, double v0, double v1);
 	/* The geometry on one line of --dump-scene, without the newline. */
 	void (*dump)(const struct object *o, FILE *out);
+	/* Whether intersect finds a hit, without filling it in (shadow rays);
+	 * NULL: intersect is asked. */
+	bool (*occluded)(const struct object *o, const struct ray *r, double tmin, double tmax);
 };
 
 #define PRIM(n, w) extern const struct prim_ops shape_##w##_ops;
@@ -139,6 +142,11 @@ __attribute__((always_inline)) static inline bool prim_sphere_t(struct vec3 c, d
 	if (a * ff - fd * fd > a * (rr * (1 + 1e-9) + ff * 1e-12))
 		return false;
 	double b = 2 * fd, cc = ff - rr, t0, t1;
+	/* from outside, moving away: b > 0 and c > 0 make both roots below
+	 * (q = -(b + √disc)/2 < 0, q/a < 0 and c/q < 0), so none is past a
+	 * tmin >= 0 (rays spawned on a sphere, towards lights or reflected) */
+	if (fd > 0 && cc > 0 && tmin >= 0)
+		return false;
 	if (!(a > 0))
 		return false;
 	struct vec3 perp = v_madd(f, d, -fd / a);

@@ -352,5 +352,5 @@ static void pr_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_prism_ops = {
-	ext_intersect, ext_inside, ext_bounds, ext_uv_point, ext_uv_range, ext_cell_area, pr_dump,
+	ext_intersect, ext_inside, ext_bounds, ext_uv_point, ext_uv_range, ext_cell_area, pr_dump, NULL,
 };

@@ -214,5 +214,5 @@ static void so_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_sor_ops = {
-	so_intersect, so_inside, so_bounds, so_uv_point, so_uv_range, so_cell_area, so_dump,
+	so_intersect, so_inside, so_bounds, so_uv_point, so_uv_range, so_cell_area, so_dump, NULL,
 };

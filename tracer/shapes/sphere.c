@@ -123,5 +123,5 @@ static void sph_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_sphere_ops = {
-	sph_intersect, sph_inside, sph_bounds, sph_uv_point, sph_uv_range, sph_cell_area, sph_dump,
+	sph_intersect, sph_inside, sph_bounds, sph_uv_point, sph_uv_range, sph_cell_area, sph_dump, NULL,
 };

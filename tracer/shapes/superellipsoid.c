@@ -162,5 +162,5 @@ static void se_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_superellipsoid_ops = {
-	se_intersect, se_inside, se_bounds, se_uv_point, se_uv_range, se_cell_area, se_dump,
+	se_intersect, se_inside, se_bounds, se_uv_point, se_uv_range, se_cell_area, se_dump, NULL,
 };

@@ -19,5 +19,5 @@ static void tx_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_text_ops = {
-	ext_intersect, ext_inside, ext_bounds, ext_uv_point, ext_uv_range, ext_cell_area, tx_dump,
+	ext_intersect, ext_inside, ext_bounds, ext_uv_point, ext_uv_range, ext_cell_area, tx_dump, NULL,
 };

@@ -138,9 +138,10 @@ static struct vec3 to_normal(double R, struct vec3 p)
 }
 
 /* Works in units of R + r from the ray's point nearest the centre, within
- * the bounding sphere; the first root with t in range is the hit. */
-static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                         struct local_hit *lh)
+ * the bounding sphere; the first root with t in range is the hit, at t and
+ * local point p. */
+static bool to_first(const struct object *o, const struct ray *r, double tmin, double tmax, double *t,
+                     struct vec3 *p)
 {
 	double R = T_R(o), rr = T_r(o), L = v_len(r->d), sc = R + rr;
 	if (!(R > 0) || !(rr > 0) || !(L > 0))
@@ -169,18 +170,36 @@ static bool to_intersect(const struct object *o, const struct ray *r, double tmi
 	double s[4];
 	int n = quartic_hits(R / sc, rr / sc, qs, d, s0, s1, s);
 	for (int i = 0; i < n; i++) {
-		double t = (tc + s[i] * sc) / L;
-		if (!(t > tmin && t < tmax))
+		*t = (tc + s[i] * sc) / L;
+		if (!(*t > tmin && *t < tmax))
 			continue;
-		struct vec3 p = v_madd(q, d, s[i] * sc);
-		lh->t = t;
-		lh->p = p;
-		lh->n = to_normal(R, p);
-		lh->u = prim_turns(-p.z, p.x);
-		lh->v = prim_turns(p.y, sqrt(p.x * p.x + p.z * p.z) - R);
-		return to_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
+		*p = v_madd(q, d, s[i] * sc);
+		return true;
 	}
 	return false;
+}
+
+static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	double R = T_R(o), t;
+	struct vec3 p;
+	if (!to_first(o, r, tmin, tmax, &t, &p))
+		return false;
+	lh->t = t;
+	lh->p = p;
+	lh->n = to_normal(R, p);
+	lh->u = prim_turns(-p.z, p.x);
+	lh->v = prim_turns(p.y, sqrt(p.x * p.x + p.z * p.z) - R);
+	return to_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
+}
+
+/* to_first: R > 0 and r > 0 there, so to_intersect's to_uv_point holds. */
+static bool to_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
+{
+	double t;
+	struct vec3 p;
+	return to_first(o, r, tmin, tmax, &t, &p);
 }
 
 static bool to_inside(const struct object *o, struct vec3 p)
@@ -249,5 +268,5 @@ static void to_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_torus_ops = {
-	to_intersect, to_inside, to_bounds, to_uv_point, to_uv_range, to_cell_area, to_dump,
+	to_intersect, to_inside, to_bounds, to_uv_point, to_uv_range, to_cell_area, to_dump, to_occluded,
 };

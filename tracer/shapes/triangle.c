@@ -90,5 +90,5 @@ static void tr_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_triangle_ops = {
-	tr_intersect, tr_inside, tr_bounds, tr_uv_point, tr_uv_range, tr_cell_area, tr_dump,
+	tr_intersect, tr_inside, tr_bounds, tr_uv_point, tr_uv_range, tr_cell_area, tr_dump, NULL,
 };

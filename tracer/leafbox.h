@@ -1,0 +1,35 @@
+/* SPDX-License-Identifier: MIT */
+/* leafbox.h: the boxes of a scene's few bounded leaves, tested against one
+ * ray two or four at a time (bvh.c traces scenes of up to LEAFBOX_MAX leaves this
+ * way, without Embree; docs/design.md §5). */
+#ifndef ARVO_LEAFBOX_H
+#define ARVO_LEAFBOX_H
+
+#include <stdbool.h>
+
+#include "../common/vec.h"
+#include "shape.h"
+
+#define LEAFBOX_MAX 8
+
+/* Boxes as rows per axis (lo[axis][leaf]), so that two leaves are one
+ * vector operation. */
+struct leafbox {
+	int n;
+	bool wide;  /* the CPU runs AVX: four boxes per operation */
+	double lo[3][LEAFBOX_MAX];
+	double hi[3][LEAFBOX_MAX];
+};
+
+/* Sets the n <= LEAFBOX_MAX boxes of *lb to b[0..n). */
+void leafbox_set(struct leafbox *lb, int n, const struct bbox *b);
+
+/* The leaves whose boxes ray r meets somewhere over [tmin, tmax], as bit i
+ * for leaf i, and where it enters each (at[i], no later than the true
+ * entry). Never leaves out a box the exact ray meets, except a ray lying in
+ * the plane of a face (no motion along that axis): give boxes grown by a
+ * margin beyond what they bound, so that such a ray misses what they hold. */
+unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                      double at[LEAFBOX_MAX]);
+
+#endif
