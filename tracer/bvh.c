@@ -449,7 +449,7 @@ static inline bool slab(double o, double d, double lo, double hi, double *tmin, 
 }
 
 /* Where r enters box b over (tmin, tmax): false when it misses. */
-static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
+HOT bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
 {
 	if (!slab(r->o.x, r->d.x, b.lo.x, b.hi.x, &tmin, &tmax) ||
 	    !slab(r->o.y, r->d.y, b.lo.y, b.hi.y, &tmin, &tmax) ||
@@ -512,11 +512,14 @@ static void walk(struct query *q, bool any)
 }
 
 /* The bounded leaves of a scene of at most LEAFBOX_MAX for query q, by their
- * boxes first; the nearest hit skips a leaf whose box the ray enters
- * beyond the best hit so far. The hit is that of the loop in order. */
+ * boxes first. The nearest hit tests the leaves whose boxes the ray meets in
+ * the order it enters them, and stops at a box entered beyond the best hit
+ * so far (a costly leaf behind a near one is never solved); the hit is that
+ * of the loop in order all the same (consider). */
 static void boxed(struct query *q, bool any)
 {
 	double at[LEAFBOX_MAX];
+	int id[LEAFBOX_MAX], n = 0;
 	unsigned m = leafbox_hits(q->b->box, q->r, q->tmin, any ? q->tmax : next_up(q->tmax), at);
 	for (int i = 0; m; i++, m >>= 1) {
 		if (!(m & 1))
@@ -525,8 +528,19 @@ static void boxed(struct query *q, bool any)
 			q->found = true;
 			return;
 		}
-		if (!any && !(at[i] > next_up(q->tmax))) /* a tie is looked at */
-			consider(q, i);
+		if (!any)
+			id[n++] = i;
+	}
+	for (int j = 1; j < n; j++) { /* by entry (insertion: at most 8) */
+		int k = j, i = id[j];
+		for (; k > 0 && at[id[k - 1]] > at[i]; k--)
+			id[k] = id[k - 1];
+		id[k] = i;
+	}
+	for (int k = 0; k < n; k++) {
+		if (at[id[k]] > next_up(q->tmax)) /* a tie is looked at */
+			break; /* this box and the rest lie beyond the best hit */
+		consider(q, id[k]);
 	}
 }
 
@@ -634,7 +648,7 @@ HOT bool traverse(const struct bvh *b, const struct ray *r, double tmin, double 
 {
 	struct query q;
 	new_query(&q, b, r, tmin, tmax, skip, h);
-	if (unbounded(&q, any))
+	if (b->nunbound && unbounded(&q, any))
 		return q.found;
 	if (b->nprims > 0 && b->scene)
 		walk(&q, any);

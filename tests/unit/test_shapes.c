@@ -3,7 +3,8 @@
  * known hits, no re-hit of convex shapes from their own surface under random
  * transforms, (u,v) → point → (u,v) round trips through intersection,
  * partials against finite differences, cell areas against analytic areas,
- * and torus hit accuracy at grazing incidence and from far away. Every
+ * torus hit accuracy at grazing incidence and from far away, and shadow
+ * tests that agree with intersection. Every
  * random test uses fixed seeds (geo_rand.h). */
 #include <stdio.h>
 
@@ -554,6 +555,40 @@ static void t_torus_far(void)
 	CHECK(worst < 1e-9);
 }
 
+/* shape_occluded answers as shape_intersect does over the same interval,
+ * for every kind (box and torus have a shadow test of their own, which
+ * fills in no hit), from anywhere, from the surface and along the axes. */
+static void t_occluded_as_intersect(void)
+{
+	rng_seed(7);
+	int differ = 0, hits = 0, total = 0;
+	for (int k = 0; k < NKINDS(all_kinds); k++)
+		for (int i = 0; i < 3000; i++) {
+			struct object o = rnd_prim(all_kinds[k], i % 7 == 0);
+			if (i % 2)
+				o.xf = xf_keep(rnd_xform(i % 4 == 1, true));
+			struct ray r = {rnd_vec(-4, 4), rnd_dir()};
+			if (i % 3 == 0) { /* aimed at a surface point, or leaving it */
+				struct vec3 p;
+				shape_uv_point(&o, rnd(), rnd(), &p, NULL, NULL);
+				if (i % 6 == 0)
+					r.o = p;
+				else
+					r.d = v_sub(p, r.o);
+			}
+			if (i % 5 == 0)
+				r.d = v3(0, i % 10 ? 1 : -1, 0);
+			double tmin = i % 4 ? 0 : 1e-9, tmax = i % 8 < 5 ? INFINITY : rndr(0.1, 6);
+			struct hit h;
+			bool hit = shape_intersect(&o, &r, tmin, tmax, &h);
+			differ += hit != shape_occluded(&o, &r, tmin, tmax);
+			hits += hit, total++;
+		}
+	printf("# %d hits of %d rays, %d answers differ\n", hits, total, differ);
+	CHECK(differ == 0);
+	CHECK(hits > total / 5 && hits < total * 4 / 5);
+}
+
 int main(void)
 {
 	RUN(t_sphere_known);
@@ -568,5 +603,6 @@ int main(void)
 	RUN(t_torus_known);
 	RUN(t_torus_grazing);
 	RUN(t_torus_far);
+	RUN(t_occluded_as_intersect);
 	return test_done();
 }
