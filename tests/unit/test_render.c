@@ -22,12 +22,11 @@
 #include "test.h"
 
 /* Renders tests/render/<name>.scn at w×h with spp samples on nthreads
- * threads, round-trips it through an EXR and returns the planes read back. */
-static struct framebuffer *render_file(const char *name, int w, int h, int spp, int nthreads)
+ * threads, in-process (no file), R G B alone when beauty_only is set. */
+static struct framebuffer *render_mem(const char *name, int w, int h, int spp, int nthreads, bool beauty_only)
 {
-	char path[256], out[64];
+	char path[256];
 	snprintf(path, sizeof path, "tests/render/%s.scn", name);
-	snprintf(out, sizeof out, "/tmp/arvo-test-render-%ld.exr", (long)getpid());
 	struct eval_options eo;
 	eval_default_options(&eo);
 	eo.width = w;
@@ -39,19 +38,32 @@ static struct framebuffer *render_file(const char *name, int w, int h, int spp, 
 		printf("#   cannot evaluate %s\n", path);
 		return NULL;
 	}
-	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = nthreads, .quiet = 1};
-	struct framebuffer *fb = NULL, *back = NULL;
+	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = nthreads, .quiet = 1,
+	                         .beauty_only = beauty_only};
+	struct framebuffer *fb = NULL;
 	const char *err = MSG(render(&s, &ro, TDG, &fb, NULL));
-	if (!err)
-		err = MSG(out_exr_write(fb, out, NULL, TDG));
+	if (err)
+		printf("#   %s: %s\n", name, err);
+	scene_free(&s);
+	return fb;
+}
+
+/* render_mem, all layers, round-tripped through an EXR: the planes read
+ * back. */
+static struct framebuffer *render_file(const char *name, int w, int h, int spp, int nthreads)
+{
+	char out[64];
+	snprintf(out, sizeof out, "/tmp/arvo-test-render-%ld.exr", (long)getpid());
+	struct framebuffer *fb = render_mem(name, w, h, spp, nthreads, false), *back = NULL;
+	if (!fb)
+		return NULL;
+	const char *err = MSG(out_exr_write(fb, out, NULL, TDG));
 	if (!err)
 		err = MSG(out_exr_read(out, &back, NULL, TDG));
 	if (err)
 		printf("#   %s: %s\n", name, err);
 	remove(out);
-	if (fb)
-		fb_free(fb);
-	scene_free(&s);
+	fb_free(fb);
 	return back;
 }
 
@@ -239,31 +251,6 @@ static void t_isosurface_sphere(void)
 		fb_free(b);
 }
 
-/* Renders tests/render/<name>.scn in-process (no file), R G B alone when
- * beauty_only is set. */
-static struct framebuffer *render_only(const char *name, int w, int h, int spp, bool beauty_only)
-{
-	char path[256];
-	snprintf(path, sizeof path, "tests/render/%s.scn", name);
-	struct eval_options eo;
-	eval_default_options(&eo);
-	eo.width = w;
-	eo.height = h;
-	struct diag dg;
-	diag_init(&dg, stdout);
-	struct scene s;
-	if (eval_scene(path, &eo, &dg, &s) != 0)
-		return NULL;
-	struct render_opts ro = {.width = w, .height = h, .spp = spp, .threads = 2, .quiet = 1,
-	                         .beauty_only = beauty_only};
-	struct framebuffer *fb = NULL;
-	const char *err = MSG(render(&s, &ro, TDG, &fb, NULL));
-	if (err)
-		printf("#   %s: %s\n", name, err);
-	scene_free(&s);
-	return fb;
-}
-
 /* A beauty-only render (PNG output: no AOV layers, misses written as the
  * background without shading) has exactly the R G B of a full render, with
  * one sample per pixel and with several: background, diffuse, glass and
@@ -273,8 +260,8 @@ static void t_beauty_only(void)
 	const char *names[] = {"g_glass", "flags"};
 	for (int k = 0; k < 2; k++)
 		for (int spp = 1; spp <= 4; spp += 3) {
-			struct framebuffer *full = render_only(names[k], 48, 36, spp, false);
-			struct framebuffer *rgb = render_only(names[k], 48, 36, spp, true);
+			struct framebuffer *full = render_mem(names[k], 48, 36, spp, 2, false);
+			struct framebuffer *rgb = render_mem(names[k], 48, 36, spp, 2, true);
 			CHECK(full && rgb);
 			if (!full || !rgb)
 				continue;
