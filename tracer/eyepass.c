@@ -362,7 +362,8 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
 {
 	const struct scene *s = pa->ctx->scene;
 	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
-	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
+	sf.pc = tex->pigment.kind == PIG_SOLID ? tex->pigment.c[0] /* as mat_pigment, without the calls */
+	                                       : mat_pigment(pa->ctx->mats, &tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
 	if (tex_normal(sf.tex)) /* as POV-Ray: the normal facing the eye is perturbed */
