@@ -449,7 +449,7 @@ static inline bool slab(double o, double d, double lo, double hi, double *tmin, 
 }
 
 /* Where r enters box b over (tmin, tmax): false when it misses. */
-static bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
+HOT bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, double *t)
 {
 	if (!slab(r->o.x, r->d.x, b.lo.x, b.hi.x, &tmin, &tmax) ||
 	    !slab(r->o.y, r->d.y, b.lo.y, b.hi.y, &tmin, &tmax) ||
@@ -648,7 +648,7 @@ HOT bool traverse(const struct bvh *b, const struct ray *r, double tmin, double 
 {
 	struct query q;
 	new_query(&q, b, r, tmin, tmax, skip, h);
-	if (unbounded(&q, any))
+	if (b->nunbound && unbounded(&q, any))
 		return q.found;
 	if (b->nprims > 0 && b->scene)
 		walk(&q, any);

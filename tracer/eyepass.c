@@ -802,6 +802,25 @@ static void shadow_packets(const struct eye_ctx *ctx, int n, const struct ray *r
 	}
 }
 
+/* pixel() for one sample without AOVs (ctx->beauty_only, spp 1): sample
+ * 0's path pa, camera ray r and its hit h (found: it hit), in place. With
+ * bg (plain_miss), a miss is the background, as trace() would return it. */
+static void pixel_one(const struct eye_ctx *ctx, struct eye_px *out, long long *rays, struct path *pa,
+                      const struct ray *r, const struct hit *h, bool found, bool bg)
+{
+	struct vec3 c = v3(0, 0, 0);
+	if (!(v_dot(r->d, r->d) > 0)) { /* the camera shoots no ray here */
+	} else if (bg && !found) {
+		c = col3(ctx->scene->background);
+		*rays += 1;
+	} else {
+		pa->pre = h, pa->pre_state = found ? 1 : -1;
+		c = trace(pa, *r, 1, 1, OF_NO_IMAGE, NULL);
+		*rays += pa->rays;
+	}
+	put3(out->rgb, v_add(v3(0, 0, 0), c), 1.0);
+}
+
 /* Whether a camera ray that misses everything gives its pixel the plain
  * background, with nothing else to compute: one sample and no AOVs, no sky
  * or fog, and trace() lets a camera ray through (depth 1, weight 1). */
@@ -826,13 +845,11 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
 	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
 		shadow_packets(ctx, n, r, h, found, pa, memo);
-	bool bg = plain_miss(ctx);
+	bool one = ctx->beauty_only && ctx->spp == 1, bg = plain_miss(ctx);
 	for (int i = 0; i < n; i++) {
-		if (bg && !found[i] && v_dot(r[i].d, r[i].d) > 0) { /* pixel() and trace() would give */
-			put3(out[i].rgb, v_add(v3(0, 0, 0), col3(ctx->scene->background)), 1.0 / ctx->spp);
-			*rays += 1;
-			continue;
-		}
-		pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], &r[i], &h[i], found[i] ? 1 : -1);
+		if (one)
+			pixel_one(ctx, &out[i], rays, &pa[i], &r[i], &h[i], found[i], bg);
+		else
+			pixel(ctx, x[i], y[i], &out[i], rays, &pa[i], &r[i], &h[i], found[i] ? 1 : -1);
 	}
 }
