@@ -71,6 +71,10 @@ struct surf {
 	const struct object *out;   /* h's object when convex and nf is its outward
 	                               normal (not flipped, not perturbed): rays
 	                               leaving along d·nf >= 0 cannot hit it (bvh.h) */
+	const struct object *back;  /* h's object when convex and nf is its inward
+	                               normal (flipped, not perturbed): the
+	                               transmitted ray, offset along -nf, leaves it
+	                               when it goes along d·n >= 0 */
 };
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
@@ -337,8 +341,10 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	struct surf_out so;
 	surf_scatter(&si, pa->band, &so);
 	struct vec3 out = v3(0, 0, 0);
-	if (v_maxc(so.T) > 0)
+	if (v_maxc(so.T) > 0) {
+		pa->from = sf->back && v_dot(so.trans.d, sf->h->n) >= 0 ? sf->back : NULL;
 		out = v_mul(so.T, trace(pa, so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
+	}
 	if (v_maxc(so.R) > 0) {
 		pa->from = sf->out; /* so.refl.d·nf = -d·nf >= 0 */
 		out = v_add(out, v_mul(so.R, trace(pa, so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
@@ -368,13 +374,16 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
                              int depth, double weight, unsigned skip, struct aov *aov, bool upper)
 {
 	const struct scene *s = pa->ctx->scene;
-	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1, NULL};
+	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1, NULL, NULL};
 	sf.pc = tex->pigment.kind == PIG_SOLID ? tex->pigment.c[0] /* as mat_pigment, without the calls */
 	                                       : mat_pigment(pa->ctx->mats, &tex->pigment, h->p);
-	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
+	if (v_dot(sf.nf, sf.v) < 0) { /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
-	else if (!tex_normal(sf.tex) && shape_convex(h->obj))
+		if (!tex_normal(sf.tex) && shape_convex(h->obj))
+			sf.back = h->obj;
+	} else if (!tex_normal(sf.tex) && shape_convex(h->obj)) {
 		sf.out = h->obj;
+	}
 	if (tex_normal(sf.tex)) /* as POV-Ray: the normal facing the eye is perturbed */
 		sf.nf = pattern_perturb(tex_normal(sf.tex), h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
