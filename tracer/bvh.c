@@ -575,7 +575,7 @@ HOT bool unbounded(struct query *q, bool any)
 	struct hit tmp;
 	for (int i = 0; i < q->b->nunbound; i++) {
 		const struct object *o = q->b->unbound[i];
-		if (o->flags & q->skip)
+		if ((o->flags & q->skip) || o == q->from)
 			continue;
 		double t;
 		if (o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */

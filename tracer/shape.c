@@ -140,6 +140,7 @@ bool shape_convex(const struct object *o)
 	switch (o->kind) {
 	case OBJ_SPHERE:
 	case OBJ_BOX:
+	case OBJ_PLANE: /* a half-space */
 		return true;
 	case OBJ_CYLINDER:
 		return !(o->flags & OF_OPEN);
