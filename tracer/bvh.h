@@ -44,7 +44,7 @@ bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, do
 /* bvh_intersect_skip, where the caller may not need the whole hit: when
  * full(ctx, object hit) returns false, *h may hold only obj and t, with
  * (u,v) NaN (the rest unset), which spares working out the point, normal
- * and (u,v) of a hit found by its t alone. */
+ * and (u,v) of a hit found by its t alone. full NULL: the whole hit. */
 bool bvh_intersect_lazy(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
                         struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx);
 /* The nearest hits of n <= BVH_PACKET rays at once, as bvh_intersect_skip

@@ -22,7 +22,7 @@ static const struct prim_ops *ops(const struct object *o)
 
 /* The world ray expressed in the object's frame (same t): r itself when
  * the object has no transform, else *tmp. */
-static const struct ray *local_ray(const struct object *o, const struct ray *r, struct ray *tmp)
+static inline const struct ray *local_ray(const struct object *o, const struct ray *r, struct ray *tmp)
 {
 	if (!o->xf) /* no transform: the world frame */
 		return r;
@@ -31,9 +31,10 @@ static const struct ray *local_ray(const struct object *o, const struct ray *r, 
 }
 
 /* Fills a world hit from a local one; without uv, (u,v) are NaN and the
- * partials zero. */
-static void to_world(const struct object *o, const struct ray *r, const struct local_hit *lh,
-                     bool uv, struct hit *h)
+ * partials zero. Inline in each caller: as a call it cost the light pass of
+ * tests/accuracy/sphere.scn (1M rays) 44 M of its 1,946 M instructions. */
+__attribute__((always_inline)) static inline void to_world(const struct object *o, const struct ray *r,
+                                                           const struct local_hit *lh, bool uv, struct hit *h)
 {
 	const struct xform *x = o->xf;
 	struct vec3 n = v_norm(x ? xf_normal(x, lh->n) : lh->n);

@@ -525,6 +525,24 @@ static void t_range(void)
 	illum_free(faint);
 }
 
+/* A node that saturates (an infinite deposit: the largest fixed-point
+ * value, 2^128 - 1 quanta, about 2^32 W) saturates the map's total too
+ * (illum_finish sums the nodes in 192 bits, then saturates once), while
+ * the other channels keep their exact sums. */
+static void t_saturate(void)
+{
+	struct object o = prim(OBJ_SPHERE);
+	struct illum_map *m = map_res(&o, 48);
+	illum_deposit(m, 0.25, 0.25, (double[3]){INFINITY, 1, 0}); /* on node (12,12) */
+	illum_deposit(m, 0.5, 0.5, (double[3]){1, 1, 1});          /* on node (24,24), another tile */
+	illum_finish(m, false, NULL);
+	double t[3];
+	illum_total(m, t);
+	CHECK(t[0] == 0x1p32); /* (2^128 - 1)·2^-96, rounded to a double; wrapping would give ~1 */
+	CHECK(t[1] == 2 && t[2] == 1);
+	illum_free(m);
+}
+
 /* ==== isolated samples ==================================================== */
 
 static void t_isolated(void)
@@ -674,6 +692,7 @@ int main(void)
 	RUN(t_runs);
 	RUN(t_merge);
 	RUN(t_range);
+	RUN(t_saturate);
 	RUN(t_isolated);
 	RUN(t_isolated_rule);
 	RUN(t_auto_cell);

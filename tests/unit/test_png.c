@@ -108,6 +108,45 @@ static void t_highlight_desaturation(void)
 	CHECK(want_aces[4][2] - want_standard[4][2] > 50);
 }
 
+/* Runs of equal pixels (a background) are transformed once and copied:
+ * every pixel of an image of long and short runs, one across the boundary
+ * of two chunks of the transform (16384 pixels), encodes as its colour
+ * does in a row where no two neighbours are equal. Default (ACES) view. */
+static void t_runs(void)
+{
+	enum { K = 7, W = 200, H = 100 };
+	const float col[K][3] = {{0.05f, 0.06f, 0.08f}, {0.9f, 0.2f, 0.1f}, {4.0f, 3.0f, 0.5f}, {0, 0, 0},
+	                         {0.18f, 0.18f, 0.18f}, {-0.0f, 0.0f, 0.0f}, {0.5f, 0.9f, 0.3f}};
+	struct framebuffer *fb = fb_new(W, H), *row = fb_new(K, 1);
+	float *pl[3] = {fb_plane(fb, "R"), fb_plane(fb, "G"), fb_plane(fb, "B")};
+	float *rl[3] = {fb_plane(row, "R"), fb_plane(row, "G"), fb_plane(row, "B")};
+	int which[W * H];
+	for (int i = 0, k = 0; i < W * H; i++) {
+		/* runs of 1, 2, 3 ... 40 pixels, then one of 2000 around pixel 16384 */
+		bool early = i > 0 && i < 15400 && i % (1 + i % 41) == 0, late = i > 17400 && i % 37 == 0;
+		if (early || late || i == 15400 || i == 17400)
+			k = (k + 1) % K;
+		which[i] = k;
+		for (int c = 0; c < 3; c++)
+			pl[c][i] = col[k][c];
+	}
+	for (int k = 0; k < K; k++)
+		for (int c = 0; c < 3; c++)
+			rl[c][k] = col[k][c];
+	struct out_png_opts o = {NULL, NULL, NULL, NULL, NULL, 8, 0};
+	static unsigned char enc[W * H * 3];
+	unsigned char one[K * 3];
+	CHECK(MSG(out_png_encode(fb, &o, enc, TDG)) == NULL);
+	CHECK(MSG(out_png_encode(row, &o, one, TDG)) == NULL);
+	int bad = 0;
+	for (int i = 0; i < W * H; i++)
+		bad += memcmp(enc + 3 * i, one + 3 * which[i], 3) != 0;
+	CHECK(bad == 0);
+	CHECK(one[3 * 1] != one[3 * 0] && one[3 * 2] != one[3 * 1]); /* the colours do differ */
+	fb_free(fb);
+	fb_free(row);
+}
+
 /* NaN and a missing R plane: no crash, clear results. */
 static void t_odd_inputs(void)
 {
@@ -395,6 +434,7 @@ int main(void)
 	RUN(t_aces_default);
 	RUN(t_raw);
 	RUN(t_highlight_desaturation);
+	RUN(t_runs);
 	RUN(t_odd_inputs);
 	RUN(t_failures);
 	RUN(t_png16);

@@ -276,10 +276,27 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	return true;
 }
 
-/* Sorts a[0..n) ascending: a radix sort, two passes of 16 bits (qsort's
- * comparisons cost ~25 times more on the window's samples). */
+/* Sorts a[0..n) ascending: by counting when the values span less than
+ * 2^16 (tile coordinates, the usual case), else a radix sort, two passes
+ * of 16 bits (qsort's comparisons cost ~25 times more on the window's
+ * samples). */
 static void sort_i32(int32_t *a, long n)
 {
+	if (n <= 0)
+		return;
+	int32_t lo = a[0], hi = a[0];
+	for (long i = 1; i < n; i++)
+		lo = a[i] < lo ? a[i] : lo, hi = a[i] > hi ? a[i] : hi;
+	if ((int64_t)hi - lo < 65536) { /* tile coordinates span little: count them */
+		long span = (long)((int64_t)hi - lo) + 1, *cnt = mem_calloc((size_t)span, sizeof *cnt);
+		for (long i = 0; i < n; i++)
+			cnt[a[i] - lo]++;
+		for (long v = 0, at = 0; v < span; v++)
+			for (long c = cnt[v]; c > 0; c--)
+				a[at++] = (int32_t)(lo + v);
+		free(cnt);
+		return;
+	}
 	uint32_t *x = (uint32_t *)a, *tmp = mem_alloc(sizeof *tmp * (size_t)(n ? n : 1));
 	long *cnt = mem_alloc(sizeof *cnt * 65536);
 	for (long i = 0; i < n; i++)
@@ -618,7 +635,8 @@ static inline void acc_add(struct acc *n, double w, const double e[3], double in
 
 /* acc_add where no sum can saturate (fx_add_fast), white light (e[0] =
  * e[1] = e[2]) taken once: the same result. */
-static inline void acc_add_fast(struct acc *n, double w, const double e[3], bool white, double inv_unit)
+__attribute__((always_inline)) static inline void acc_add_fast(struct acc *n, double w, const double e[3], bool white,
+                                                               double inv_unit)
 {
 	if (!white) {
 		for (int c = 0; c < 3; c++) {
@@ -846,18 +864,12 @@ static void prep_window(struct deposit_job *D, long nchunks)
 	free(D->ti), free(D->tj);
 }
 
-/* The tile (ti,tj) for band job B, made when missing: in the window, from
- * the band's own arena (the window entry, which only this band touches,
- * holds −1 − its place in B->made until step 4); outside it, in the band's
- * partial map. Tiles the map had are found read-only. */
-static struct tile *band_tile(struct deposit_job *B, struct illum_map *m, long ti, long tj)
+/* band_tile (below) when the tile is not one the window names yet: w is
+ * its window entry (NULL outside the window). */
+static __attribute__((noinline)) struct tile *band_tile_new(struct deposit_job *B, struct illum_map *m, long ti, long tj,
+                                                             int32_t *w)
 {
-	int32_t *w = win_slot(m, ti, tj);
 	if (w) {
-		if (*w > 0)
-			return m->tiles[*w - 1];
-		if (*w < 0)
-			return B->made[-*w - 1];
 		if (B->nmade == B->cap) {
 			B->cap = B->cap ? 2 * B->cap : 256;
 			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)B->cap);
@@ -881,53 +893,84 @@ static struct tile *band_tile(struct deposit_job *B, struct illum_map *m, long t
 	return B->part->tiles[at];
 }
 
+/* The tile (ti,tj) for band job B, made when missing: in the window, from
+ * the band's own arena (the window entry, which only this band touches,
+ * holds −1 − its place in B->made until step 4); outside it, in the band's
+ * partial map. Tiles the map had are found read-only. The usual case, a
+ * window tile made already, inline; band_tile_new the rest. */
+__attribute__((always_inline)) static inline struct tile *band_tile(struct deposit_job *B, struct illum_map *m,
+                                                                    long ti, long tj)
+{
+	int32_t *w = win_slot(m, ti, tj);
+	if (w && *w > 0)
+		return m->tiles[*w - 1];
+	if (w && *w < 0)
+		return B->made[-*w - 1];
+	return band_tile_new(B, m, ti, tj, w);
+}
+
+/* Where step 3 is in band k's tiles: the tile of the last node (most
+ * splats stay in one), and what every deposit needs. */
+struct band_pos {
+	struct deposit_job *B;
+	struct illum_map *m;
+	long ti, tj;       /* the last node's tile, LONG_MIN: none yet */
+	struct tile *t;
+	double inv;        /* m->inv_unit */
+	bool finite;       /* no sum can reach 2^128 (map_reserve) */
+};
+
+/* Adds weight w of energy e (white: e[0] = e[1] = e[2]) to node (i,j). */
+__attribute__((always_inline)) static inline void band_add(struct band_pos *P, long i, long j, double w,
+                                                           const double e[3], bool white)
+{
+	if (!(w > 0))
+		return;
+	long ti = floordiv(i), tj = floordiv(j);
+	if (ti != P->ti || tj != P->tj)
+		P->t = band_tile(P->B, P->m, ti, tj), P->ti = ti, P->tj = tj;
+	struct acc *n = &P->t->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
+	if (P->finite)
+		acc_add_fast(n, w, e, white, P->inv);
+	else
+		acc_add(n, w, e, P->inv);
+}
+
 /* Step 3 for band k of nb (a parallel_for item): its tiles are made and
  * its nodes accumulated, deposits in order. */
 static void accumulate_work(void *ctx, long k, int worker)
 {
 	(void)worker;
-	struct deposit_job *D = ctx, *B = D + k;
+	struct deposit_job *D = ctx;
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
-	double inv = m->inv_unit;
-	bool finite = m->bound < 0x1p32 * m->unit; /* no sum can reach 2^128 (map_reserve) */
-	long lti = LONG_MIN, ltj = LONG_MIN; /* the tile of the last node (most splats stay in one) */
-	struct tile *lt = NULL;
+	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit};
 	for (long q = 0, r = 0; q < D->n; q++) {
 		while (q >= D->off[r + 1]) /* r: the run of splat q */
 			r++;
 		const struct prep *p = &D->p[q];
 		if (p->i == INT32_MIN)
 			continue;
-		long iv[2] = {p->j, ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1};
-		bool mine[2] = {true, true};
+		long j0 = p->j, j1 = ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1;
+		bool mine0 = true, mine1 = true;
 		if (D->nb > 1) {
-			mine[0] = band_of(iv[0], D->nb) == (int)k;
-			mine[1] = band_of(iv[1], D->nb) == (int)k;
-			if (!mine[0] && !mine[1])
+			mine0 = band_of(j0, D->nb) == (int)k;
+			mine1 = band_of(j1, D->nb) == (int)k;
+			if (!mine0 && !mine1)
 				continue;
 		}
-		long iu[2] = {p->i, ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1};
-		double wu[2] = {1 - p->fu, p->fu}, wv[2] = {1 - p->fv, p->fv}, e[3];
+		long i0 = p->i, i1 = ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1;
+		double e[3];
 		energy_clean(run_at(&D->runs[r], q - D->off[r])->e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
-		for (int b = 0; b < 2; b++) {
-			if (!mine[b])
-				continue;
-			long tj = floordiv(iv[b]);
-			for (int a = 0; a < 2; a++) {
-				double w = wu[a] * wv[b];
-				if (!(w > 0))
-					continue;
-				long ti = floordiv(iu[a]);
-				if (ti != lti || tj != ltj)
-					lt = band_tile(B, m, ti, tj), lti = ti, ltj = tj;
-				struct acc *n = &lt->n[tile_rem(iv[b]) * ILLUM_TILE + tile_rem(iu[a])];
-				if (finite)
-					acc_add_fast(n, w, e, white, inv);
-				else
-					acc_add(n, w, e, inv);
-			}
+		double u0 = 1 - p->fu, v0 = 1 - p->fv;
+		if (mine0) {
+			band_add(&P, i0, j0, u0 * v0, e, white);
+			band_add(&P, i1, j0, p->fu * v0, e, white);
+		}
+		if (mine1) {
+			band_add(&P, i0, j1, u0 * p->fv, e, white);
+			band_add(&P, i1, j1, p->fu * p->fv, e, white);
 		}
 	}
 }
@@ -1725,6 +1768,29 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 
 #define FINISH_CHUNK 2048 /* tiles per illum_finish_mt item */
 
+/* A sum of fixed-point numbers in 192 bits, which no sum of a map's nodes
+ * passes: added without saturating, then saturated once (wide_fx), which
+ * gives what fx_add gives added one by one (the least of the sum and the
+ * largest fx) for less work. */
+struct wide {
+	uint64_t lo, hi, top;
+};
+
+static inline void wide_add(struct wide *a, struct fx b)
+{
+	uint64_t lo = a->lo + b.lo, c1 = lo < b.lo;
+	uint64_t hi = a->hi + b.hi, c2 = hi < b.hi;
+	uint64_t hi2 = hi + c1;
+	a->lo = lo;
+	a->hi = hi2;
+	a->top += c2 + (hi2 < c1);
+}
+
+static struct fx wide_fx(struct wide a)
+{
+	return a.top ? (struct fx){UINT64_MAX, UINT64_MAX} : (struct fx){a.lo, a.hi};
+}
+
 struct finish_job {
 	struct illum_map *m;
 	long k0, k1;      /* tiles [k0, k1) */
@@ -1773,10 +1839,13 @@ static void near_counts(const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
 {
 	memset(c, 0, sizeof c[0] * NEAR_N);
 	for (int b = 0; b < 3; b++)
-		for (int a = 0; a < 3; a++)
-			if (nb->t[b][a])
-				for (int q = 0; q < TN; q++)
-					c[b * ILLUM_TILE + q / ILLUM_TILE][a * ILLUM_TILE + q % ILLUM_TILE] = nb->t[b][a]->n[q].count;
+		for (int a = 0; a < 3; a++) {
+			const struct tile *t = nb->t[b][a];
+			if (t)
+				for (int y = 0; y < ILLUM_TILE; y++)
+					for (int x = 0; x < ILLUM_TILE; x++)
+						c[b * ILLUM_TILE + y][a * ILLUM_TILE + x] = t->n[y * ILLUM_TILE + x].count;
+		}
 }
 
 /* node_isolated for node q of the middle tile of c (near_counts), when its
@@ -1786,9 +1855,10 @@ static bool near_isolated(uint32_t c[NEAR_N][NEAR_N], int q)
 {
 	int x = ILLUM_TILE + q % ILLUM_TILE, y = ILLUM_TILE + q / ILLUM_TILE;
 	uint64_t sum = 0;
-	for (int j = y - 2; j <= y + 2; j++)
-		for (int i = x - 2; i <= x + 2; i++)
-			sum += c[j][i];
+	for (int j = y - 2; j <= y + 2; j++) { /* the row's five, written out */
+		const uint32_t *row = &c[j][x - 2];
+		sum += (uint64_t)row[0] + row[1] + row[2] + row[3] + row[4];
+	}
 	return sum <= 4;
 }
 
@@ -1801,12 +1871,14 @@ static void finish_work(void *ctx, long job, int worker)
 	/* node_isolated reaches two nodes each way on both axes (not fewer on
 	 * a short wrapping axis) */
 	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
-	struct fx tot[3] = {J->tot[0], J->tot[1], J->tot[2]}, rem[3] = {J->rem[0], J->rem[1], J->rem[2]};
+	struct wide tot[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rem[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
-		for (int q = 0; q < TN; q++)
-			for (int c = 0; c < 3; c++)
-				fx_add(&tot[c], t->n[q].e[c]);
+		for (int q = 0; q < TN; q++) {
+			wide_add(&tot[0], t->n[q].e[0]);
+			wide_add(&tot[1], t->n[q].e[1]);
+			wide_add(&tot[2], t->n[q].e[2]);
+		}
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
 		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
@@ -1835,12 +1907,12 @@ static void finish_work(void *ctx, long job, int worker)
 			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
 				t->iso |= 1u << q;
 				for (int c = 0; c < 3; c++)
-					fx_add(&rem[c], t->n[q].e[c]);
+					wide_add(&rem[c], t->n[q].e[c]);
 			}
 		}
 	}
-	for (int c = 0; c < 3; c++)
-		J->tot[c] = tot[c], J->rem[c] = rem[c];
+	for (int c = 0; c < 3; c++) /* (J's sums start at 0) */
+		J->tot[c] = wide_fx(tot[c]), J->rem[c] = wide_fx(rem[c]);
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)

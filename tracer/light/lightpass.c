@@ -402,10 +402,12 @@ static bool inert(const struct need *n, const struct oinfo *x)
 	return n->direct && x->dull && x->quiet;
 }
 
+/* (Asked only before the first bounce: after it, every hit is needed whole
+ * and trace passes no callback.) */
 static bool full_hit(const void *ctx, const struct object *o)
 {
 	const struct need *n = ctx;
-	return !n->direct || !inert(n, oinfo_of(n->w, o));
+	return !inert(n, oinfo_of(n->w, o));
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
@@ -419,7 +421,7 @@ static void trace(struct worker *w, struct ray r, const double e[3], double cuto
 	struct hit h;
 	w->segments++;
 	struct need nd = {w, nspec == 0 && !J->o->deposit_direct};
-	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)) {
+	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, nd.direct ? full_hit : NULL, &nd)) {
 		add3(w->escaped, e);
 		return;
 	}

@@ -7,6 +7,7 @@
 #include <pthread.h>
 #include <setjmp.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -217,13 +218,42 @@ struct ocio_job {
 	pthread_mutex_t lock; /* guards msg */
 };
 
+/* Transforms px[0..n) in place, a run of equal pixels (a background, a
+ * flat wall: bit for bit the same floats) once: the runs' first pixels are
+ * transformed together, then copied over their runs. Each pixel is
+ * transformed alone, so the result is the one of transforming them all. */
+static int apply_runs(const struct ocio_proc *proc, float *px, long n, char *msg, size_t len)
+{
+	float *u = malloc(sizeof *u * 3 * (size_t)n);
+	int32_t *run = malloc(sizeof *run * (size_t)n);
+	if (!u || !run) { /* no room to collapse: every pixel */
+		free(u), free(run);
+		return ocio_proc_apply_rgb(proc, px, n, msg, len);
+	}
+	long m = 0;
+	for (long k = 0; k < n; k++) {
+		if (m > 0 && memcmp(px + 3 * k, u + 3 * (m - 1), 3 * sizeof *u) == 0) {
+			run[m - 1]++;
+			continue;
+		}
+		memcpy(u + 3 * m, px + 3 * k, 3 * sizeof *u);
+		run[m++] = 1;
+	}
+	int rv = ocio_proc_apply_rgb(proc, u, m, msg, len);
+	for (long r = 0, k = 0; rv == 0 && r < m; r++)
+		for (int32_t c = 0; c < run[r]; c++, k++)
+			memcpy(px + 3 * k, u + 3 * r, 3 * sizeof *u);
+	free(u), free(run);
+	return rv;
+}
+
 static void ocio_chunk(void *arg, long i, int worker)
 {
 	(void)worker;
 	struct ocio_job *j = arg;
 	long at = i * OCIO_CHUNK, n = j->npix - at < OCIO_CHUNK ? j->npix - at : OCIO_CHUNK;
 	char msg[512];
-	if (ocio_proc_apply_rgb(j->proc, j->rgb + 3 * at, n, msg, sizeof msg) != 0) {
+	if (apply_runs(j->proc, j->rgb + 3 * at, n, msg, sizeof msg) != 0) {
 		pthread_mutex_lock(&j->lock);
 		if (!atomic_load(&j->failed))
 			snprintf(j->msg, sizeof j->msg, "%s", msg);
