@@ -79,6 +79,7 @@ struct query {
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
+	const struct object *from; /* a convex leaf the ray leaves outward: not tested */
 };
 
 /* The queries of a packet of rays, lane i in q[i] (rtcIntersect16). */
@@ -260,7 +261,7 @@ HOT bool sphere_t(const struct object *o, const struct ray *r, double tmin, doub
  * its t alone; traverse fills *h at the end) and returns true. */
 HOT bool consider_obj(struct query *q, int id, const struct object *o)
 {
-	if (o->flags & q->skip)
+	if ((o->flags & q->skip) || o == q->from)
 		return false;
 	/* a tie with the best so far is looked at: the lower index wins */
 	double hi = q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax, t;
@@ -320,7 +321,7 @@ static bool blocks(const struct query *q, unsigned id)
 {
 	const struct object *o = q->b->prims[id];
 	double t;
-	if (o->flags & q->skip)
+	if ((o->flags & q->skip) || o == q->from)
 		return false;
 	return o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
 	                             : shape_occluded(o, q->r, q->tmin, q->tmax);
@@ -562,7 +563,7 @@ HOT void brute(struct query *q, bool any)
 			continue;
 		}
 		const struct object *o = q->b->prims[i];
-		if (!(o->flags & q->skip))
+		if (!(o->flags & q->skip) && o != q->from)
 			q->found = shape_occluded(o, q->r, q->tmin, q->tmax);
 	}
 }
@@ -574,7 +575,7 @@ HOT bool unbounded(struct query *q, bool any)
 	struct hit tmp;
 	for (int i = 0; i < q->b->nunbound; i++) {
 		const struct object *o = q->b->unbound[i];
-		if (o->flags & q->skip)
+		if ((o->flags & q->skip) || o == q->from)
 			continue;
 		double t;
 		if (o->kind == OBJ_PLANE) { /* the t alone; finish fills *h */
@@ -623,6 +624,7 @@ static void new_query(struct query *q, const struct bvh *b, const struct ray *r,
 	q->skip = skip & ~BVH_NO_UV, q->h = h, q->uv = !(skip & BVH_NO_UV);
 	q->best = -1, q->best_t = 0, q->ubest = -1, q->ubest_hi = 0, q->best_hi = 0;
 	q->found = q->deferred = false;
+	q->from = NULL;
 }
 
 /* finish(q), unless full (when given) says the winner found by its t
@@ -770,6 +772,36 @@ bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, do
                        unsigned skip)
 {
 	return traverse(b, r, tmin, tmax, skip, true, NULL, NULL, NULL);
+}
+
+/* traverse (without full) for a ray that leaves convex leaf from outward
+ * (NULL: none), which is not tested (bvh.h). */
+HOT bool traverse_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
+                       const struct object *from, struct hit *h)
+{
+	struct query q;
+	new_query(&q, b, r, tmin, tmax, skip, h);
+	q.from = from;
+	if (b->nunbound && unbounded(&q, any))
+		return q.found;
+	if (b->nprims > 0 && b->scene)
+		walk(&q, any);
+	else if (b->nprims > 0)
+		brute(&q, any);
+	finish(&q);
+	return q.found;
+}
+
+bool bvh_intersect_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                        const struct object *from, struct hit *h)
+{
+	return traverse_from(b, r, tmin, tmax, skip, false, from, h);
+}
+
+bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                       const struct object *from)
+{
+	return traverse_from(b, r, tmin, tmax, skip, true, from, NULL);
 }
 
 bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,

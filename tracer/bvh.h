@@ -34,6 +34,13 @@ bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, d
                         unsigned skip, struct hit *h);
 bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                        unsigned skip);
+/* bvh_intersect_skip and bvh_occluded_skip for a ray that leaves convex
+ * leaf from outward (shape_convex): from, which it cannot hit, is not
+ * tested; NULL: every leaf is. */
+bool bvh_intersect_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                        const struct object *from, struct hit *h);
+bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                       const struct object *from);
 /* bvh_intersect_skip, where the caller may not need the whole hit: when
  * full(ctx, object hit) returns false, *h may hold only obj and t, with
  * (u,v) NaN (the rest unset), which spares working out the point, normal

@@ -25,6 +25,8 @@ struct path {
 	const struct shadow_memo *memo; /* per light (EYE_MEMO first ones): the
 	                              shadow ray of the camera hit, tested
 	                              beforehand in a packet (eye_pixels), or NULL */
+	const struct object *from; /* the next trace's ray leaves this convex object
+	                              outward (surf.out), or NULL */
 };
 
 /* A shadow ray of a light point towards l->pos, and whether it is blocked,
@@ -66,6 +68,13 @@ struct surf {
 	struct vec3 nf;             /* unit normal facing the incoming ray */
 	struct vec3 v;              /* unit vector towards the viewer */
 	double opacity;             /* 1 - filter - transmit, clamped */
+	const struct object *out;   /* h's object when convex and nf is its outward
+	                               normal (not flipped, not perturbed): rays
+	                               leaving along d·nf >= 0 cannot hit it (bvh.h) */
+	const struct object *back;  /* h's object when convex and nf is its inward
+	                               normal (flipped, not perturbed): the
+	                               transmitted ray, offset along -nf, leaves it
+	                               when it goes along d·n >= 0 */
 };
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
@@ -132,8 +141,8 @@ static struct vec3 arriving(const struct scene *s, const struct light *l, double
  * transmitted light the light pass carries (a caustic), else the product of
  * what each straight transmitter passes (surface.h) and of the absorption
  * inside it. */
-static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p, struct vec3 nf,
-                          struct vec3 L, double dist)
+static struct vec3 shadow(struct path *pa, const struct light *l, const struct object *from, struct vec3 p,
+                          struct vec3 nf, struct vec3 L, double dist)
 {
 	struct vec3 pass = v3(1, 1, 1);
 	if (l->shadowless)
@@ -149,7 +158,7 @@ static struct vec3 shadow(struct path *pa, const struct light *l, struct vec3 p,
 		if (m && m->set && !memcmp(&m->r, &r, sizeof r) && !memcmp(&m->tmax, &tmax, sizeof tmax))
 			blocked = m->blocked;
 		else
-			blocked = bvh_occluded_skip(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW);
+			blocked = bvh_occluded_from(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW, from);
 		return blocked ? v3(0, 0, 0) : pass;
 	}
 	for (int n = 0; n < 64; n++) {
@@ -225,7 +234,7 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
 	if (l->kind == LIGHT_SPOT)
 		Li = v_scale(Li, opt_spot(l, v_neg(L)));
 	if (test && v_maxc(Li) > 0)
-		Li = v_mul(Li, shadow(pa, l, sf->h->p, sf->nf, L, dist));
+		Li = v_mul(Li, shadow(pa, l, sf->out, sf->h->p, sf->nf, L, dist));
 	if (v_maxc(Li) <= 0)
 		return v3(0, 0, 0);
 	*E = v_madd(*E, Li, c);
@@ -261,7 +270,7 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 			}
 			double dist = towards(l, sf->h->p, q, &L);
 			if (v_dot(sf->nf, L) > 0) { /* the mean share passed, as a scalar */
-				struct vec3 k = shadow(pa, l, sf->h->p, sf->nf, L, dist);
+				struct vec3 k = shadow(pa, l, sf->out, sf->h->p, sf->nf, L, dist);
 				seen += w * (k.x + k.y + k.z) / 3;
 			}
 		}
@@ -332,10 +341,14 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	struct surf_out so;
 	surf_scatter(&si, pa->band, &so);
 	struct vec3 out = v3(0, 0, 0);
-	if (v_maxc(so.T) > 0)
+	if (v_maxc(so.T) > 0) {
+		pa->from = sf->back && v_dot(so.trans.d, sf->h->n) >= 0 ? sf->back : NULL;
 		out = v_mul(so.T, trace(pa, so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
-	if (v_maxc(so.R) > 0)
+	}
+	if (v_maxc(so.R) > 0) {
+		pa->from = sf->out; /* so.refl.d·nf = -d·nf >= 0 */
 		out = v_add(out, v_mul(so.R, trace(pa, so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
+	}
 	return out;
 }
 
@@ -361,10 +374,16 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
                              int depth, double weight, unsigned skip, struct aov *aov, bool upper)
 {
 	const struct scene *s = pa->ctx->scene;
-	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1};
-	sf.pc = mat_pigment(pa->ctx->mats, &sf.tex->pigment, h->p);
-	if (v_dot(sf.nf, sf.v) < 0) /* decided by the true normal */
+	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1, NULL, NULL};
+	sf.pc = tex->pigment.kind == PIG_SOLID ? tex->pigment.c[0] /* as mat_pigment, without the calls */
+	                                       : mat_pigment(pa->ctx->mats, &tex->pigment, h->p);
+	if (v_dot(sf.nf, sf.v) < 0) { /* decided by the true normal */
 		sf.nf = v_neg(sf.nf);
+		if (!tex_normal(sf.tex) && shape_convex(h->obj))
+			sf.back = h->obj;
+	} else if (!tex_normal(sf.tex) && shape_convex(h->obj)) {
+		sf.out = h->obj;
+	}
 	if (tex_normal(sf.tex)) /* as POV-Ray: the normal facing the eye is perturbed */
 		sf.nf = pattern_perturb(tex_normal(sf.tex), h->p, sf.nf);
 	sf.opacity = 1 - sf.pc.f - sf.pc.t;
@@ -551,13 +570,14 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 {
 	const struct scene *s = pa->ctx->scene;
 	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5, pre = pa->pre_state;
-	pa->pre_state = 0;
+	const struct object *from = pa->from;
+	pa->pre_state = 0, pa->from = NULL;
 	if (depth > maxd || weight < s->gs.adc_bailout)
 		return v3(0, 0, 0);
 	struct hit hit;
 	const struct hit *hp = pre > 0 ? pa->pre : &hit; /* the packet's hit is used in place */
 	pa->rays++;
-	if (pre < 0 || (!pre && !bvh_intersect_skip(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), &hit))) {
+	if (pre < 0 || (!pre && !bvh_intersect_from(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), from, &hit))) {
 		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
 		if (s->fog.type)
 			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
@@ -622,7 +642,7 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL};
+	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL};
 	double jx = 0.5, jy = 0.5;
 	if (jitter) {
 		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */

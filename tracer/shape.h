@@ -65,6 +65,13 @@ bool shape_plane_intersect(const struct object *o, const struct pl_prep *p, cons
                            double tmax, struct hit *h);
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
+/* Is o's solid convex (a sphere, a box, a plane's half-space, a closed
+ * cylinder or cone; never
+ * OF_INVERSE)? Then a ray from a point of its surface, offset along the
+ * outward normal n, with direction d·n >= 0, stays in the half-space
+ * beyond the tangent plane, which holds none of the solid: it cannot hit o
+ * again (bvh_intersect_from). */
+bool shape_convex(const struct object *o);
 /* Is the world point strictly inside the solid (OF_INVERSE honoured)? */
 bool shape_inside(const struct object *o, struct vec3 world_p);
 /* World bounds of the object's SURFACE; ±INFINITY components when unbounded. */

@@ -546,6 +546,77 @@ static void t_leafbox(void)
 	CHECK(inside > 1000 && set >= inside);
 }
 
+/* Rays leaving a convex object outward (shape_convex: spheres, boxes,
+ * closed cylinders and cones, transformed, and a plane's half-space; not a
+ * torus, an open cylinder or an inverse sphere) cannot hit it again: shape_intersect finds no hit, and
+ * bvh_intersect_from and bvh_occluded_from, which do not test it, answer
+ * bit for bit as bvh_intersect_skip and bvh_occluded_skip, in a scene of a
+ * few leaves (tested by their boxes) and in one of many (Embree), from
+ * points offset along the outward normal as the eye pass offsets them, in
+ * directions down to grazing. */
+static void t_leaving_convex(void)
+{
+	enum { NO = 40 };
+	static struct object o[NO + 1];
+	struct object *top[NO + 1];
+	const enum object_kind kind[5] = {OBJ_SPHERE, OBJ_BOX, OBJ_CYLINDER, OBJ_CONE, OBJ_TORUS};
+	rng_seed(26);
+	for (int i = 0; i < NO; i++) {
+		o[i] = rnd_prim(kind[i % 5], false);
+		if (i % 3)
+			o[i].xf = xf_keep(xf_then(rnd_xform(false, true), xf_translate(rnd_vec(-4, 4))));
+		top[i] = &o[i];
+	}
+	o[NO] = mk_obj(OBJ_PLANE);
+	o[NO].g.plane.n = v3(0, 1, 0), o[NO].g.plane.d = -6;
+	top[NO] = &o[NO];
+	struct object open = rnd_prim(OBJ_CYLINDER, true), cone = rnd_prim(OBJ_CONE, false), inv = rnd_prim(OBJ_SPHERE, false);
+	inv.flags |= OF_INVERSE;
+	CHECK(shape_convex(&o[0]) && shape_convex(&o[1]) && shape_convex(&o[2]) && shape_convex(&cone));
+	CHECK(shape_convex(&o[NO]) && !shape_convex(&o[4]) && !shape_convex(&open) && !shape_convex(&inv));
+	int mism = 0, self = 0, tested = 0, hits = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		int n = pass ? NO + 1 : 6; /* 5 bounded leaves and the plane: by their boxes */
+		if (!pass)
+			top[5] = &o[NO];
+		else
+			top[5] = &o[5];
+		struct bvh *b = bvh_build(top, n);
+		for (int i = 0; i < 20000; i++) {
+			const struct object *s = i % 8 ? top[(int)(rnd() * (n - 1)) % (n - 1)] : &o[NO]; /* or the plane */
+			struct ray in = {v_scale(rnd_dir(), 30), v3(0, 0, 0)};
+			struct bbox bx = s->kind == OBJ_PLANE ? (struct bbox){v3(-5, -5, -5), v3(5, 5, 5)} : shape_bounds(s);
+			in.d = v_sub(v_add(v_scale(v_add(bx.lo, bx.hi), 0.5), rnd_vec(-1, 1)), in.o);
+			struct hit h;
+			if (!shape_intersect(s, &in, 0, INFINITY, &h))
+				continue;
+			struct vec3 d = rnd_dir();
+			if (i % 4 == 0) /* grazing: nearly in the tangent plane */
+				d = v_norm(v_madd(d, h.n, -v_dot(d, h.n) + 1e-9));
+			if (v_dot(d, h.n) < 0)
+				d = v_madd(d, h.n, -2 * v_dot(d, h.n));
+			double eps = 1e-7 * (1 + fmax(fabs(h.p.x), fmax(fabs(h.p.y), fabs(h.p.z))));
+			struct ray r = {v_madd(h.p, h.n, eps), d};
+			double tmax = i % 2 ? INFINITY : rndr(0.1, 40);
+			const struct object *from = shape_convex(s) ? s : NULL;
+			struct hit hs, hf, ho;
+			if (from && shape_intersect(s, &r, 0, tmax, &ho))
+				self++;
+			bool gs = bvh_intersect_skip(b, &r, 0, tmax, 0, &hs);
+			bool gf = bvh_intersect_from(b, &r, 0, tmax, 0, from, &hf);
+			bool os = bvh_occluded_skip(b, &r, 0, tmax, 0), of = bvh_occluded_from(b, &r, 0, tmax, 0, from);
+			tested += from != NULL;
+			hits += gs;
+			mism += gs != gf || os != of || (gs && (hs.t != hf.t || hs.obj != hf.obj || hs.n.x != hf.n.x));
+		}
+		bvh_free(b);
+	}
+	printf("# %d rays leaving convex objects, %d hit something, %d hit their own object, %d mismatches\n",
+	       tested, hits, self, mism);
+	CHECK(self == 0 && mism == 0);
+	CHECK(tested > 5000 && hits > 1000);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -557,5 +628,6 @@ int main(void)
 	RUN(t_lazy);
 	RUN(t_occluded_packet);
 	RUN(t_leafbox);
+	RUN(t_leaving_convex);
 	return test_done();
 }

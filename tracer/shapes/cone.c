@@ -32,7 +32,9 @@ struct kframe {
 	double s1, s2, len;       /* arc length at the seams, and in all */
 };
 
-static bool kn_frame(const struct object *o, struct kframe *f)
+/* The frame without the lengths along a meridian (slant, s1, s2, len):
+ * what the candidates need (kn_lengths completes it). */
+static bool kn_axes(const struct object *o, struct kframe *f)
 {
 	struct vec3 ab = v_sub(o->g.cone.b, o->g.cone.a);
 	f->h = v_len(ab);
@@ -43,11 +45,23 @@ static bool kn_frame(const struct object *o, struct kframe *f)
 	f->a = o->g.cone.a;
 	f->w = v_scale(ab, 1 / f->h);
 	shape_basis(f->w, &f->e1, &f->e2);
+	return true;
+}
+
+static void kn_lengths(const struct object *o, struct kframe *f)
+{
 	bool caps = !(o->flags & OF_OPEN);
 	f->slant = hypot(f->h, f->rb - f->ra);
 	f->s1 = caps ? f->ra : 0;
 	f->s2 = f->s1 + f->slant;
 	f->len = f->s2 + (caps ? f->rb : 0);
+}
+
+static bool kn_frame(const struct object *o, struct kframe *f)
+{
+	if (!kn_axes(o, f))
+		return false;
+	kn_lengths(o, f);
 	return true;
 }
 
@@ -179,7 +193,7 @@ static bool kn_intersect(const struct object *o, const struct ray *r, double tmi
 {
 	struct kframe f;
 	struct cand c[4];
-	if (!kn_frame(o, &f))
+	if (!kn_axes(o, &f))
 		return false;
 	int n = kn_candidates(o, &f, r, c), best = -1;
 	for (int i = 0; i < n; i++)
@@ -187,8 +201,23 @@ static bool kn_intersect(const struct object *o, const struct ray *r, double tmi
 			best = i;
 	if (best < 0)
 		return false;
+	kn_lengths(o, &f);
 	kn_fill(&f, r, c[best].t, c[best].part, lh);
 	return true;
+}
+
+/* kn_intersect's answer without the hit: a candidate in range. */
+static bool kn_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
+{
+	struct kframe f;
+	struct cand c[4];
+	if (!kn_axes(o, &f))
+		return false;
+	int n = kn_candidates(o, &f, r, c);
+	for (int i = 0; i < n; i++)
+		if (c[i].t > tmin && c[i].t < tmax)
+			return true;
+	return false;
 }
 
 static bool kn_inside(const struct object *o, struct vec3 p)
@@ -266,5 +295,5 @@ static void kn_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_cone_ops = {
-	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area, kn_dump, NULL,
+	kn_intersect, kn_inside, kn_bounds, kn_uv_point, kn_uv_range, kn_cell_area, kn_dump, kn_occluded,
 };

@@ -169,6 +169,20 @@ static bool cy_intersect(const struct object *o, const struct ray *r, double tmi
 	return true;
 }
 
+/* cy_intersect's answer without the hit: a candidate in range. */
+static bool cy_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
+{
+	struct cframe f;
+	struct cand c[4];
+	if (!cy_frame(o, &f))
+		return false;
+	int n = cy_candidates(o, &f, r, c);
+	for (int i = 0; i < n; i++)
+		if (c[i].t > tmin && c[i].t < tmax)
+			return true;
+	return false;
+}
+
 static bool cy_inside(const struct object *o, struct vec3 p)
 {
 	struct cframe f;
@@ -234,5 +248,5 @@ static void cy_dump(const struct object *o, FILE *out)
 }
 
 const struct prim_ops shape_cylinder_ops = {
-	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area, cy_dump, NULL,
+	cy_intersect, cy_inside, cy_bounds, cy_uv_point, cy_uv_range, cy_cell_area, cy_dump, cy_occluded,
 };
