@@ -644,12 +644,16 @@ HOT void finish_if(struct query *q, bool (*full)(const void *ctx, const struct o
 	q->h->u = q->h->v = NAN;
 }
 
-/* The query shared by both kinds: with any set, stops at the first hit. */
+/* The query shared by both kinds: with any set, stops at the first hit. A
+ * ray that leaves convex leaf from outward (NULL: none) does not test it
+ * (bvh.h). */
 HOT bool traverse(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
-                  struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
+                  const struct object *from, struct hit *h, bool (*full)(const void *ctx, const struct object *o),
+                  const void *ctx)
 {
 	struct query q;
 	new_query(&q, b, r, tmin, tmax, skip, h);
+	q.from = from;
 	if (b->nunbound && unbounded(&q, any))
 		return q.found;
 	if (b->nprims > 0 && b->scene)
@@ -765,58 +769,40 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 bool bvh_intersect_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                         unsigned skip, struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, skip, false, h, NULL, NULL);
+	return traverse(b, r, tmin, tmax, skip, false, NULL, h, NULL, NULL);
 }
 
 bool bvh_occluded_skip(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                        unsigned skip)
 {
-	return traverse(b, r, tmin, tmax, skip, true, NULL, NULL, NULL);
-}
-
-/* traverse (without full) for a ray that leaves convex leaf from outward
- * (NULL: none), which is not tested (bvh.h). */
-HOT bool traverse_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip, bool any,
-                       const struct object *from, struct hit *h)
-{
-	struct query q;
-	new_query(&q, b, r, tmin, tmax, skip, h);
-	q.from = from;
-	if (b->nunbound && unbounded(&q, any))
-		return q.found;
-	if (b->nprims > 0 && b->scene)
-		walk(&q, any);
-	else if (b->nprims > 0)
-		brute(&q, any);
-	finish(&q);
-	return q.found;
+	return traverse(b, r, tmin, tmax, skip, true, NULL, NULL, NULL, NULL);
 }
 
 bool bvh_intersect_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
                         const struct object *from, struct hit *h)
 {
-	return traverse_from(b, r, tmin, tmax, skip, false, from, h);
+	return traverse(b, r, tmin, tmax, skip, false, from, h, NULL, NULL);
 }
 
 bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
                        const struct object *from)
 {
-	return traverse_from(b, r, tmin, tmax, skip, true, from, NULL);
+	return traverse(b, r, tmin, tmax, skip, true, from, NULL, NULL, NULL);
 }
 
 bool bvh_intersect(const struct bvh *b, const struct ray *r, double tmin, double tmax,
                    struct hit *h)
 {
-	return traverse(b, r, tmin, tmax, 0, false, h, NULL, NULL);
+	return traverse(b, r, tmin, tmax, 0, false, NULL, h, NULL, NULL);
 }
 
 bool bvh_occluded(const struct bvh *b, const struct ray *r, double tmin, double tmax)
 {
-	return traverse(b, r, tmin, tmax, 0, true, NULL, NULL, NULL);
+	return traverse(b, r, tmin, tmax, 0, true, NULL, NULL, NULL, NULL);
 }
 
 bool bvh_intersect_lazy(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
                         struct hit *h, bool (*full)(const void *ctx, const struct object *o), const void *ctx)
 {
-	return traverse(b, r, tmin, tmax, skip, false, h, full, ctx);
+	return traverse(b, r, tmin, tmax, skip, false, NULL, h, full, ctx);
 }
