@@ -12,11 +12,15 @@
 
 #define LEAFBOX_MAX 8
 
-/* Boxes as rows per axis (lo[axis][leaf]), so that two leaves are one
- * vector operation. */
+/* Boxes as rows per axis (lo[axis][lane]), so that two or four lanes are
+ * one vector operation. A lane holds leaf i at lane i; with 5 to 7 leaves
+ * (split) lanes 0-2 hold leaves 0-2, lane 3 the box around leaves 3 to
+ * n-1, and lanes 4 on those leaves: a ray that misses lane 3 misses them
+ * all, and their lanes are not tested. */
 struct leafbox {
 	int n;
 	bool wide;  /* the CPU runs AVX: four boxes per operation */
+	bool split; /* lane 3 bounds leaves 3 to n-1, which sit one lane on */
 	double lo[3][LEAFBOX_MAX];
 	double hi[3][LEAFBOX_MAX];
 };
