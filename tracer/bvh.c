@@ -516,7 +516,7 @@ static void walk(struct query *q, bool any)
  * the order it enters them, and stops at a box entered beyond the best hit
  * so far (a costly leaf behind a near one is never solved); the hit is that
  * of the loop in order all the same (consider). */
-static void boxed(struct query *q, bool any)
+HOT void boxed(struct query *q, bool any)
 {
 	double at[LEAFBOX_MAX];
 	int id[LEAFBOX_MAX], n = 0;
