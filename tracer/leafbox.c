@@ -78,7 +78,7 @@ __attribute__((target("avx"), always_inline)) static inline unsigned lanes4(cons
 	return (unsigned)_mm256_movemask_pd(ok);
 }
 
-__attribute__((target("avx"))) static unsigned hits4(const struct leafbox *lb, const struct ray *r, double tmin,
+__attribute__((target("avx"))) unsigned leafbox_wide(const struct leafbox *lb, const struct ray *r, double tmin,
                                                      double tmax, double at[LEAFBOX_MAX])
 {
 	const __m256d o[3] = {_mm256_set1_pd(r->o.x), _mm256_set1_pd(r->o.y), _mm256_set1_pd(r->o.z)};
@@ -112,17 +112,13 @@ static inline unsigned lanes2(const struct leafbox *lb, int i, const __m128d o[3
 	return (unsigned)_mm_movemask_pd(ok);
 }
 
-unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
-                      double at[LEAFBOX_MAX])
+unsigned leafbox_narrow(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                        double at[LEAFBOX_MAX])
 {
-#ifdef LEAFBOX_AVX
-	if (lb->wide)
-		return hits4(lb, r, tmin, tmax, at);
-#endif
 	const __m128d o[3] = {_mm_set1_pd(r->o.x), _mm_set1_pd(r->o.y), _mm_set1_pd(r->o.z)};
 	const __m128d iv[3] = {_mm_set1_pd(1 / r->d.x), _mm_set1_pd(1 / r->d.y), _mm_set1_pd(1 / r->d.z)};
 	unsigned hits = 0;
-	if (lb->split) { /* as hits4: lanes 0-3, then lanes 4 on (leaves 3 on) when lane 3 is met */
+	if (lb->split) { /* as leafbox_wide: lanes 0-3, then lanes 4 on (leaves 3 on) when lane 3 is met */
 		hits = lanes2(lb, 0, o, iv, tmin, tmax, at) | lanes2(lb, 2, o, iv, tmin, tmax, at + 2) << 2;
 		if (!(hits & 8))
 			return hits & 7;
@@ -151,8 +147,8 @@ static bool lane1(const struct leafbox *lb, int i, const double o[3], const doub
 	return *at <= t1 + 1e-12 * fabs(t1);
 }
 
-unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
-                      double at[LEAFBOX_MAX])
+unsigned leafbox_narrow(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                        double at[LEAFBOX_MAX])
 {
 	const double o[3] = {r->o.x, r->o.y, r->o.z}, iv[3] = {1 / r->d.x, 1 / r->d.y, 1 / r->d.z};
 	unsigned hits = 0;
@@ -169,3 +165,11 @@ unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin
 }
 #endif
 
+#ifndef LEAFBOX_AVX
+/* No AVX here: lb->wide is never set, and this is never called. */
+unsigned leafbox_wide(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                      double at[LEAFBOX_MAX])
+{
+	return leafbox_narrow(lb, r, tmin, tmax, at);
+}
+#endif

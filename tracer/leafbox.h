@@ -32,8 +32,17 @@ void leafbox_set(struct leafbox *lb, int n, const struct bbox *b);
  * for leaf i, and where it enters each (at[i], no later than the true
  * entry). Never leaves out a box the exact ray meets, except a ray lying in
  * the plane of a face (no motion along that axis): give boxes grown by a
- * margin beyond what they bound, so that such a ray misses what they hold. */
-unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+ * margin beyond what they bound, so that such a ray misses what they hold.
+ * Inline, so that the caller calls the version for its CPU straight away
+ * (leafbox_wide with AVX, else leafbox_narrow: the same answers). */
+unsigned leafbox_wide(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
                       double at[LEAFBOX_MAX]);
+unsigned leafbox_narrow(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                        double at[LEAFBOX_MAX]);
+static inline unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                                    double at[LEAFBOX_MAX])
+{
+	return lb->wide ? leafbox_wide(lb, r, tmin, tmax, at) : leafbox_narrow(lb, r, tmin, tmax, at);
+}
 
 #endif
