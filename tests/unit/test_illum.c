@@ -338,6 +338,33 @@ static void t_plane_sparse(void)
 	illum_free(m);
 }
 
+/* A lookup reads the two nodes around (u,v) on each axis, whichever tiles
+ * they lie in: a map holding one node (one tile) gives its irradiance at
+ * the node, half of it half a cell away on either side of either axis
+ * (where the other node's tile lies outside the tiles held), and nothing a
+ * cell and a half away. */
+static void t_lookup_edges(void)
+{
+	struct object o = prim(OBJ_PLANE);
+	struct illum_map *m = map_cell(&o, 0.1);
+	double e[3] = {0.02, 0.04, 0.06}, out[3];
+	illum_deposit(m, 0.2, -0.8, e);
+	illum_finish(m, false, NULL); /* a lone node: kept */
+	CHECK(illum_tiles(m) == 1);
+	illum_lookup(m, 0.2, -0.8, out);
+	CHECK_NEAR(out[0], 2, 1e-12);
+	CHECK_NEAR(out[2], 6, 1e-12);
+	static const double off[4][2] = {{0.05, 0}, {-0.05, 0}, {0, 0.05}, {0, -0.05}};
+	for (int k = 0; k < 4; k++) {
+		illum_lookup(m, 0.2 + off[k][0], -0.8 + off[k][1], out);
+		CHECK_NEAR(out[0], 1, 1e-12);
+		CHECK_NEAR(out[1], 2, 1e-12);
+		illum_lookup(m, 0.2 + 3 * off[k][0], -0.8 + 3 * off[k][1], out);
+		CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0);
+	}
+	illum_free(m);
+}
+
 /* ==== merge =============================================================== */
 
 /* illum_deposit_all and illum_finish_mt give the same map, bit for bit
@@ -688,6 +715,7 @@ int main(void)
 	RUN(t_uniform);
 	RUN(t_uniform_plane);
 	RUN(t_plane_sparse);
+	RUN(t_lookup_edges);
 	RUN(t_threads);
 	RUN(t_runs);
 	RUN(t_merge);

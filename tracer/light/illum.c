@@ -131,6 +131,7 @@ struct illum_map {
 	long wti, wtj, wnu, wnv;  /* the window's first tile and its size in tiles */
 	long last;                /* tile index of the last deposit (cache), -1 */
 	bool finished;            /* irradiance is current */
+	int32_t rti[2], rtj[2];   /* while finished: the least and greatest tile indices held */
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
 	double flat_area;         /* plane: the node area, the same everywhere (0 until known) */
@@ -1939,9 +1940,14 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 		win_fit(m, ti, tj, ns, 0);
 		free(ti), free(tj);
 	}
-	for (long k = 0; k < m->ntiles; k++)
-		if (!plane && !m->tiles[k]->area)
-			m->tiles[k]->area = ARENA_ARRAY(&m->pool, double, TN);
+	m->rti[0] = m->rtj[0] = INT32_MAX, m->rti[1] = m->rtj[1] = INT32_MIN;
+	for (long k = 0; k < m->ntiles; k++) {
+		struct tile *t = m->tiles[k];
+		if (!plane && !t->area)
+			t->area = ARENA_ARRAY(&m->pool, double, TN);
+		m->rti[0] = t->ti < m->rti[0] ? t->ti : m->rti[0], m->rti[1] = t->ti > m->rti[1] ? t->ti : m->rti[1];
+		m->rtj[0] = t->tj < m->rtj[0] ? t->tj : m->rtj[0], m->rtj[1] = t->tj > m->rtj[1] ? t->tj : m->rtj[1];
+	}
 	if (plane && m->ntiles) /* its one area, before threads read it */
 		node_area(m, 0, 0);
 	/* chunks of FINISH_CHUNK tiles, claimed by the threads as they come
@@ -1981,6 +1987,25 @@ static double node_irr(const struct illum_map *m, const struct tile *t, int q, i
 	return fx_to_double(t->n[q].e[c]) * m->unit / a;
 }
 
+/* Adds w × node_irr for the three channels to out, its checks made once
+ * (out ≥ 0: adding w × 0 changes no bit, so nothing is added then). */
+static void add_irr(const struct illum_map *m, const struct tile *t, int q, double w, double out[3])
+{
+	double a = t->area ? t->area[q] : m->flat_area;
+	if ((t->iso >> q) & 1 || !(a > 0))
+		return;
+	for (int c = 0; c < 3; c++)
+		out[c] += w * (fx_to_double(t->n[q].e[c]) * m->unit / a);
+}
+
+/* False only when tiles ta and tb (one axis) both lie below or both above
+ * the range r of the tiles a finished map holds (rti, rtj): then neither
+ * is held. */
+static bool in_range(const int32_t r[2], long ta, long tb)
+{
+	return (ta >= r[0] || tb >= r[0]) && (ta <= r[1] || tb <= r[1]);
+}
+
 void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 {
 	out[0] = out[1] = out[2] = 0;
@@ -1990,6 +2015,9 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 	double fu, fv;
 	axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
 	axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
+	/* most maps (a surface's coarser levels) hold nothing near (u,v) */
+	if (!in_range(m->rti, floordiv(iu[0]), floordiv(iu[1])) || !in_range(m->rtj, floordiv(iv[0]), floordiv(iv[1])))
+		return;
 	double wu[2] = {1 - fu, fu}, wv[2] = {1 - fv, fv};
 	for (int b = 0; b < 2; b++)
 		for (int a = 0; a < 2; a++) {
@@ -1997,8 +2025,7 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3])
 			int slot;
 			const struct tile *t = w > 0 ? node_tile(m, iu[a], iv[b], &slot) : NULL;
 			if (t)
-				for (int c = 0; c < 3; c++)
-					out[c] += w * node_irr(m, t, slot, c);
+				add_irr(m, t, slot, w, out);
 		}
 }
 
