@@ -58,24 +58,7 @@ struct bvh {
 	bool brute;                    /* few leaves: tested without Embree (brute) */
 	struct leafbox *box;           /* the leaves' boxes grown by pad, when brute
 	                                  tests boxes first (NULL: it does not) */
-	struct sph *sph;               /* per bounded leaf, with an Embree scene */
 };
-
-/* A bounded leaf's sphere, for the callbacks (sphere_lanes, consider_sph,
- * blocks_sph): its centre and radius when it is a plain
- * sphere (PLAIN_FLAGS), else NaNs, which turn no ray away. 32 bytes in one
- * array indexed by Embree's primID: a camera packet of the random cloud
- * tests 8 spheres for each it hits, and reading the object itself for each
- * (its pointer in prims, then the object) was half of the callback's time,
- * waiting for memory (perf). A plain sphere's object is read only when it
- * wins (finish). */
-struct sph {
-	double x, y, z, r;
-};
-
-/* A plain sphere: no transform and none of these flags, so that a query
- * whose skip mask has no other flag ignores it never (skip_plain). */
-#define PLAIN_FLAGS (OF_NO_SHADOW | OF_NO_IMAGE | OF_NO_REFLECTION)
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
  * lanes says whether the context is this query (1) or a packet's (16). */
@@ -99,18 +82,12 @@ struct query {
 	const struct object *from; /* a convex leaf the ray leaves outward: not tested */
 };
 
-/* The queries of a packet of rays, lane i in q[i] (rtcIntersect16), and
- * their rays' doubles by rows (lane i's origin ox[i], oy[i], oz[i]), for the
- * sphere callback's lane loop (sphere_lanes). */
+/* The queries of a packet of rays, lane i in q[i] (rtcIntersect16). */
 struct packet {
 	struct RTCIntersectContext rc;
 	int lanes;             /* BVH_PACKET */
 	int base;              /* the queries of Embree's lane i are q[base + i] */
-	double tmin;           /* every lane's tmin */
 	struct query q[BVH_PACKET];
-	_Alignas(16) double ox[BVH_PACKET], oy[BVH_PACKET], oz[BVH_PACKET]; /* q[i].r->o */
-	_Alignas(16) double dx[BVH_PACKET], dy[BVH_PACKET], dz[BVH_PACKET]; /* q[i].r->d */
-	_Alignas(16) double dd[BVH_PACKET];                                 /* q[i].r->d · itself */
 };
 
 /* ==== the device ========================================================= */
@@ -313,11 +290,14 @@ HOT bool consider(struct query *q, int id)
 	return consider_obj(q, id, q->b->prims[id]);
 }
 
-/* Query q, lane i of a ray packet of N rays (N = 1: a single ray), has a
- * better hit, on primitive id: shrinks the lane's tfar just past it. */
-HOT void lane_hit(const struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
-                  unsigned geom)
+/* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
+ * single ray) for query q: on a better hit, records it and shrinks the
+ * lane's tfar just past it. */
+static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
+                      unsigned i, unsigned geom)
 {
+	if (!consider_obj(q, id, o))
+		return;
 	/* RTCRayHitN is a structure of arrays: tfar is float row 8, the hit's
 	 * primID and geomID are rows 12 + 5 and 12 + 6 */
 	((float *)rayhit)[8 * N + i] = up((q->tmax - q->t0) * (1 + 1e-6));
@@ -325,117 +305,15 @@ HOT void lane_hit(const struct query *q, int id, struct RTCRayHitN *rayhit, unsi
 	((unsigned *)rayhit)[18 * N + i] = geom;
 }
 
-/* Tests primitive id, object o, against lane i of a ray packet for query
- * q: on a better hit, records it (lane_hit). */
-static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
-                      unsigned i, unsigned geom)
-{
-	if (consider_obj(q, id, o))
-		lane_hit(q, id, rayhit, N, i, geom);
-}
-
-/* Whether leaf id, plain sphere s, is query q's from leaf: only a sphere
- * of the same centre and radius may be, and only then is its object read. */
-HOT bool is_from(const struct query *q, int id, const struct sph *s)
-{
-	const struct object *f = q->from;
-	return f && f->kind == OBJ_SPHERE && f->g.sphere.c.x == s->x && f->g.sphere.c.y == s->y &&
-	       f->g.sphere.c.z == s->z && f->g.sphere.r == s->r && q->b->prims[id] == f;
-}
-
-/* consider_obj for leaf id, plain sphere s, under a skip mask of
- * PLAIN_FLAGS only (which it has none of): the same test on the same
- * doubles, without reading the object. */
-HOT bool consider_sph(struct query *q, int id, const struct sph *s)
-{
-	if (is_from(q, id, s))
-		return false;
-	double hi = q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax, t;
-	if (!prim_sphere_t(v3(s->x, s->y, s->z), s->r, q->r, q->tmin, hi, &t))
-		return false;
-	q->deferred = true;
-	q->best_t = t;
-	q->tmax = t;
-	q->best = id;
-	q->best_hi = hi;
-	q->found = true;
-	return true;
-}
-
-/* Whether skip mask skip ignores no plain sphere. */
-static inline bool skip_plain(unsigned skip)
-{
-	return !(skip & ~(unsigned)PLAIN_FLAGS);
-}
-
-/* Two doubles and a mask of two (GCC's vector extension: SSE2's width,
- * which every x86-64 has). */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2m __attribute__((vector_size(16)));
-
-/* Which of a packet's N lanes (N even; from Embree's lane 0, the packet's
- * lane base) may meet leaf sphere s: lane i's mask, maybe[i / 2][i % 2],
- * is 0 where prim_sphere_t turns its ray away by its first two tests, the
- * same operations on the same doubles, so the lanes left are the ones it
- * would go on with (all of them for a NaN entry). Two lanes at a time
- * without branches, in place of the whole test per lane: the random
- * cloud's camera packets test 8 spheres for every one they hit, and most
- * lanes are turned away here. */
-
-HOT void sphere_lanes(const struct packet *P, const struct sph *s, unsigned N, v2m *maybe)
-{
-	const v2d cx = {s->x, s->x}, cy = {s->y, s->y}, cz = {s->z, s->z};
-	const double r2 = s->r * s->r, r2m = r2 * (1 + 1e-9);
-	const v2d rr = {r2, r2}, rrm = {r2m, r2m}, eps = {1e-12, 1e-12};
-	const double a0 = P->tmin >= 0 ? 0 : INFINITY; /* fd > ahead: fd > 0 and tmin >= 0 */
-	const v2d ahead = {a0, a0};
-	const v2d *ox = (const v2d *)(P->ox + P->base), *oy = (const v2d *)(P->oy + P->base);
-	const v2d *oz = (const v2d *)(P->oz + P->base), *dx = (const v2d *)(P->dx + P->base);
-	const v2d *dy = (const v2d *)(P->dy + P->base), *dz = (const v2d *)(P->dz + P->base);
-	const v2d *dd = (const v2d *)(P->dd + P->base);
-	for (unsigned i = 0; i < N / 2; i++) {
-		v2d fx = ox[i] - cx, fy = oy[i] - cy, fz = oz[i] - cz, a = dd[i];
-		v2d fd = fx * dx[i] + fy * dy[i] + fz * dz[i], ff = fx * fx + fy * fy + fz * fz;
-		v2m away = a * ff - fd * fd > a * (rrm + ff * eps);
-		v2m behind = (fd > ahead) & (ff - rr > 0);
-		maybe[i] = ~(away | behind);
-	}
-}
-
 static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
 	struct query *lane = P ? &P->q[P->base] : q; /* lane i's query: lane[i], or q alone */
-	const struct bvh *b = lane->b;
-	const struct sph *s = &b->sph[a->primID];
-	_Alignas(64) v2m maybe[BVH_PACKET / 2];
-	bool lanes = P && a->N % 2 == 0;
-	if (lanes)
-		sphere_lanes(P, s, a->N, maybe);
-	bool plain = s->r == s->r && skip_plain(lane->skip); /* every lane's skip is the same */
-	const struct object *o = NULL; /* looked up once for every lane, when needed */
-	for (unsigned i = 0; i < a->N; i++) {
-		if (!a->valid[i] || (lanes && !maybe[i / 2][i % 2]))
-			continue;
-		struct query *qi = P ? &lane[i] : q;
-		if (plain) {
-			if (consider_sph(qi, (int)a->primID, s))
-				lane_hit(qi, (int)a->primID, a->rayhit, a->N, i, a->geomID);
-			continue;
-		}
-		if (!o)
-			o = b->prims[a->primID];
-		test_lane(qi, (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
-	}
-}
-
-/* Whether primitive id, plain sphere s, blocks query q's ray over its
- * interval, under a skip mask of PLAIN_FLAGS only (as consider_sph). */
-HOT bool blocks_sph(const struct query *q, unsigned id, const struct sph *s)
-{
-	double t;
-	return !is_from(q, (int)id, s) && prim_sphere_t(v3(s->x, s->y, s->z), s->r, q->r, q->tmin, q->tmax, &t);
+	const struct object *o = lane->b->prims[a->primID]; /* looked up once for every lane */
+	for (unsigned i = 0; i < a->N; i++)
+		if (a->valid[i])
+			test_lane(P ? &lane[i] : q, (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
 }
 
 /* Whether primitive id blocks query q's ray over its interval. */
@@ -455,18 +333,9 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
-	struct query *lane = P ? &P->q[P->base] : q;
-	const struct sph *s = &lane->b->sph[a->primID];
-	_Alignas(64) v2m maybe[BVH_PACKET / 2];
-	bool lanes = P && a->N % 2 == 0;
-	if (lanes) /* as intersect_cb */
-		sphere_lanes(P, s, a->N, maybe);
-	bool plain = s->r == s->r && skip_plain(lane->skip);
 	for (unsigned i = 0; i < a->N; i++) {
-		struct query *qi = P ? &lane[i] : q;
-		if (!a->valid[i] || (lanes && !maybe[i / 2][i % 2]) || qi->found)
-			continue;
-		if (plain ? blocks_sph(qi, a->primID, s) : blocks(qi, a->primID)) {
+		struct query *qi = P ? &P->q[P->base + (int)i] : q;
+		if (a->valid[i] && !qi->found && blocks(qi, a->primID)) {
 			qi->found = true;
 			((float *)a->ray)[8 * a->N + i] = -INFINITY;
 		}
@@ -528,15 +397,6 @@ struct bvh *bvh_build(struct object **objs, int n)
 	rtcAttachGeometry(t->scene, g);
 	rtcReleaseGeometry(g);
 	rtcCommitScene(t->scene);
-	/* after the build, whose own memory (a 32-byte record per leaf) it
-	 * has given back: at 1M spheres the peak stays the build's */
-	t->sph = mem_alloc(sizeof *t->sph * (size_t)t->nprims);
-	for (int i = 0; i < t->nprims; i++) {
-		const struct object *o = t->prims[i];
-		t->sph[i] = o->kind == OBJ_SPHERE && !o->xf && !(o->flags & PLAIN_FLAGS)
-		                    ? (struct sph){o->g.sphere.c.x, o->g.sphere.c.y, o->g.sphere.c.z, o->g.sphere.r}
-		                    : (struct sph){NAN, NAN, NAN, NAN};
-	}
 	return t;
 }
 
@@ -548,7 +408,7 @@ void bvh_free(struct bvh *b)
 		rtcReleaseScene(b->scene);
 	if (b->own_prims)
 		free(b->prims);
-	free(b->unbound), free(b->uplane), free(b->box), free(b->sph);
+	free(b->unbound), free(b->uplane), free(b->box);
 	free(b);
 }
 
@@ -815,17 +675,9 @@ static bool packet_lane(struct query *q, int i, int *valid, struct RTCRayHit16 *
 	return ok;
 }
 
-/* Embree's context for a packet of camera or shadow rays (coherent), and
- * the lanes' rays by rows (sphere_lanes). */
-static void packet_start(struct packet *Q, double tmin)
+/* Embree's context for a packet of camera or shadow rays (coherent). */
+static void packet_start(struct packet *Q)
 {
-	for (int i = 0; i < BVH_PACKET; i++) {
-		const struct ray *r = Q->q[i].r;
-		Q->ox[i] = r->o.x, Q->oy[i] = r->o.y, Q->oz[i] = r->o.z;
-		Q->dx[i] = r->d.x, Q->dy[i] = r->d.y, Q->dz[i] = r->d.z;
-		Q->dd[i] = v_dot(r->d, r->d);
-	}
-	Q->tmin = tmin;
 	rtcInitIntersectContext(&Q->rc);
 	Q->rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 	Q->lanes = BVH_PACKET;
@@ -869,7 +721,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 		done(&Q, n, found);
 		return;
 	}
-	packet_start(&Q, tmin);
+	packet_start(&Q);
 	if (native16) {
 		rtcIntersect16(valid, b->scene, &Q.rc, &rh);
 	} else {
@@ -901,7 +753,7 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 		any |= packet_lane(q, i, valid, &rh, rh8);
 	}
 	if (any) {
-		packet_start(&Q, 0);
+		packet_start(&Q);
 		if (native16) {
 			rtcOccluded16(valid, b->scene, &Q.rc, &rh.ray);
 		} else {
