@@ -60,7 +60,7 @@ bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double 
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
 /* A plane's unit normal, offset and in-plane axes, which pl_hit_t and the
  * plane's intersect work out on every call, worked out once (pl_prep) for
- * a leaf every ray tests: pl_prep_hit_t and pl_prep_intersect then give
+ * a leaf every ray tests: pl_prep_hit_t and pl_prep_hit then give
  * the same numbers, bit for bit. ok: the normal is not zero (else neither
  * hits). */
 struct pl_prep {
@@ -70,8 +70,9 @@ struct pl_prep {
 };
 void pl_prep(const struct object *o, struct pl_prep *p);
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t);
-bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
-                       struct local_hit *lh);
+/* The hit at the root t that pl_prep_hit_t found, as the plane's intersect
+ * fills it there. */
+void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh);
 /* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
  * without uv, (u,v) and the partials are left unset (shape_hit_at). */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);
