@@ -4,7 +4,8 @@
  * random rays through a random scene of 1000 spheres, boxes and triangles
  * with planes, a flattened union and a CSG leaf; shadow queries and skip
  * masks agree too; degenerate and empty scenes work; rays leaving sphere
- * surfaces agree too, and so do shadow rays asked as one packet. */
+ * surfaces agree too, and so do shadow and camera rays asked as one
+ * packet. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -354,6 +355,65 @@ static void t_occluded_packet(void)
 	bvh_free(b);
 }
 
+/* Camera rays as one packet (bvh_intersect_packet) get the hits they get
+ * one by one (bvh_intersect_skip), bit for bit: 1 to 16 rays at a time from
+ * one eye towards nearby points of the cloud of spheres, boxes and
+ * triangles, from inside a sphere, just grazing one (where a sphere's cheap
+ * rejections, run on all lanes at once with AVX-512, are closest to
+ * turning a lane away), or anywhere, from tmin 0, a tmin inside the cloud or
+ * a negative one, with and without a skip mask. */
+static void t_intersect_packet(void)
+{
+	static struct scene_fixture s;
+	rng_seed(31);
+	build_scene(&s);
+	for (int i = 0; i < NOBJ; i += 7)
+		s.prims[i].flags |= OF_NO_IMAGE;
+	struct bvh *b = bvh_build(s.top, s.ntop);
+	int mism = 0, hits = 0, total = 0;
+	for (int k = 0; k < 3000; k++) {
+		int n = 1 + k % BVH_PACKET;
+		unsigned skip = k % 2 ? OF_NO_IMAGE : 0;
+		double tmin = k % 5 == 3 ? 30 : k % 5 == 4 ? -10 : 0;
+		struct vec3 eye = rnd_vec(-90, 90), at = rnd_vec(-40, 40);
+		const struct object *sp = &s.prims[3 * (k % (NOBJ / 3))]; /* a sphere (scatter) */
+		struct ray r[BVH_PACKET];
+		for (int i = 0; i < n; i++) {
+			struct vec3 p = v_add(at, rnd_vec(-2, 2));
+			if (k % 4 == 2) /* from inside sphere sp */
+				eye = sp->g.sphere.c;
+			if (k % 9 == 8)
+				p = rnd_vec(-70, 70), eye = rnd_vec(-70, 70);
+			r[i] = (struct ray){eye, v_norm(v_sub(p, eye))};
+			if (k % 4 == 1) { /* grazing sphere sp: parallel to eye → centre, its rim a few ulps away */
+				struct vec3 c = sp->g.sphere.c, u = v_norm(v_sub(c, eye));
+				struct vec3 side = v_norm(v_cross(u, fabs(u.x) < 0.9 ? v3(1, 0, 0) : v3(0, 1, 0)));
+				struct vec3 o = v_madd(c, side, sp->g.sphere.r * (1 + (i - 8) * 1e-15));
+				r[i] = (struct ray){v_madd(o, u, -v_len(v_sub(c, eye))), u};
+			}
+		}
+		struct hit h[BVH_PACKET];
+		bool found[BVH_PACKET];
+		bvh_intersect_packet(b, n, r, tmin, INFINITY, skip | BVH_NO_UV, h, found);
+		for (int i = 0; i < n; i++) {
+			struct hit h1;
+			bool f1 = bvh_intersect_skip(b, &r[i], tmin, INFINITY, skip | BVH_NO_UV, &h1);
+			bool bad = f1 != found[i] ||
+			           (f1 && (h1.t != h[i].t || h1.obj != h[i].obj || h1.n.x != h[i].n.x ||
+			                   h1.n.y != h[i].n.y || h1.n.z != h[i].n.z));
+			if (bad && mism++ < 5)
+				printf("#   packet %d lane %d: one %d t %.17g, packet %d t %.17g\n", k, i, f1, f1 ? h1.t : 0,
+				       found[i], found[i] ? h[i].t : 0);
+			hits += f1;
+			total++;
+		}
+	}
+	printf("# %d of %d packet rays hit, %d mismatches\n", hits, total, mism);
+	CHECK(mism == 0);
+	CHECK(hits > total / 4 && hits < total);
+	bvh_free(b);
+}
+
 /* Scenes of at most four cheap bounded leaves are traced without Embree
  * (bvh.c's BRUTE_MAX), and so are scenes of at most eight of any kind, by
  * their boxes (LEAFBOX_MAX): the hits are those of brute force and of the
@@ -650,6 +710,7 @@ int main(void)
 	RUN(t_small_scenes);
 	RUN(t_lazy);
 	RUN(t_occluded_packet);
+	RUN(t_intersect_packet);
 	RUN(t_leafbox);
 	RUN(t_leaving_convex);
 	return test_done();
