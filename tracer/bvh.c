@@ -522,16 +522,16 @@ static void boxed(struct query *q, bool any)
 	double at[LEAFBOX_MAX];
 	int id[LEAFBOX_MAX], n = 0;
 	unsigned m = leafbox_hits(q->b->box, q->r, q->tmin, any ? q->tmax : next_up(q->tmax), at);
-	for (int i = 0; m; i++, m >>= 1) {
-		if (!(m & 1))
-			continue;
-		if (any && blocks(q, (unsigned)i)) {
-			q->found = true;
-			return;
-		}
-		if (!any)
-			id[n++] = i;
+	if (any) { /* the leaves met, by index (the lowest set bit first) */
+		for (; m; m &= m - 1)
+			if (blocks(q, (unsigned)__builtin_ctz(m))) {
+				q->found = true;
+				return;
+			}
+		return;
 	}
+	for (; m; m &= m - 1)
+		id[n++] = __builtin_ctz(m);
 	for (int j = 1; j < n; j++) { /* by entry (insertion: at most 8) */
 		int k = j, i = id[j];
 		for (; k > 0 && at[id[k - 1]] > at[i]; k--)

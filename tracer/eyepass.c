@@ -85,6 +85,12 @@ static double v_maxc(struct vec3 a) { return d_max(a.x, d_max(a.y, a.z)); }
  * illumination maps (caustic_at). */
 static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV; }
 
+/* Inlined where it is called: the shading steps of a hit, which GCC
+ * otherwise leaves as calls, passing each vector argument through the
+ * stack (three doubles); the prims scene (bench/eye) spent a twentieth of
+ * its eye pass on those calls. */
+#define HOT static inline __attribute__((always_inline))
+
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static double eps_at(struct vec3 p)
 {
@@ -141,26 +147,37 @@ static struct vec3 arriving(const struct scene *s, const struct light *l, double
  * transmitted light the light pass carries (a caustic), else the product of
  * what each straight transmitter passes (surface.h) and of the absorption
  * inside it. */
-static struct vec3 shadow(struct path *pa, const struct light *l, const struct object *from, struct vec3 p,
-                          struct vec3 nf, struct vec3 L, double dist)
+static struct vec3 shadow_through(struct path *pa, struct ray r, double tmax);
+
+HOT struct vec3 shadow(struct path *pa, const struct light *l, const struct object *from, struct vec3 p,
+                       struct vec3 nf, struct vec3 L, double dist)
 {
-	struct vec3 pass = v3(1, 1, 1);
 	if (l->shadowless)
-		return pass;
+		return v3(1, 1, 1);
 	const struct eye_ctx *ctx = pa->ctx;
 	struct ray r = {v_madd(p, nf, eps_at(p)), L};
-	double tmax = dist * (1 - 1e-9), t0 = 0;
+	double tmax = dist * (1 - 1e-9);
 	pa->rays++;
-	if (!ctx->see_through) {
-		ptrdiff_t li = l - ctx->scene->lights;
-		const struct shadow_memo *m = pa->memo && li < EYE_MEMO ? &pa->memo[li] : NULL;
-		bool blocked;
-		if (m && m->set && !memcmp(&m->r, &r, sizeof r) && !memcmp(&m->tmax, &tmax, sizeof tmax))
-			blocked = m->blocked;
-		else
-			blocked = bvh_occluded_from(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW, from);
-		return blocked ? v3(0, 0, 0) : pass;
-	}
+	if (ctx->see_through)
+		return shadow_through(pa, r, tmax);
+	ptrdiff_t li = l - ctx->scene->lights;
+	const struct shadow_memo *m = pa->memo && li < EYE_MEMO ? &pa->memo[li] : NULL;
+	bool blocked;
+	if (m && m->set && !memcmp(&m->r, &r, sizeof r) && !memcmp(&m->tmax, &tmax, sizeof tmax))
+		blocked = m->blocked;
+	else
+		blocked = bvh_occluded_from(ctx->bvh, &r, 0, tmax, OF_NO_SHADOW, from);
+	return blocked ? v3(0, 0, 0) : v3(1, 1, 1);
+}
+
+/* shadow() where some object passes light straight through (see_through):
+ * the shadow ray r over (0, tmax) walks from surface to surface. Out of
+ * line, so that the usual case above is inline in its callers. */
+static struct vec3 shadow_through(struct path *pa, struct ray r, double tmax)
+{
+	const struct eye_ctx *ctx = pa->ctx;
+	struct vec3 L = r.d, pass = v3(1, 1, 1);
+	double t0 = 0;
 	for (int n = 0; n < 64; n++) {
 		struct hit h;
 		if (!bvh_intersect_skip(ctx->bvh, &r, t0, tmax, OF_NO_SHADOW | BVH_NO_UV, &h))
@@ -184,7 +201,7 @@ static struct vec3 shadow(struct path *pa, const struct light *l, const struct o
 
 /* Phong and Blinn highlights for light direction L (unit), per unit of
  * arriving light. */
-static double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, struct vec3 L)
+HOT double highlight(const struct finish *f, struct vec3 nf, struct vec3 v, struct vec3 L)
 {
 	double k = 0;
 	if (f->specular > 0) {
@@ -221,8 +238,8 @@ static double towards(const struct light *l, struct vec3 p, struct vec3 q, struc
  * Tests the shadow ray when asked.
  * As in POV-Ray, the diffuse term is scaled by the surface's opacity
  * (1 - filter - transmit) but highlights are not, so clear glass shows them. */
-static struct vec3 from_point(struct path *pa, const struct light *l, const struct surf *sf,
-                              struct vec3 q, double w, bool test, struct vec3 *E, struct vec3 *H)
+HOT struct vec3 from_point(struct path *pa, const struct light *l, const struct surf *sf, struct vec3 q,
+                           double w, bool test, struct vec3 *E, struct vec3 *H)
 {
 	const struct scene *s = pa->ctx->scene;
 	const struct finish *f = tex_finish(sf->tex);
@@ -256,6 +273,8 @@ static struct vec3 from_point(struct path *pa, const struct light *l, const stru
 static struct vec3 light_one(struct path *pa, const struct light *l, const struct surf *sf,
                              struct vec3 *E, struct vec3 *H)
 {
+	if (!l->area) /* the loop below once, at l->pos with w = 1 (its sum's +0 aside: shade_tex adds it to one) */
+		return from_point(pa, l, sf, l->pos, 1, true, E, H);
 	bool area = l->area && (l->size1 > 1 || l->size2 > 1);
 	int n1 = area && l->size1 > 0 ? l->size1 : 1, n2 = area && l->size2 > 0 ? l->size2 : 1;
 	double w = 1.0 / (n1 * n2), seen = 0;
@@ -279,11 +298,11 @@ static struct vec3 light_one(struct path *pa, const struct light *l, const struc
 
 /* ==== reflection and refraction ========================================== */
 
-static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
+static struct vec3 trace(struct path *pa, const struct ray *r, int depth, double weight, unsigned skip,
                          struct aov *aov);
 
-static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
-                            double weight, unsigned skip);
+HOT struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
+                         double weight, unsigned skip);
 
 /* A full-colour path at dispersive glass splits, each part refracting with
  * its own index: into one path per channel (passes rgb: chromatic
@@ -325,8 +344,8 @@ static bool scatters(const struct surf *sf)
 
 /* The reflected and transmitted light at a hit, as the surface step
  * (surface.h) splits it; dispersive glass splits a full-colour path first. */
-static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
-                            double weight, unsigned skip)
+HOT struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, int depth,
+                         double weight, unsigned skip)
 {
 	bool clear = sf->pc.f > 0 || sf->pc.t > 0;
 	const struct finish *f = tex_finish(sf->tex);
@@ -343,11 +362,11 @@ static struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 
 	struct vec3 out = v3(0, 0, 0);
 	if (v_maxc(so.T) > 0) {
 		pa->from = sf->back && v_dot(so.trans.d, sf->h->n) >= 0 ? sf->back : NULL;
-		out = v_mul(so.T, trace(pa, so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
+		out = v_mul(so.T, trace(pa, &so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
 	}
 	if (v_maxc(so.R) > 0) {
 		pa->from = sf->out; /* so.refl.d·nf = -d·nf >= 0 */
-		out = v_add(out, v_mul(so.R, trace(pa, so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
+		out = v_add(out, v_mul(so.R, trace(pa, &so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
 	}
 	return out;
 }
@@ -565,7 +584,7 @@ static struct vec3 fog(const struct fog *f, struct vec3 o, struct vec3 d, double
 
 /* The radiance arriving along r: the background on a miss, else the shaded
  * hit, attenuated by the medium when the ray travelled inside an object. */
-static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight, unsigned skip,
+static struct vec3 trace(struct path *pa, const struct ray *r, int depth, double weight, unsigned skip,
                          struct aov *aov)
 {
 	const struct scene *s = pa->ctx->scene;
@@ -577,19 +596,19 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 	struct hit hit;
 	const struct hit *hp = pre > 0 ? pa->pre : &hit; /* the packet's hit is used in place */
 	pa->rays++;
-	if (pre < 0 || (!pre && !bvh_intersect_from(pa->ctx->bvh, &r, 0, INFINITY, skip | no_uv(pa->ctx), from, &hit))) {
-		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r.d)) : col3(s->background);
+	if (pre < 0 || (!pre && !bvh_intersect_from(pa->ctx->bvh, r, 0, INFINITY, skip | no_uv(pa->ctx), from, &hit))) {
+		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r->d)) : col3(s->background);
 		if (s->fog.type)
-			bg = fog(&s->fog, r.o, v_norm(r.d), 1e7, bg);
+			bg = fog(&s->fog, r->o, v_norm(r->d), 1e7, bg);
 		if (aov)
 			aov->emis = bg;
 		return bg;
 	}
 	if (aov)
-		aov->z = hp->t * v_len(r.d);
-	struct vec3 c = shade(pa, hp, r.d, depth, weight, skip, aov);
+		aov->z = hp->t * v_len(r->d);
+	struct vec3 c = shade(pa, hp, r->d, depth, weight, skip, aov);
 	if (!hp->entering && mat_interior(hp->obj)->fade_distance > 0) { /* else the fade is 1 */
-		struct vec3 fade = opt_fade(mat_interior(hp->obj), hp->t * v_len(r.d));
+		struct vec3 fade = opt_fade(mat_interior(hp->obj), hp->t * v_len(r->d));
 		c = v_mul(c, fade);
 		if (aov) {
 			aov->emis = v_mul(aov->emis, fade);
@@ -598,7 +617,7 @@ static struct vec3 trace(struct path *pa, struct ray r, int depth, double weight
 		}
 	}
 	if (s->fog.type) /* the layers keep their unfogged values */
-		c = fog(&s->fog, r.o, v_norm(r.d), hp->t * v_len(r.d), c);
+		c = fog(&s->fog, r->o, v_norm(r->d), hp->t * v_len(r->d), c);
 	return c;
 }
 
@@ -694,7 +713,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 				r = camera_sample(ctx, x, y, i, pa);
 			}
 			if (v_dot(r.d, r.d) > 0)
-				sum = v_add(sum, trace(pa, r, 1, 1, OF_NO_IMAGE, NULL));
+				sum = v_add(sum, trace(pa, &r, 1, 1, OF_NO_IMAGE, NULL));
 			*rays += pa->rays;
 		}
 		put3(out->rgb, sum, 1.0 / ctx->spp);
@@ -708,7 +727,7 @@ static void pixel(const struct eye_ctx *ctx, int x, int y, struct eye_px *out, l
 		struct ray r = sample_start(ctx, x, y, i, pa0, r0, pre, pre_state, &pa);
 		struct aov aov = {.z = INFINITY};
 		if (v_dot(r.d, r.d) > 0) /* else the camera shoots no ray here */
-			sum = v_add(sum, trace(&pa, r, 1, 1, OF_NO_IMAGE, &aov));
+			sum = v_add(sum, trace(&pa, &r, 1, 1, OF_NO_IMAGE, &aov));
 		E = v_add(E, aov.direct);
 		C = v_add(C, aov.caustic);
 		S = v_add(S, aov_specular(&aov));
@@ -834,7 +853,7 @@ static void pixel_one(const struct eye_ctx *ctx, struct eye_px *out, long long *
 		*rays += 1;
 	} else {
 		pa->pre = h, pa->pre_state = found ? 1 : -1;
-		c = trace(pa, *r, 1, 1, OF_NO_IMAGE, NULL);
+		c = trace(pa, r, 1, 1, OF_NO_IMAGE, NULL);
 		*rays += pa->rays;
 	}
 	put3(out->rgb, v_add(v3(0, 0, 0), c), 1.0);

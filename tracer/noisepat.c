@@ -68,9 +68,20 @@ static struct vec3 warp_black_hole(const struct warp *w, struct vec3 q)
 	return v_madd(q, d, w->inverse ? -s : s);
 }
 
+/* p through the identity, as xf_inv_point(&xf_ident, p) gives it: for
+ * finite coordinates x·1 + (±0) + (±0) + 0 is x, and +0 for ±0 (the last
+ * +0 turns -0 into +0), so x + 0 is the same number, without the call and
+ * its nine products. */
+static struct vec3 ident_point(struct vec3 p)
+{
+	if (isfinite(p.x) && isfinite(p.y) && isfinite(p.z))
+		return v3(p.x + 0.0, p.y + 0.0, p.z + 0.0);
+	return xf_inv_point(&xf_ident, p); /* an infinite coordinate: 0·inf */
+}
+
 struct vec3 pattern_point(const struct pigment *pg, struct vec3 p)
 {
-	struct vec3 q = xf_inv_point(pg->xf ? pg->xf : &xf_ident, p);
+	struct vec3 q = pg->xf ? xf_inv_point(pg->xf, p) : ident_point(p);
 	const struct pattern *pt = pig_pattern(pg);
 	if (pt->nwarps == 0)
 		return q;

@@ -25,7 +25,10 @@
 #             (target <= 3)
 #   threads   eye pass (spheres, N = 100000, ${TW}x${TH}) and light pass (scene B,
 #             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
-#             threads: time(1) / time(2) (target >= 1.85)
+#             threads: time(1) / time(2) (target >= 1.85); and the same
+#             ratio for bench/speed/ceiling.c, a perfectly parallel program
+#             (arithmetic alone; fresh memory written), the most this
+#             machine's two cores give (no target: the yardstick)
 #   light     light-pass segments/s/core on 2 threads, 1M rays, isolated-
 #             sample rule on, deposits included (target >= 1e7)
 #   frontend  bench/frontend/loop1m.scn (1M spheres) evaluated and bounded
@@ -157,6 +160,15 @@ e1=$(arvo_eye 100000 1 "$TW" "$TH"); e2=$(arvo_eye 100000 2 "$TW" "$TH"); r=$(ra
 row threads "eye pass" 100000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
 l1=$(arvo_light 1); l2=$(arvo_light 2); segs=$(cat "$tmp/segs"); r=$(ratio "$l1" "$l2")
 row threads "light pass" 1000000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
+# the machine's own ceiling for the two rows above: a perfectly parallel
+# program (ceiling.c) on 1 and 2 threads; no target, it is the yardstick
+if cc -std=c11 -O2 -pthread -o "$tmp/ceiling" "$here/ceiling.c" 2> /dev/null; then
+	for w in compute memory; do
+		c1=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 1; done | median)
+		c2=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 2; done | median)
+		row threads "machine ceiling, $w" "" "1->2" "$(ratio "$c1" "$c2")" "" "" "x" "" ""
+	done
+fi
 rate=$(awk -v s="$segs" -v t="$l2" 'BEGIN { printf "%.0f", s / t / 2 }')
 row light "segments/s/core" 1000000 2 "$rate" "" "" "segments/s/core" ">=1e7" "$(met "$rate" ">=" 10000000)"
 

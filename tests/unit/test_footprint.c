@@ -115,6 +115,25 @@ static void t_geometry(void)
 	CHECK_NEAR(m.x, 1.5 * 1.5 + 0.5 * 1, 1e-15);   /* ∫x: 1.5 area at x̄ 1.5, 1 at 0.5 */
 	CHECK_NEAR(m.y, 1.5 * 0.75 + 1 * 1.5, 1e-15);  /* ∫y: ȳ 0.75 and 1.5 */
 	CHECK(poly_clip_slab(ell, 6, 0, 4, 5, out, tmp) < 3);
+	/* each axis cut on one side, the other or both (each its own inlined
+	 * pass): the areas of the L's pieces, and ∫x of the first */
+	static const struct {
+		int axis;
+		double lo, hi, area, mx;
+	} cut[] = {
+		{0, 0.5, 2, 1.5 + 0.5 * 2, 1.5 * 1.25 + 1 * 0.75}, /* [0.5,2]×[0,1] ∪ [0.5,1]×[1,3] */
+		{0, 0.5, 10, 2.5 + 1, 2.5 * 1.75 + 1 * 0.75},      /* x ≥ 0.5 */
+		{0, -10, 2, 2 + 2, 2 * 1 + 2 * 0.5},               /* x ≤ 2 */
+		{1, 0.5, 10, 1.5 + 2, 1.5 * 1.5 + 2 * 0.5},        /* y ≥ 0.5 */
+		{1, -10, 2, 3 + 1, 3 * 1.5 + 1 * 0.5},             /* y ≤ 2 */
+		{1, -1, 4, 5, 3 * 1.5 + 2 * 0.5},                  /* inside: unchanged */
+	};
+	for (size_t c = 0; c < sizeof cut / sizeof cut[0]; c++) {
+		k = poly_clip_slab(ell, 6, cut[c].axis, cut[c].lo, cut[c].hi, out, tmp);
+		m = poly_moments(out, k, (struct pt2){0, 0});
+		CHECK_NEAR(m.a, cut[c].area, 1e-15);
+		CHECK_NEAR(m.x, cut[c].mx, 1e-14);
+	}
 	struct pt2 bow[4] = {{0, 0}, {2, 2}, {2, 0}, {0, 2}}, x;
 	int a, b;
 	CHECK(poly_crossing(bow, 4, &a, &b, &x) && a == 0 && b == 2 && x.x == 1 && x.y == 1);

@@ -1389,11 +1389,12 @@ static void fp_row_sums(struct fp *F)
 }
 
 /* Advances the cumulative fixed-point energies cum to the first `upto` (of
- * F->total) of the flux; d (may be NULL) gets the increments. */
-static void fp_cum(const struct fp *F, double upto, struct fx cum[3], struct fx d[3])
+ * F->total) of the flux; d (may be NULL) gets the increments. Channels
+ * 0..nc-1 only: nc = 1 for white light, whose three are the same numbers. */
+static void fp_cum(const struct fp *F, int nc, double upto, struct fx cum[3], struct fx d[3])
 {
 	double q = upto / F->total;
-	for (int c = 0; c < 3; c++) {
+	for (int c = 0; c < nc; c++) {
 		struct fx x = F->e[c] > 0 ? fx_from(F->e[c] * q) : (struct fx){0, 0};
 		if (d)
 			d[c] = fx_sub(x, cum[c]);
@@ -1402,13 +1403,22 @@ static void fp_cum(const struct fp *F, double upto, struct fx cum[3], struct fx 
 }
 
 /* Adds the quantised shares d (in units of `unit`) to node n: one sample
- * with that weight. */
-static void acc_add_fx(struct acc *n, const struct fx d[3], double unit)
+ * with that weight. White light (fp_cum's nc = 1): d[0] for all three. */
+static void acc_add_fx(struct acc *n, const struct fx d[3], double unit, bool white)
 {
-	for (int c = 0; c < 3; c++) {
-		fx_add(&n->e[c], d[c]);
-		double x = fx_to_double(d[c]) * unit;
-		n->sq[c] += (float)(x * x);
+	if (white) { /* the same numbers as below, worked out once */
+		double x = fx_to_double(d[0]) * unit;
+		float q = (float)(x * x);
+		for (int c = 0; c < 3; c++) {
+			fx_add(&n->e[c], d[0]);
+			n->sq[c] += q;
+		}
+	} else {
+		for (int c = 0; c < 3; c++) {
+			fx_add(&n->e[c], d[c]);
+			double x = fx_to_double(d[c]) * unit;
+			n->sq[c] += (float)(x * x);
+		}
 	}
 	n->count += n->count < UINT32_MAX;
 }
@@ -1422,13 +1432,15 @@ static void fp_emit(struct fp *F, long k)
 	long fj = vnode(&F->ax[1], F->ax[1].n0 + k);
 	double C = F->pre[k];
 	struct fx cum[3], d[3];
-	fp_cum(F, C, cum, NULL);
+	bool white = F->e[0] == F->e[1] && F->e[1] == F->e[2];
+	int nc = white ? 1 : 3;
+	fp_cum(F, nc, C, cum, NULL);
 	for (long i = 0; i < F->cols; i++) {
 		if (w[i] == 0)
 			continue;
 		C += w[i];
-		fp_cum(F, C, cum, d);
-		acc_add_fx(node_acc(F->m, vnode(&F->ax[0], F->ax[0].n0 + i), fj, true), d, F->m->unit);
+		fp_cum(F, nc, C, cum, d);
+		acc_add_fx(node_acc(F->m, vnode(&F->ax[0], F->ax[0].n0 + i), fj, true), d, F->m->unit, white);
 	}
 }
 

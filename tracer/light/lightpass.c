@@ -782,8 +782,10 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 				double size = 0;
 				for (int j = 0; j < 4; j++)
 					for (long m = c[j].first; m < c[j].first + c[j].n; m++)
-						if (w->lands.l[m].obj == L->obj)
-							size = fmax(size, v_len(v_sub(w->lands.l[m].p, L->p)));
+						if (w->lands.l[m].obj == L->obj) {
+							double x = v_len(v_sub(w->lands.l[m].p, L->p));
+							size = x > size ? x : size; /* fmax: size is never NaN */
+						}
 				struct recbuf *rb = &w->recs;
 				if (rb->n == rb->cap)
 					rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)(rb->cap = rb->cap ? rb->cap * 2 : 4096));
@@ -798,8 +800,10 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 			for (int j = 0; j < 4; j++) {
 				for (int ch = 0; ch < 3; ch++)
 					pr.e[ch] += q[j]->e[ch] * share;
-				for (int m = j + 1; m < 4; m++)
-					pr.size = fmax(pr.size, v_len(v_sub(q[j]->p, q[m]->p)));
+				for (int m = j + 1; m < 4; m++) {
+					double x = v_len(v_sub(q[j]->p, q[m]->p));
+					pr.size = x > pr.size ? x : pr.size; /* fmax: pr.size is never NaN */
+				}
 			}
 			push_prec(w, &pr);
 		}
@@ -1146,13 +1150,19 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 {
 	struct illum_poly *pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1));
 	struct illum_splat *ps = mem_alloc(sizeof *ps * (size_t)(ns + 4 * np + 1));
+	/* each one's level, found once (not once a level) */
+	unsigned char *lp = mem_alloc((size_t)(np + ns + 1)), *ls = lp + np;
+	for (long i = 0; i < np; i++)
+		lp[i] = (unsigned char)level_of(p[i].size, cell, nl);
+	for (long i = 0; i < ns; i++)
+		ls[i] = (unsigned char)level_of(sz[i], cell, nl);
 	for (int l = 0; l < nl; l++) {
 		long n = 0, m = 0;
 		for (long i = 0; i < np; i++)
-			if (level_of(p[i].size, cell, nl) == l)
+			if (lp[i] == l)
 				pp[n++] = (struct illum_poly){(const double(*)[2])p[i].uv, p[i].nv, {p[i].e[0], p[i].e[1], p[i].e[2]}};
 		for (long i = 0; i < ns; i++)
-			if (level_of(sz[i], cell, nl) == l)
+			if (ls[i] == l)
 				ps[m++] = s[i];
 		if (n + m == 0)
 			continue;
@@ -1189,7 +1199,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 		illum_deposit_poly_all(lv[l], pp, keep, threads);
 		illum_deposit_all(lv[l], ps, m, threads);
 	}
-	free(pp), free(ps);
+	free(pp), free(ps), free(lp);
 }
 
 /* One surface's records gathered for its map: segment g's records go to

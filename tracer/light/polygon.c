@@ -38,12 +38,14 @@ struct moments poly_moments(const struct pt2 *p, int n, struct pt2 o)
 	return (struct moments){m.a, m.x + dx * m.a, m.y + dy * m.a, m.xy + dx * m.y + dy * m.x + dx * dy * m.a};
 }
 
-static double coord(struct pt2 p, int axis) { return axis ? p.y : p.x; }
+#define ALWAYS_INLINE __attribute__((always_inline)) static inline
+
+ALWAYS_INLINE double coord(struct pt2 p, int axis) { return axis ? p.y : p.x; }
 
 /* The point where edge p→q meets coordinate b: exactly b on the axis, the
  * other coordinate interpolated from p (the same edge clipped from either
  * side gives the same point). */
-static struct pt2 cross_at(struct pt2 p, struct pt2 q, int axis, double b)
+ALWAYS_INLINE struct pt2 cross_at(struct pt2 p, struct pt2 q, int axis, double b)
 {
 	double t = (b - coord(p, axis)) / (coord(q, axis) - coord(p, axis));
 	if (axis)
@@ -52,24 +54,28 @@ static struct pt2 cross_at(struct pt2 p, struct pt2 q, int axis, double b)
 }
 
 /* One Sutherland–Hodgman pass: keeps coordinate ≥ b (above) or ≤ b. Each
- * edge emits at most two corners, so out needs room for 2n. */
-static int clip_side(const struct pt2 *p, int n, int axis, double b, bool above, struct pt2 *out)
+ * edge emits at most two corners, so out needs room for 2n. Inlined where
+ * axis and above are constants (clip_slab): a copy for each. */
+ALWAYS_INLINE int clip_side(const struct pt2 *p, int n, int axis, double b, bool above, struct pt2 *out)
 {
 	int k = 0;
+	struct pt2 a = p[n - 1];
+	bool ina = above ? coord(a, axis) >= b : coord(a, axis) <= b; /* each corner's side, worked out once */
 	for (int i = 0; i < n; i++) {
-		struct pt2 a = p[i ? i - 1 : n - 1], c = p[i];
-		bool ina = above ? coord(a, axis) >= b : coord(a, axis) <= b;
+		struct pt2 c = p[i];
 		bool inc = above ? coord(c, axis) >= b : coord(c, axis) <= b;
 		if (ina != inc)
 			out[k++] = cross_at(a, c, axis, b);
 		if (inc)
 			out[k++] = c;
+		a = c, ina = inc;
 	}
 	return k;
 }
 
-int poly_clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
-                   struct pt2 *tmp)
+/* poly_clip_slab on a constant axis. */
+ALWAYS_INLINE int clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
+                            struct pt2 *tmp)
 {
 	double mn = coord(p[0], axis), mx = mn;
 	for (int i = 1; i < n; i++) {
@@ -84,11 +90,19 @@ int poly_clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, s
 		n = clip_side(p, n, axis, lo, true, tmp);
 		return n < 3 ? 0 : clip_side(tmp, n, axis, hi, false, out);
 	}
-	if (cut_lo || cut_hi)
-		return clip_side(p, n, axis, cut_lo ? lo : hi, cut_lo, out);
+	if (cut_lo)
+		return clip_side(p, n, axis, lo, true, out);
+	if (cut_hi)
+		return clip_side(p, n, axis, hi, false, out);
 	for (int i = 0; i < n; i++)
 		out[i] = p[i];
 	return n;
+}
+
+int poly_clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
+                   struct pt2 *tmp)
+{
+	return axis ? clip_slab(p, n, 1, lo, hi, out, tmp) : clip_slab(p, n, 0, lo, hi, out, tmp);
 }
 
 static double orient(struct pt2 a, struct pt2 b, struct pt2 c)

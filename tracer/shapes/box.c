@@ -69,10 +69,23 @@ static bool bx_uv_point(const struct object *o, double u, double v, struct vec3 
 	return true;
 }
 
+/* The box as arrays per axis, corners normalised (lo <= hi): what the
+ * slab test and the fill index by axis, without a switch per access. */
+struct bx_arr {
+	double lo[3], hi[3];
+};
+
+static inline struct bx_arr bx_arrays(const struct object *o)
+{
+	struct vec3 lo, hi;
+	bx_corners(o, &lo, &hi);
+	return (struct bx_arr){{lo.x, lo.y, lo.z}, {hi.x, hi.y, hi.z}};
+}
+
 /* Slab test on one axis: narrows [*t0,*t1] and records which axis set each
  * end. Returns false when the ray misses the slab. */
-static bool slab(double o, double d, double lo, double hi, int k, double *t0, double *t1,
-                 int *k0, int *k1)
+static inline bool slab(double o, double d, double lo, double hi, int k, double *t0, double *t1,
+                        int *k0, int *k1)
 {
 	if (d == 0)
 		return o >= lo && o <= hi;
@@ -89,16 +102,16 @@ static bool slab(double o, double d, double lo, double hi, int k, double *t0, do
 	return *t0 <= *t1;
 }
 
-/* Fills the local hit on face (k, side) at parameter t. */
-static void bx_fill(const struct object *o, const struct ray *r, double t, int k, int side,
+/* Fills the local hit on face (k, side) at parameter t: as bx_face_point at
+ * (s, w), with the same operations on the same numbers, done by axis. */
+static void bx_fill(const struct bx_arr *B, const struct ray *r, double t, int k, int side,
                     struct local_hit *lh)
 {
-	struct vec3 lo, hi, p = ray_at(*r, t);
-	bx_corners(o, &lo, &hi);
-	int a = (k + 1) % 3, b = (k + 2) % 3;
-	struct vec3 e = v_sub(hi, lo);
-	double s = (v_comp(p, a) - v_comp(lo, a)) / v_comp(e, a);
-	double w = (v_comp(p, b) - v_comp(lo, b)) / v_comp(e, b);
+	struct vec3 pv = ray_at(*r, t);
+	double p[3] = {pv.x, pv.y, pv.z}, e[3] = {B->hi[0] - B->lo[0], B->hi[1] - B->lo[1], B->hi[2] - B->lo[2]};
+	int a = k == 2 ? 0 : k + 1, b = k == 0 ? 2 : k - 1; /* (k + 1) % 3, (k + 2) % 3 */
+	double s = (p[a] - B->lo[a]) / e[a];
+	double w = (p[b] - B->lo[b]) / e[b];
 	s = d_min(d_max(s, 0), 1);
 	w = d_min(d_max(w, 0), 1);
 	if (!side)
@@ -106,39 +119,47 @@ static void bx_fill(const struct object *o, const struct ray *r, double t, int k
 	lh->t = t;
 	lh->u = (k + s) / 3;
 	lh->v = (side + w) / 2;
-	bx_face_point(o, k, side, s, w, &lh->p, &lh->dpdu, &lh->dpdv);
-	lh->n = axis(k, side ? 1 : -1);
+	double q[3], du[3] = {0, 0, 0}, dv[3] = {0, 0, 0}, n[3] = {0, 0, 0};
+	q[k] = side ? B->hi[k] : B->lo[k];
+	q[a] = side ? B->lo[a] + s * e[a] : B->hi[a] - s * e[a];
+	q[b] = B->lo[b] + w * e[b];
+	du[a] = side ? 3 * e[a] : -3 * e[a];
+	dv[b] = 2 * e[b];
+	n[k] = side ? 1 : -1;
+	lh->p = v3(q[0], q[1], q[2]);
+	lh->dpdu = v3(du[0], du[1], du[2]);
+	lh->dpdv = v3(dv[0], dv[1], dv[2]);
+	lh->n = v3(n[0], n[1], n[2]);
 }
 
 /* Slabs: the ray's entry (t0, through face axis k0) and exit (t1, k1), or
  * false when it misses the box. */
-static bool bx_span(const struct object *o, const struct ray *r, double *t0, double *t1, int *k0, int *k1)
+static inline bool bx_span(const struct bx_arr *B, const struct ray *r, double *t0, double *t1, int *k0,
+                           int *k1)
 {
-	struct vec3 lo, hi;
-	bx_corners(o, &lo, &hi);
-	if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+	if (!(B->hi[0] > B->lo[0] && B->hi[1] > B->lo[1] && B->hi[2] > B->lo[2]))
 		return false;
 	*t0 = -INFINITY, *t1 = INFINITY;
 	*k0 = -1, *k1 = -1;
-	for (int k = 0; k < 3; k++)
-		if (!slab(v_comp(r->o, k), v_comp(r->d, k), v_comp(lo, k), v_comp(hi, k), k, t0, t1, k0, k1))
-			return false;
-	return true;
+	return slab(r->o.x, r->d.x, B->lo[0], B->hi[0], 0, t0, t1, k0, k1) &&
+	       slab(r->o.y, r->d.y, B->lo[1], B->hi[1], 1, t0, t1, k0, k1) &&
+	       slab(r->o.z, r->d.z, B->lo[2], B->hi[2], 2, t0, t1, k0, k1);
 }
 
 /* The entry face when the entry is in range, else the exit face. */
 static bool bx_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
 {
+	struct bx_arr B = bx_arrays(o);
 	double t0, t1;
 	int k0, k1;
-	if (!bx_span(o, r, &t0, &t1, &k0, &k1))
+	if (!bx_span(&B, r, &t0, &t1, &k0, &k1))
 		return false;
 	/* entering through the face looking at the ray, leaving through the other */
 	if (t0 > tmin && t0 < tmax && k0 >= 0)
-		bx_fill(o, r, t0, k0, v_comp(r->d, k0) < 0, lh);
+		bx_fill(&B, r, t0, k0, v_comp(r->d, k0) < 0, lh);
 	else if (t1 > tmin && t1 < tmax && k1 >= 0)
-		bx_fill(o, r, t1, k1, v_comp(r->d, k1) > 0, lh);
+		bx_fill(&B, r, t1, k1, v_comp(r->d, k1) > 0, lh);
 	else
 		return false;
 	return true;
@@ -146,9 +167,10 @@ static bool bx_intersect(const struct object *o, const struct ray *r, double tmi
 
 static bool bx_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
 {
+	struct bx_arr B = bx_arrays(o);
 	double t0, t1;
 	int k0, k1;
-	return bx_span(o, r, &t0, &t1, &k0, &k1) &&
+	return bx_span(&B, r, &t0, &t1, &k0, &k1) &&
 	       ((t0 > tmin && t0 < tmax && k0 >= 0) || (t1 > tmin && t1 < tmax && k1 >= 0));
 }
 
