@@ -75,14 +75,7 @@ bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double t
  * the plane. */
 static void pl_hit(const struct pframe *f, const struct ray *r, double t, struct local_hit *lh)
 {
-	struct vec3 p = ray_at(*r, t);
-	lh->t = t;
-	lh->u = v_dot(p, f->e1);
-	lh->v = v_dot(p, f->e2);
-	lh->p = v_madd(v_madd(v_scale(f->n, f->d), f->e1, lh->u), f->e2, lh->v);
-	lh->n = f->n;
-	lh->dpdu = f->e1;
-	lh->dpdv = f->e2;
+	prim_plane_at(&f->n, &f->e1, &f->e2, f->d, r, t, lh);
 }
 
 /* One root. */
@@ -107,16 +100,6 @@ void pl_prep(const struct object *o, struct pl_prep *p)
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t)
 {
 	return p->ok && pl_root(p->n, p->d, r, tmin, tmax, t);
-}
-
-bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
-                       struct local_hit *lh)
-{
-	double t;
-	if (!p->ok || !pl_root(p->n, p->d, r, tmin, tmax, &t))
-		return false;
-	pl_hit(&(struct pframe){p->n, p->e1, p->e2, p->d}, r, t, lh);
-	return true;
 }
 
 static bool pl_inside(const struct object *o, struct vec3 p)
