@@ -75,7 +75,6 @@ struct query {
 	int best;              /* its primitive index, -1: an unbounded leaf */
 	double best_t;         /* its t, when deferred */
 	int ubest;             /* an unbounded winner found by its t alone, or -1 */
-	double ubest_hi;       /* the interval's end its test used */
 	double best_hi;        /* the interval's end its test used */
 	bool found;
 	bool deferred;         /* *h is still to be filled from primitive best */
@@ -517,7 +516,7 @@ static void walk(struct query *q, bool any)
  * the order it enters them, and stops at a box entered beyond the best hit
  * so far (a costly leaf behind a near one is never solved); the hit is that
  * of the loop in order all the same (consider). */
-static void boxed(struct query *q, bool any)
+HOT void boxed(struct query *q, bool any)
 {
 	double at[LEAFBOX_MAX];
 	int id[LEAFBOX_MAX], n = 0;
@@ -585,7 +584,7 @@ HOT bool unbounded(struct query *q, bool any)
 				continue;
 			if (any) /* as shape_occluded, without the plane's frame */
 				return q->found = true;
-			q->ubest = i, q->ubest_hi = q->tmax, q->tmax = t, q->found = true;
+			q->ubest = i, q->tmax = t, q->found = true;
 		} else if (any && shape_occluded(o, q->r, q->tmin, q->tmax)) {
 			return q->found = true;
 		} else if (!any && shape_intersect(o, q->r, q->tmin, q->tmax, &tmp)) {
@@ -608,9 +607,8 @@ static void finish_hit(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
-	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t */
-		shape_plane_intersect(q->b->unbound[q->ubest], &q->b->uplane[q->ubest], q->r, q->tmin, q->ubest_hi,
-		                      q->h);
+	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t, still q->tmax */
+		shape_plane_hit_at(q->b->unbound[q->ubest], &q->b->uplane[q->ubest], q->r, q->tmax, q->uv, q->h);
 }
 
 /* Sets *q up as a query over (tmin, tmax) for ray r, its result into *h:
@@ -622,7 +620,7 @@ static void new_query(struct query *q, const struct bvh *b, const struct ray *r,
 {
 	q->lanes = 1, q->b = b, q->r = r, q->tmin = tmin, q->tmax = tmax, q->t0 = 0;
 	q->skip = skip & ~BVH_NO_UV, q->h = h, q->uv = !(skip & BVH_NO_UV);
-	q->best = -1, q->best_t = 0, q->ubest = -1, q->ubest_hi = 0, q->best_hi = 0;
+	q->best = -1, q->best_t = 0, q->ubest = -1, q->best_hi = 0;
 	q->found = q->deferred = false;
 	q->from = NULL;
 }

@@ -11,6 +11,7 @@
 #include "sampler.h"
 #include "spectrum.h"
 #include "surface.h"
+#include "scatter.h"
 
 /* The state of one camera sample's tree of rays. */
 struct path {
@@ -358,7 +359,7 @@ HOT struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, 
 	struct surf_in si = {sf->h, tex_finish(sf->tex), sf->pc, in, d, sf->nf,
 	                     pa->ctx->scene->legacy_lights, false};
 	struct surf_out so;
-	surf_scatter(&si, pa->band, &so);
+	surf_scatter_at(&si, pa->band, &so); /* inline (scatter.h) */
 	struct vec3 out = v3(0, 0, 0);
 	if (v_maxc(so.T) > 0) {
 		pa->from = sf->back && v_dot(so.trans.d, sf->h->n) >= 0 ? sf->back : NULL;

@@ -12,11 +12,15 @@
 
 #define LEAFBOX_MAX 8
 
-/* Boxes as rows per axis (lo[axis][leaf]), so that two leaves are one
- * vector operation. */
+/* Boxes as rows per axis (lo[axis][lane]), so that two or four lanes are
+ * one vector operation. A lane holds leaf i at lane i; with 5 to 7 leaves
+ * (split) lanes 0-2 hold leaves 0-2, lane 3 the box around leaves 3 to
+ * n-1, and lanes 4 on those leaves: a ray that misses lane 3 misses them
+ * all, and their lanes are not tested. */
 struct leafbox {
 	int n;
 	bool wide;  /* the CPU runs AVX: four boxes per operation */
+	bool split; /* lane 3 bounds leaves 3 to n-1, which sit one lane on */
 	double lo[3][LEAFBOX_MAX];
 	double hi[3][LEAFBOX_MAX];
 };
@@ -28,8 +32,17 @@ void leafbox_set(struct leafbox *lb, int n, const struct bbox *b);
  * for leaf i, and where it enters each (at[i], no later than the true
  * entry). Never leaves out a box the exact ray meets, except a ray lying in
  * the plane of a face (no motion along that axis): give boxes grown by a
- * margin beyond what they bound, so that such a ray misses what they hold. */
-unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+ * margin beyond what they bound, so that such a ray misses what they hold.
+ * Inline, so that the caller calls the version for its CPU straight away
+ * (leafbox_wide with AVX, else leafbox_narrow: the same answers). */
+unsigned leafbox_wide(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
                       double at[LEAFBOX_MAX]);
+unsigned leafbox_narrow(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                        double at[LEAFBOX_MAX]);
+static inline unsigned leafbox_hits(const struct leafbox *lb, const struct ray *r, double tmin, double tmax,
+                                    double at[LEAFBOX_MAX])
+{
+	return lb->wide ? leafbox_wide(lb, r, tmin, tmax, at) : leafbox_narrow(lb, r, tmin, tmax, at);
+}
 
 #endif

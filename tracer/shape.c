@@ -107,16 +107,14 @@ bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const st
 	return pl_prep_hit_t(p, lr, tmin, tmax, t);
 }
 
-bool shape_plane_intersect(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
-                           double tmax, struct hit *h)
+void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
+                        struct hit *h)
 {
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	if (!pl_prep_intersect(p, lr, tmin, tmax, &lh))
-		return false;
-	to_world(o, r, &lh, true, h);
-	return true;
+	pl_prep_hit(p, lr, t, &lh);
+	to_world(o, r, &lh, uv, h);
 }
 
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)

@@ -56,13 +56,14 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
  * pass needs them only on a surface with an illumination map). */
 bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
                   bool uv, struct hit *h);
-/* shape_hit_t and shape_intersect for plane o, with its frame p made once
- * by pl_prep (shapes/prim.h): the same results. */
+/* shape_hit_t and shape_hit_at for plane o, with its frame p made once by
+ * pl_prep (shapes/prim.h): the same results; the hit is filled at the t
+ * shape_plane_hit_t found, without solving for it again. */
 struct pl_prep;
 bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
                        double tmax, double *t);
-bool shape_plane_intersect(const struct object *o, const struct pl_prep *p, const struct ray *r, double tmin,
-                           double tmax, struct hit *h);
+void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
+                        struct hit *h);
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
 /* Is o's solid convex (a sphere, a box, a plane's half-space, a closed

@@ -3,6 +3,7 @@
 #include "surface.h"
 
 #include "optics.h"
+#include "scatter.h"
 #include "spectrum.h"
 
 double surf_ior(const struct interior *in, struct band b)
@@ -17,55 +18,9 @@ double surf_ior(const struct interior *in, struct band b)
 	return ior * pow(D, (b.channel - 1) / 2.0);
 }
 
-static double clamp01(double x) { return x > 0 ? (x < 1 ? x : 1) : 0; }
-
-static struct vec3 clamp3(struct vec3 a) { return v3(clamp01(a.x), clamp01(a.y), clamp01(a.z)); }
-
-/* min and max of numbers that are not NaN, inline (fmin and fmax are libm
- * calls) */
-static double dmin(double a, double b) { return a < b ? a : b; }
-static double maxc(struct vec3 a) { return a.x > a.y ? (a.x > a.z ? a.x : a.z) : (a.y > a.z ? a.y : a.z); }
-
-/* clamp3(opt_reflection(…)), its common case (one constant colour, no
- * Fresnel, no metallic: t = 1) inline, with the same numbers. */
-static struct vec3 reflection(const struct finish *f, struct colour pc, double ci, double n1, double n2)
-{
-	if (!f->refl_fresnel && !f->refl_metallic && f->refl_min.r == f->refl_max.r &&
-	    f->refl_min.g == f->refl_max.g && f->refl_min.b == f->refl_max.b)
-		return clamp3(v_add(opt_rgb(f->refl_min), v_sub(opt_rgb(f->refl_max), opt_rgb(f->refl_min))));
-	return clamp3(opt_reflection(f, pc, ci, n1, n2));
-}
-
 void surf_scatter(const struct surf_in *si, struct band b, struct surf_out *out)
 {
-	const struct hit *h = si->h;
-	double ior = surf_ior(si->in, b);
-	double n1 = h->entering ? 1 : ior, n2 = h->entering ? ior : 1;
-	double ci = -v_dot(si->d, si->nf), eps = surf_eps(h->p); /* the offset of spawned rays */
-	struct vec3 R = reflection(si->f, si->pc, ci, n1, n2);
-	struct vec3 T = opt_transmission(si->pc), one = v3(1, 1, 1);
-	if (!si->legacy || maxc(T) <= 1) { /* POV-Ray's model lets transmit > 1 amplify */
-		T = clamp3(T);
-		if (si->f->refl_fresnel || si->f->conserve_energy)
-			T = v_mul(T, v_sub(one, R));
-		T = v3(dmin(T.x, 1 - R.x), dmin(T.y, 1 - R.y), dmin(T.z, 1 - R.z)); /* never more out than in */
-	}
-	out->tir = false;
-	if (maxc(T) > 0) {
-		out->trans = (struct ray){v_madd(h->p, si->nf, -eps), si->d};
-		if (!si->straight && !opt_refract(si->d, si->nf, n1 / n2, &out->trans.d)) {
-			/* total internal reflection: the share that would pass is
-			 * reflected (POV-Ray's legacy model reflects everything, as
-			 * POV-Ray does) */
-			out->tir = true;
-			R = si->legacy ? one : v_add(R, T);
-			T = v3(0, 0, 0);
-		}
-	}
-	out->R = R;
-	out->T = T;
-	if (maxc(R) > 0)
-		out->refl = (struct ray){v_madd(h->p, si->nf, eps), opt_reflect(si->d, si->nf)};
+	surf_scatter_at(si, b, out);
 }
 
 /* surf_straight, given o's interior in. */

@@ -60,7 +60,7 @@ bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double 
 bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t);
 /* A plane's unit normal, offset and in-plane axes, which pl_hit_t and the
  * plane's intersect work out on every call, worked out once (pl_prep) for
- * a leaf every ray tests: pl_prep_hit_t and pl_prep_intersect then give
+ * a leaf every ray tests: pl_prep_hit_t and pl_prep_hit then give
  * the same numbers, bit for bit. ok: the normal is not zero (else neither
  * hits). */
 struct pl_prep {
@@ -70,6 +70,9 @@ struct pl_prep {
 };
 void pl_prep(const struct object *o, struct pl_prep *p);
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t);
+/* The hit at the root t that pl_prep_hit_t found, as the plane's intersect
+ * fills it there. */
+void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh);
 /* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
  * without uv, (u,v) and the partials are left unset (shape_hit_at). */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);
@@ -189,37 +192,6 @@ static inline bool prim_plane_root(struct vec3 n, double d, const struct ray *r,
 		return false;
 	*t = (d - v_dot(n, r->o)) / den;
 	return *t > tmin && *t < tmax;
-}
-
-/* The hit at root t on the plane n̂·p = d with in-plane axes e1, e2,
- * rebuilt from its (u,v) so it lies in the plane. Inline: the plane's
- * intersect (plane.c) and pl_prep_intersect share it. */
-__attribute__((always_inline)) static inline void prim_plane_at(const struct vec3 *n, const struct vec3 *e1,
-                                                                 const struct vec3 *e2, double d,
-                                                                 const struct ray *r, double t,
-                                                                 struct local_hit *lh)
-{
-	struct vec3 p = ray_at(*r, t);
-	lh->t = t;
-	lh->u = v_dot(p, *e1);
-	lh->v = v_dot(p, *e2);
-	lh->p = v_madd(v_madd(v_scale(*n, d), *e1, lh->u), *e2, lh->v);
-	lh->n = *n;
-	lh->dpdu = *e1;
-	lh->dpdv = *e2;
-}
-
-/* pl_prep's plane hit over (tmin, tmax), in its own frame, as the plane's
- * intersect finds it: inline in the hierarchy's finish (shape.c
- * shape_plane_intersect), the winner among the unbounded leaves. */
-static inline bool pl_prep_intersect(const struct pl_prep *p, const struct ray *r, double tmin, double tmax,
-                                     struct local_hit *lh)
-{
-	double t;
-	if (!p->ok || !prim_plane_root(p->n, p->d, r, tmin, tmax, &t))
-		return false;
-	prim_plane_at(&p->n, &p->e1, &p->e2, p->d, r, t, lh);
-	return true;
 }
 
 /* Möller–Trumbore in double precision, edges inclusive: the ray meets the
