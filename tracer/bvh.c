@@ -693,8 +693,10 @@ static void finish_hit(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
-	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t, still q->tmax */
-		shape_plane_hit_at(q->b->unbound[q->ubest], &q->b->uplane[q->ubest], q->r, q->tmax, q->uv, q->h);
+	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t, still q->tmax; its
+	                                          (u,v) come with its point (pl_prep_hit): kept, as a light
+	                                          ray's deposit needs them */
+		shape_plane_hit_at(q->b->unbound[q->ubest], &q->b->uplane[q->ubest], q->r, q->tmax, true, q->h);
 }
 
 /* Sets *q up as a query over (tmin, tmax) for ray r, its result into *h:

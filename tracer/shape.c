@@ -93,8 +93,8 @@ bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, doub
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	if (!sph_hit_at(o, lr, t, uv, &lh))
-		return false;
+	if (!(uv ? sph_hit_at(o, lr, t, true, &lh) : prim_sphere_at(o->g.sphere.c, o->g.sphere.r, lr, t, &lh)))
+		return false; /* (without uv, the same point and normal inline) */
 	to_world(o, r, &lh, uv, h);
 	return true;
 }

@@ -166,6 +166,8 @@ struct worker {
 		const struct object *o;
 		const struct finish *dull; /* dull(o) */
 		bool quiet;                /* no pass_through, no fade (inert) */
+		bool still;                /* dull and quiet: inert before any bounce */
+		bool convex;               /* shape_convex(o) */
 	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
@@ -376,7 +378,9 @@ static const struct finish *dull(const struct object *o)
 static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
 {
 	const struct photon_spec *ph = obj_photons(o);
-	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0)};
+	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0), false,
+	                    shape_convex(o)};
+	x->still = x->dull && x->quiet;
 }
 
 static inline const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
@@ -399,105 +403,128 @@ struct need {
 
 static bool inert(const struct need *n, const struct oinfo *x)
 {
-	return n->direct && x->dull && x->quiet;
+	return n->direct && x->still;
 }
 
-/* (Asked only before the first bounce: after it, every hit is needed whole
- * and trace passes no callback.) */
+/* (Asked only before the first bounce, where n->direct holds: after it,
+ * every hit is needed whole and trace passes no callback.) */
 static bool full_hit(const void *ctx, const struct object *o)
 {
 	const struct need *n = ctx;
-	return !inert(n, oinfo_of(n->w, o));
+	return !oinfo_of(n->w, o)->still;
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
  * straight transmitter, whose light the eye pass's shadow rays carry, is no
  * bounce). Every joule that arrives is accounted for once (lp_stats):
- * followed on, deposited, direct, absorbed, escaped or cut. */
-static void trace(struct worker *w, struct ray r, const double e[3], double cutoff, int depth, int nspec,
-                  uint64_t sig)
+ * followed on, deposited, direct, absorbed, escaped or cut. from: a convex
+ * object the ray leaves outward (it cannot hit it again: bvh_intersect_from),
+ * or NULL. The last ray a hit spawns is followed in the same loop, not by a
+ * call (the order of everything recorded and counted is the recursion's:
+ * a transmitted ray before a reflected one). */
+static void trace(struct worker *w, struct ray r, const double e_in[3], double cutoff, int depth, int nspec,
+                  uint64_t sig, const struct object *from)
 {
 	const struct job *J = w->job;
-	struct hit h;
-	w->segments++;
-	struct need nd = {w, nspec == 0 && !J->o->deposit_direct};
-	if (!bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, nd.direct ? full_hit : NULL, &nd)) {
-		add3(w->escaped, e);
-		return;
-	}
-	const struct oinfo *hx = oinfo_of(w, h.obj);
-	if (inert(&nd, hx)) { /* h holds only obj and t */
-		add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
-		return;
-	}
-	/* POV-Ray's photons { } on the object: pass_through lets light by
-	 * untouched, collect off keeps it off the maps, and a target with
-	 * refraction or reflection off does not bend light that way */
-	const struct photon_spec *ph = obj_photons(h.obj);
-	if (ph && ph->pass_through) {
-		if (depth < J->o->max_depth)
-			trace(w, (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d}, e, cutoff, depth + 1, nspec,
-			      sig);
-		else
-			add3(w->cut, e);
-		return;
-	}
-	double ea[3] = {e[0], e[1], e[2]};
-	if (!h.entering) { /* leaving a medium: its absorption over the path inside */
-		struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
-		ea[0] *= k.x, ea[1] *= k.y, ea[2] *= k.z;
-		for (int c = 0; c < 3; c++)
-			w->absorbed[c] += e[c] - ea[c];
-		e = ea;
-	}
-	const struct finish *df = hx->dull;
-	if (df) { /* all of it stays here (rest = e); nothing goes on */
-		if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
-			record(w, &h, &r, e, sig);
-			add3(w->deposited, e);
-		} else {
-			add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e);
+	double en[3] = {e_in[0], e_in[1], e_in[2]}; /* the light this ray carries */
+	for (;;) {
+		const double *e = en;
+		struct hit h;
+		w->segments++;
+		struct need nd = {w, nspec == 0 && !J->o->deposit_direct};
+		if (!(nd.direct ? bvh_intersect_lazy(J->b, &r, 0, INFINITY, BVH_NO_UV, &h, full_hit, &nd)
+		                : bvh_intersect_from(J->b, &r, 0, INFINITY, BVH_NO_UV, from, &h))) {
+			add3(w->escaped, e);
+			return;
 		}
-		return;
-	}
-	struct surf_in si;
-	struct surf_out so;
-	surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-	surf_scatter(&si, w->band, &so);
-	double opacity = 1 - si.pc.f - si.pc.t;
-	/* what neither reflects nor transmits stays at the surface: a diffuse
-	 * surface reached after a specular bounce keeps it in its map */
-	double rest[3];
-	for (int c = 0; c < 3; c++)
-		rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
-	bool diffuse = si.f->diffuse > 0 && opacity > 0;
-	if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
-		record(w, &h, &r, e, sig);
-		add3(w->deposited, rest);
-	} else if (diffuse && nspec == 0) {
-		add3(w->direct, rest);
-	} else {
-		add3(w->absorbed, rest);
-	}
-	double tmax = max3(so.T.x, so.T.y, so.T.z), rmax = max3(so.R.x, so.R.y, so.R.z);
-	if (!(tmax > 0) && !(rmax > 0))
-		return;
-	bool more = depth < J->o->max_depth;
-	bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
-	bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
-	if (tmax > 0) {
+		const struct oinfo *hx = oinfo_of(w, h.obj);
+		if (inert(&nd, hx)) { /* h holds only obj and t */
+			add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
+			return;
+		}
+		/* POV-Ray's photons { } on the object: pass_through lets light by
+		 * untouched, collect off keeps it off the maps, and a target with
+		 * refraction or reflection off does not bend light that way */
+		const struct photon_spec *ph = obj_photons(h.obj);
+		if (ph && ph->pass_through) {
+			if (depth >= J->o->max_depth) {
+				add3(w->cut, e);
+				return;
+			}
+			r = (struct ray){v_madd(h.p, r.d, surf_eps(h.p) / v_len(r.d)), r.d};
+			depth++, from = NULL;
+			continue;
+		}
+		if (!h.entering) { /* leaving a medium: its absorption over the path inside */
+			struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
+			double ea[3] = {en[0] * k.x, en[1] * k.y, en[2] * k.z};
+			for (int c = 0; c < 3; c++)
+				w->absorbed[c] += en[c] - ea[c], en[c] = ea[c];
+		}
+		const struct finish *df = hx->dull;
+		if (df) { /* all of it stays here (rest = e); nothing goes on */
+			if (df->diffuse > 0 && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
+				record(w, &h, &r, e, sig);
+				add3(w->deposited, e);
+			} else {
+				add3(df->diffuse > 0 && nspec == 0 ? w->direct : w->absorbed, e);
+			}
+			return;
+		}
+		struct surf_in si;
+		struct surf_out so;
+		surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
+		surf_scatter(&si, w->band, &so);
+		double opacity = 1 - si.pc.f - si.pc.t;
+		/* what neither reflects nor transmits stays at the surface: a diffuse
+		 * surface reached after a specular bounce keeps it in its map */
+		double rest[3];
+		for (int c = 0; c < 3; c++)
+			rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
+		bool diffuse = si.f->diffuse > 0 && opacity > 0;
+		if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
+			record(w, &h, &r, e, sig);
+			add3(w->deposited, rest);
+		} else if (diffuse && nspec == 0) {
+			add3(w->direct, rest);
+		} else {
+			add3(w->absorbed, rest);
+		}
+		double tmax = max3(so.T.x, so.T.y, so.T.z), rmax = max3(so.R.x, so.R.y, so.R.z);
+		if (!(tmax > 0) && !(rmax > 0))
+			return;
+		bool more = depth < J->o->max_depth;
+		bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
+		bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
+		/* the spawned rays start off the surface on the side of si.nf (the
+		 * reflected one) or of -si.nf (the transmitted one): the outside of a
+		 * convex object when that is the side of its outward normal */
+		const struct object *out = hx->convex ? h.obj : NULL;
+		bool outside = v_dot(si.nf, h.n) > 0; /* the incoming ray came from outside */
 		double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
-		if (refract && max3(te[0], te[1], te[2]) > cutoff)
-			trace(w, so.trans, te, cutoff, depth + 1, si.straight ? nspec : nspec + 1, sig_mix(sig, h.obj, 1));
-		else
-			add3(w->cut, te);
-	}
-	if (rmax > 0) {
 		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
-		if (reflect && max3(re[0], re[1], re[2]) > cutoff)
-			trace(w, so.refl, re, cutoff, depth + 1, nspec + 1, sig_mix(sig, h.obj, 2));
-		else
+		bool goT = tmax > 0 && refract && max3(te[0], te[1], te[2]) > cutoff;
+		bool goR = rmax > 0 && reflect && max3(re[0], re[1], re[2]) > cutoff;
+		uint64_t sig0 = sig;
+		depth++;
+		if (tmax > 0 && !goT)
+			add3(w->cut, te);
+		if (goT && rmax > 0) { /* both: the transmitted ray first, by a call */
+			trace(w, so.trans, te, cutoff, depth, si.straight ? nspec : nspec + 1, sig_mix(sig0, h.obj, 1),
+			      outside ? NULL : out);
+		} else if (goT) { /* the transmitted ray alone: on in this loop */
+			r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
+			nspec = si.straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1), from = outside ? NULL : out;
+			continue;
+		}
+		if (!(rmax > 0))
+			return;
+		if (!goR) {
 			add3(w->cut, re);
+			return;
+		}
+		r = so.refl, en[0] = re[0], en[1] = re[1], en[2] = re[2];
+		nspec = nspec + 1, sig = sig_mix(sig0, h.obj, 2), from = outside ? out : NULL;
 	}
 }
 
@@ -584,7 +611,7 @@ static struct corner corner_at(struct worker *w, const struct shaft_ctx *S, doub
 	double k = emit_weight(S->l, S->tg, S->k, o, d);
 	if (k > 0) {
 		double e[3] = {S->e0[0] * k, S->e0[1] * k, S->e0[2] * k};
-		trace(w, (struct ray){o, d}, e, S->cutoff, 0, 0, 0);
+		trace(w, (struct ray){o, d}, e, S->cutoff, 0, 0, 0, NULL);
 	}
 	c.n = w->lands.n - c.first;
 	return c;
@@ -876,6 +903,7 @@ static void run_item(struct worker *w, const struct item *it)
 	bool beam = l->kind == LIGHT_PARALLEL;
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
+	w->band = J->band; /* a spectral pass sets each ray's wavelength */
 	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
 	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
@@ -905,12 +933,11 @@ static void run_item(struct worker *w, const struct item *it)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
-		w->band = J->band;
 		if (J->o->spectral)
 			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
 		for (int c = 0; c < 3; c++)
 			w->emitted[c] += e[c];
-		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0);
+		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0, NULL);
 	}
 }
 

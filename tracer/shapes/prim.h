@@ -164,6 +164,24 @@ __attribute__((always_inline)) static inline bool prim_sphere_t(struct vec3 c, d
 	return true;
 }
 
+/* The point and normal of the sphere of centre c and radius rad at root t
+ * (as prim_sphere_t found it): the point on the ray projected back onto the
+ * sphere. Inline: sph_hit_at (sphere.c) and the winner of a query that
+ * needs no (u,v) (shape_hit_at) share it. */
+__attribute__((always_inline)) static inline bool prim_sphere_at(struct vec3 c, double rad, const struct ray *r,
+                                                                  double t, struct local_hit *lh)
+{
+	struct vec3 q = v_sub(ray_at(*r, t), c);
+	double l = v_len(q);
+	if (!(l > 0))
+		return false;
+	q = v_scale(q, 1 / l); /* reproject onto the surface */
+	lh->t = t;
+	lh->p = v_madd(c, q, rad);
+	lh->n = q;
+	return true;
+}
+
 /* The root t in (tmin, tmax) of the ray and the plane n̂·p = d. Inline: the
  * plane primitive and the hierarchy's plane leaves (bvh.c) share it. */
 static inline bool prim_plane_root(struct vec3 n, double d, const struct ray *r, double tmin, double tmax,

@@ -57,17 +57,11 @@ bool sph_hit_t(const struct object *o, const struct ray *r, double tmin, double 
  * the sphere and the normal; with uv, its (u,v) and partials too. */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh)
 {
-	struct vec3 q = v_sub(ray_at(*r, t), S_C(o));
-	double l = v_len(q);
-	if (!(l > 0))
+	if (!prim_sphere_at(S_C(o), S_R(o), r, t, lh))
 		return false;
-	q = v_scale(q, 1 / l); /* reproject onto the surface */
-	lh->t = t;
-	lh->p = v_madd(S_C(o), q, S_R(o));
-	lh->n = q;
 	if (!uv)
 		return true;
-	sph_uv(q, &lh->u, &lh->v);
+	sph_uv(lh->n, &lh->u, &lh->v);
 	return sph_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
 }
 
