@@ -8,7 +8,8 @@
 #   ARVO=$PWD/arvo ARVO_BASE=/path/to/older/arvo sh bench/speed/base.sh
 #
 # ARVO_BASE is required (build it from an older commit: git worktree add
-# /tmp/old REV && make -C /tmp/old). RUNS (default 5) runs of each binary,
+# /tmp/old REV && make -C /tmp/old); BASE_LABEL names it in base.txt (say,
+# the commit; not a path). RUNS (default 5) runs of each binary,
 # alternating; every figure is a median. THREADS (default 2) as run.sh.
 # Rows (the same commands as run.sh's):
 #   eye spheres|grid N    eye-pass seconds (--stats), 640x480, N = 100k, 1M
@@ -83,8 +84,8 @@ pair "loop1m" wall -q --max-objects 2000000 --rays 0 --threads "$THREADS" --widt
 
 {
 	echo "bench/speed/base.sh: medians of $RUNS runs by turns, $THREADS threads"
-	echo "new:  $ARVO ($("$ARVO" --version))"
-	echo "base: $ARVO_BASE ($("$ARVO_BASE" --version))"
+	echo "new:  $(git -C "$root" describe --always --dirty 2> /dev/null || echo "this tree") ($("$ARVO" --version))"
+	echo "base: ${BASE_LABEL:-ARVO_BASE} ($("$ARVO_BASE" --version))"
 	echo "load average at the end: $(cut -d" " -f1-3 /proc/loadavg)"
 	column -s, -t < "$csv"
 } > "$res/base.txt"

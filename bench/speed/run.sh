@@ -166,7 +166,7 @@ if cc -std=c11 -O2 -pthread -o "$tmp/ceiling" "$here/ceiling.c" 2> /dev/null; th
 	for w in compute memory; do
 		c1=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 1; done | median)
 		c2=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 2; done | median)
-		row threads "machine ceiling, $w" "" "1->2" "$(ratio "$c1" "$c2")" "" "" "x" "" ""
+		row threads "machine ceiling ($w)" "" "1->2" "$(ratio "$c1" "$c2")" "" "" "x" "" ""
 	done
 fi
 rate=$(awk -v s="$segs" -v t="$l2" 'BEGIN { printf "%.0f", s / t / 2 }')
