@@ -27,7 +27,8 @@
 #             tests/accuracy/sphere.scn, --method point, 1M rays) on 1 and 2
 #             threads: time(1) / time(2) (target >= 1.85); and the same
 #             ratio for bench/speed/ceiling.c, a perfectly parallel program
-#             (arithmetic alone; fresh memory written), the most this
+#             (arithmetic alone; fresh memory written; reads that wait on
+#             memory, a random walk through 32 MiB), the most this
 #             machine's two cores give (no target: the yardstick)
 #   light     light-pass segments/s/core on 2 threads, 1M rays, isolated-
 #             sample rule on, deposits included (target >= 1e7)
@@ -163,7 +164,7 @@ row threads "light pass" 1000000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=
 # the machine's own ceiling for the two rows above: a perfectly parallel
 # program (ceiling.c) on 1 and 2 threads; no target, it is the yardstick
 if cc -std=c11 -O2 -pthread -o "$tmp/ceiling" "$here/ceiling.c" 2> /dev/null; then
-	for w in compute memory; do
+	for w in compute memory chase; do
 		c1=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 1; done | median)
 		c2=$(for i in $(seq "$RUNS"); do "$tmp/ceiling" "$w" 2; done | median)
 		row threads "machine ceiling ($w)" "" "1->2" "$(ratio "$c1" "$c2")" "" "" "x" "" ""
