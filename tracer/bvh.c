@@ -368,25 +368,32 @@ __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *
 }
 #endif
 
+/* The lanes of packet P (N rays; NULL: a single ray) that object o may
+ * meet: lanes16's mask for a sphere without a transform in a native
+ * 16-wide packet, else every lane. */
+static inline unsigned may_meet(struct packet *P, unsigned N, const struct object *o)
+{
+#ifdef LANES16
+	if (native16 && P && N == BVH_PACKET && o->kind == OBJ_SPHERE && !o->xf) {
+		if (!P->rows)
+			packet_rows(P);
+		return lanes16(P, o);
+	}
+#else
+	(void)P, (void)N, (void)o;
+#endif
+	return ~0u;
+}
+
 static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
 	struct query *lane = P ? &P->q[P->base] : q; /* lane i's query: lane[i], or q alone */
 	const struct object *o = lane->b->prims[a->primID]; /* looked up once for every lane */
-#ifdef LANES16
-	if (native16 && P && a->N == BVH_PACKET && o->kind == OBJ_SPHERE && !o->xf) {
-		if (!P->rows)
-			packet_rows(P);
-		unsigned m = lanes16(P, o);
-		for (unsigned i = 0; i < BVH_PACKET; i++)
-			if (a->valid[i] && (m >> i & 1))
-				test_lane(&lane[i], (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
-		return;
-	}
-#endif
+	unsigned m = may_meet(P, a->N, o);
 	for (unsigned i = 0; i < a->N; i++)
-		if (a->valid[i])
+		if (a->valid[i] && (m >> (i & 31) & 1))
 			test_lane(P ? &lane[i] : q, (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
 }
 
@@ -407,17 +414,7 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
-	unsigned m = ~0u; /* lanes that may be blocked */
-#ifdef LANES16
-	if (native16 && P && a->N == BVH_PACKET) { /* as intersect_cb */
-		const struct object *o = P->q[0].b->prims[a->primID];
-		if (o->kind == OBJ_SPHERE && !o->xf) {
-			if (!P->rows)
-				packet_rows(P);
-			m = lanes16(P, o);
-		}
-	}
-#endif
+	unsigned m = P ? may_meet(P, a->N, P->q[0].b->prims[a->primID]) : ~0u; /* lanes that may be blocked */
 	for (unsigned i = 0; i < a->N; i++) {
 		struct query *qi = P ? &P->q[P->base + (int)i] : q;
 		if (a->valid[i] && (m >> (i & 31) & 1) && !qi->found && blocks(qi, a->primID)) {

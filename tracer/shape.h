@@ -67,8 +67,8 @@ void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const s
 /* Any hit with tmin < t < tmax (shadow rays). */
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax);
 /* Is o's solid convex (a sphere, a box, a plane's half-space, a closed
- * cylinder or cone; never
- * OF_INVERSE)? Then a ray from a point of its surface, offset along the
+ * cylinder or cone; never OF_INVERSE)? Then a ray from a point of its
+ * surface, offset along the
  * outward normal n, with direction d·n >= 0, stays in the half-space
  * beyond the tangent plane, which holds none of the solid: it cannot hit o
  * again (bvh_intersect_from). */

@@ -130,12 +130,6 @@ static int kn_side_roots(const struct kframe *f, const struct ray *r, double t[2
 	return 2;
 }
 
-/* A candidate parameter along the ray and which part it hits. */
-struct cand {
-	double t; /* ray parameter */
-	int part; /* 0 side, 1 cap a, 2 cap b */
-};
-
 /* Collects the ray's hits with the side (within its height) and the caps. */
 static int kn_candidates(const struct object *o, const struct kframe *f, const struct ray *r,
                          struct cand c[4])
@@ -195,10 +189,7 @@ static bool kn_intersect(const struct object *o, const struct ray *r, double tmi
 	struct cand c[4];
 	if (!kn_axes(o, &f))
 		return false;
-	int n = kn_candidates(o, &f, r, c), best = -1;
-	for (int i = 0; i < n; i++)
-		if (c[i].t > tmin && c[i].t < tmax && (best < 0 || c[i].t < c[best].t))
-			best = i;
+	int best = prim_cand_nearest(c, kn_candidates(o, &f, r, c), tmin, tmax);
 	if (best < 0)
 		return false;
 	kn_lengths(o, &f);
@@ -213,11 +204,7 @@ static bool kn_occluded(const struct object *o, const struct ray *r, double tmin
 	struct cand c[4];
 	if (!kn_axes(o, &f))
 		return false;
-	int n = kn_candidates(o, &f, r, c);
-	for (int i = 0; i < n; i++)
-		if (c[i].t > tmin && c[i].t < tmax)
-			return true;
-	return false;
+	return prim_cand_any(c, kn_candidates(o, &f, r, c), tmin, tmax);
 }
 
 static bool kn_inside(const struct object *o, struct vec3 p)

@@ -96,12 +96,6 @@ static int cy_side_roots(const struct cframe *f, const struct ray *r, double t[2
 	return prim_quadratic(a, b, c, disc, &t[0], &t[1]) ? 2 : 0;
 }
 
-/* Candidate parameters along the ray and which part they hit. */
-struct cand {
-	double t; /* ray parameter */
-	int part; /* 0 side, 1 cap a, 2 cap b */
-};
-
 /* Collects every hit of the surface (side within its height, caps within
  * the radius) into c[], up to 4. */
 static int cy_candidates(const struct object *o, const struct cframe *f, const struct ray *r,
@@ -159,10 +153,7 @@ static bool cy_intersect(const struct object *o, const struct ray *r, double tmi
 	struct cand c[4];
 	if (!cy_frame(o, &f))
 		return false;
-	int n = cy_candidates(o, &f, r, c), best = -1;
-	for (int i = 0; i < n; i++)
-		if (c[i].t > tmin && c[i].t < tmax && (best < 0 || c[i].t < c[best].t))
-			best = i;
+	int best = prim_cand_nearest(c, cy_candidates(o, &f, r, c), tmin, tmax);
 	if (best < 0)
 		return false;
 	cy_fill(&f, r, c[best].t, c[best].part, lh);
@@ -176,11 +167,7 @@ static bool cy_occluded(const struct object *o, const struct ray *r, double tmin
 	struct cand c[4];
 	if (!cy_frame(o, &f))
 		return false;
-	int n = cy_candidates(o, &f, r, c);
-	for (int i = 0; i < n; i++)
-		if (c[i].t > tmin && c[i].t < tmax)
-			return true;
-	return false;
+	return prim_cand_any(c, cy_candidates(o, &f, r, c), tmin, tmax);
 }
 
 static bool cy_inside(const struct object *o, struct vec3 p)

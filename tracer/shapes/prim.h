@@ -273,4 +273,30 @@ static inline struct bbox prim_infinite_box(void)
 	return (struct bbox){v3(-INFINITY, -INFINITY, -INFINITY), v3(INFINITY, INFINITY, INFINITY)};
 }
 
+/* A hit of a solid of revolution's side or caps (cylinder, cone): its ray
+ * parameter and its part (0 side, 1 cap a, 2 cap b). */
+struct cand {
+	double t;
+	int part;
+};
+
+/* The nearest of c[0..n) with tmin < t < tmax (the first of equals), or -1. */
+static inline int prim_cand_nearest(const struct cand *c, int n, double tmin, double tmax)
+{
+	int best = -1;
+	for (int i = 0; i < n; i++)
+		if (c[i].t > tmin && c[i].t < tmax && (best < 0 || c[i].t < c[best].t))
+			best = i;
+	return best;
+}
+
+/* Whether any of c[0..n) has tmin < t < tmax. */
+static inline bool prim_cand_any(const struct cand *c, int n, double tmin, double tmax)
+{
+	for (int i = 0; i < n; i++)
+		if (c[i].t > tmin && c[i].t < tmax)
+			return true;
+	return false;
+}
+
 #endif
