@@ -14,6 +14,12 @@
 typedef void (*pf_fn)(void *ctx, long i, int worker);
 
 void parallel_for(long n, int threads, pf_fn fn, void *ctx);
+/* As parallel_for, but the items are first cut into one run of consecutive
+ * items per thread: thread k claims the items of run k in order, then helps
+ * with the other runs. Neighbouring items (the tiles of a band of the
+ * image) stay on one core, whose cache then holds the part of the scene
+ * they see, instead of both cores fetching the same parts. */
+void parallel_for_shares(long n, int threads, pf_fn fn, void *ctx);
 /* The number of threads to use: `requested` when positive, else one per
  * online CPU (at most 256). */
 int pool_threads(int requested);

@@ -25,7 +25,7 @@
 #define TILE 16 /* tile edge in pixels */
 #define NPLANES 27
 
-/* The eye pass's shared state: tiles are handed out by parallel_for and
+/* The eye pass's shared state: tiles are handed out by parallel_for_shares and
  * each pixel's result goes to its own slot, so scheduling cannot change the
  * image. */
 struct eye_job {
@@ -125,7 +125,7 @@ static void eye_pass(const struct eye_ctx *ctx, struct framebuffer *fb, int npla
 	j.rays = mem_calloc((size_t)nthreads, sizeof *j.rays);
 	j.progress = show;
 	progress_begin(show, "eye pass", (long)j.tx * j.ty);
-	parallel_for((long)j.tx * j.ty, nthreads, do_tile, &j);
+	parallel_for_shares((long)j.tx * j.ty, nthreads, do_tile, &j);
 	progress_end(show);
 	*rays = 0;
 	for (int i = 0; i < nthreads; i++)

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* test_pool.c: parallel_for visits every item exactly once, names workers in
- * range, and fills the same slots for any thread count. */
+/* test_pool.c: parallel_for and parallel_for_shares visit every item exactly
+ * once, name workers in range, and fill the same slots for any thread
+ * count. */
 #include <stdatomic.h>
 #include <stdlib.h>
 
@@ -25,11 +26,11 @@ static void item(void *arg, long i, int worker)
 	c->out[i] = i * i % 9973;
 }
 
-static void run(int threads, long n)
+static void run_with(void (*pf)(long, int, pf_fn, void *), int threads, long n)
 {
 	struct ctx *c = calloc(1, sizeof *c);
 	c->threads = threads;
-	parallel_for(n, threads, item, c);
+	pf(n, threads, item, c);
 	int once = 1, right = 1;
 	for (long i = 0; i < N; i++) {
 		once &= atomic_load(&c->hits[i]) == (i < n ? 1 : 0);
@@ -41,10 +42,24 @@ static void run(int threads, long n)
 	free(c);
 }
 
+static void run(int threads, long n) { run_with(parallel_for, threads, n); }
+static void run_shares(int threads, long n) { run_with(parallel_for_shares, threads, n); }
+
 static void t_one_thread(void) { run(1, N); }
 static void t_two_threads(void) { run(2, N); }
 static void t_more_threads_than_items(void) { run(7, 3); }
 static void t_no_items(void) { run(4, 0); }
+/* shares: N = 10007 cut into 2, 3 and 7 runs of unequal length; fewer
+ * items than threads; none */
+static void t_shares(void)
+{
+	run_shares(1, N);
+	run_shares(2, N);
+	run_shares(3, N);
+	run_shares(7, N);
+	run_shares(7, 3);
+	run_shares(4, 0);
+}
 
 static void t_default_threads(void)
 {
@@ -58,6 +73,7 @@ int main(void)
 	RUN(t_two_threads);
 	RUN(t_more_threads_than_items);
 	RUN(t_no_items);
+	RUN(t_shares);
 	RUN(t_default_threads);
 	return test_done();
 }
