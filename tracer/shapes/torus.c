@@ -47,7 +47,9 @@ static double peval(const double *c, int n, double x, double *d)
 
 /* The root of c in [lo,hi], where c(lo) and c(hi) have opposite signs and c
  * is monotone: Newton steps kept inside a shrinking bracket, bisection when
- * a step would leave it. */
+ * a step would leave it. lo and hi are never NaN (the ends of to_first's
+ * interval or roots refined inside it), so d_max is fmax here, inline: a
+ * call in this loop saved and restored the bracket around each step. */
 static double refine(const double *c, int n, double lo, double hi, double flo)
 {
 	double x = 0.5 * (lo + hi);
@@ -62,7 +64,7 @@ static double refine(const double *c, int n, double lo, double hi, double flo)
 		double nx = d != 0 ? x - f / d : lo;
 		if (!(nx > lo && nx < hi))
 			nx = 0.5 * (lo + hi);
-		if (nx == x || hi - lo <= 4e-16 * fmax(fabs(lo), fabs(hi)))
+		if (nx == x || hi - lo <= 4e-16 * d_max(fabs(lo), fabs(hi)))
 			return nx;
 		x = nx;
 	}
