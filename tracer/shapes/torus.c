@@ -71,32 +71,78 @@ static double refine(const double *c, int n, double lo, double hi, double flo)
 	return x;
 }
 
-/* Real roots of the degree-n polynomial c in [lo,hi], ascending. */
-static int roots_in(const double *c, int n, double lo, double hi, double *out)
+/* The real roots of a polynomial in [lo,hi], ascending, one at a time, so
+ * that a caller that wants the first root in some range stops there. Each
+ * level n holds a polynomial of degree n, level n − 1 its derivative: the
+ * roots of level n − 1 cut [lo,hi] into monotone intervals, and each
+ * interval whose ends' values differ in sign holds one root, refined there.
+ * An end where the value is 0 is itself a root (once). A root needs the
+ * derivative's roots up to the end of its interval only, so the work past
+ * the first root a caller takes is not done; the roots and their order are
+ * what working them all out first gives. */
+struct roots {
+	double c[5];  /* the coefficients */
+	double a, fa; /* the next interval's left end and the value there */
+	double hi;
+	double last;  /* the root given last (with k > 0) */
+	int k;        /* roots given */
+	int phase;    /* 0: intervals left; 1: hi's own zero left; 2: done */
+};
+
+/* Sets up levels 1 to n of g for c (degree n) over [lo,hi]. */
+static void roots_init(struct roots *g, const double *c, int n, double lo, double hi)
 {
-	if (n == 1) {
-		double x = c[1] != 0 ? -c[0] / c[1] : NAN;
-		out[0] = x;
-		return x >= lo && x <= hi;
+	for (int i = 0; i <= n; i++)
+		g[n].c[i] = c[i];
+	for (int m = n; m >= 1; m--) {
+		struct roots *l = &g[m];
+		if (m > 1)
+			for (int i = 1; i <= m; i++)
+				g[m - 1].c[i - 1] = i * l->c[i];
+		l->a = lo, l->hi = hi, l->k = 0, l->phase = 0, l->last = 0;
+		l->fa = m > 1 ? peval(l->c, m, lo, NULL) : 0;
 	}
-	double dc[4], b[6];
-	for (int i = 1; i <= n; i++)
-		dc[i - 1] = i * c[i];
-	int m = roots_in(dc, n - 1, lo, hi, b + 1), k = 0;
-	b[0] = lo;
-	b[m + 1] = hi;
-	for (int i = 0; i <= m; i++) {
-		double f0 = peval(c, n, b[i], NULL), f1 = peval(c, n, b[i + 1], NULL);
-		if (f0 == 0) {
-			if (k == 0 || out[k - 1] != b[i])
-				out[k++] = b[i];
-		} else if ((f0 < 0) != (f1 < 0) && f1 != 0) {
-			out[k++] = refine(c, n, b[i], b[i + 1], f0);
+}
+
+static bool root_give(struct roots *l, double x, double *out)
+{
+	l->k++, l->last = x, *out = x;
+	return true;
+}
+
+/* The next root of level n of g into *x; false when there are no more. */
+static bool root_next(struct roots *g, int n, double *x)
+{
+	struct roots *l = &g[n];
+	if (n == 1) {
+		if (l->phase)
+			return false;
+		l->phase = 2;
+		double r = l->c[1] != 0 ? -l->c[0] / l->c[1] : NAN;
+		*x = r;
+		return r >= l->a && r <= l->hi;
+	}
+	while (l->phase == 0) {
+		double b;
+		if (!root_next(g, n - 1, &b)) {
+			b = l->hi;
+			l->phase = 1;
+		}
+		double a = l->a, fa = l->fa, fb = peval(l->c, n, b, NULL);
+		l->a = b, l->fa = fb;
+		if (fa == 0) {
+			if (l->k == 0 || l->last != a)
+				return root_give(l, a, x);
+		} else if ((fa < 0) != (fb < 0) && fb != 0) {
+			return root_give(l, refine(l->c, n, a, b, fa), x);
 		}
 	}
-	if (peval(c, n, hi, NULL) == 0 && (k == 0 || out[k - 1] != hi))
-		out[k++] = hi;
-	return k;
+	if (l->phase == 1) {
+		l->phase = 2; /* l->fa is the value at hi */
+		if (l->fa == 0 && (l->k == 0 || l->last != l->hi))
+			return root_give(l, l->hi, x);
+	}
+	return false;
 }
 
 /* ==== parametrisation ===================================================== */
@@ -119,15 +165,16 @@ static bool to_uv_point(const struct object *o, double u, double v, struct vec3 
 
 /* ==== intersection ======================================================= */
 
-/* Distances s (in units of R + r, from the ray's point nearest the centre
- * along the unit direction) where the ray meets the torus, within [s0,s1]. */
-static int quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
-                        double *s)
+/* Sets g up for the distances s (in units of R + r, from the ray's point
+ * nearest the centre along the unit direction) where the ray meets the
+ * torus, within [s0,s1] (root_next(g, 4, …)). */
+static void quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
+                         struct roots *g)
 {
 	double c0 = v_dot(q, q), e = c0 + Rs * Rs - rs * rs, R4 = 4 * Rs * Rs;
 	double a2 = d.x * d.x + d.z * d.z, a1 = 2 * (q.x * d.x + q.z * d.z), a0 = q.x * q.x + q.z * q.z;
 	double c[5] = {e * e - R4 * a0, -R4 * a1, 2 * e - R4 * a2, 0, 1};
-	return roots_in(c, 4, s0, s1, s);
+	roots_init(g, c, 4, s0, s1);
 }
 
 /* The unit outward normal at p (on the surface). */
@@ -169,13 +216,14 @@ static bool to_first(const struct object *o, const struct ray *r, double tmin, d
 	double m = reach * rr / sc, y0 = qs.y + d.y * s0, y1 = qs.y + d.y * s1;
 	if ((y0 > m && y1 > m) || (y0 < -m && y1 < -m))
 		return false;
-	double s[4];
-	int n = quartic_hits(R / sc, rr / sc, qs, d, s0, s1, s);
-	for (int i = 0; i < n; i++) {
-		*t = (tc + s[i] * sc) / L;
+	struct roots g[5];
+	double s;
+	quartic_hits(R / sc, rr / sc, qs, d, s0, s1, g);
+	while (root_next(g, 4, &s)) {
+		*t = (tc + s * sc) / L;
 		if (!(*t > tmin && *t < tmax))
 			continue;
-		*p = v_madd(q, d, s[i] * sc);
+		*p = v_madd(q, d, s * sc);
 		return true;
 	}
 	return false;
