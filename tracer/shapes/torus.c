@@ -165,16 +165,71 @@ static bool to_uv_point(const struct object *o, double u, double v, struct vec3 
 
 /* ==== intersection ======================================================= */
 
+/* A quartic's least value over an interval is at least the least of its
+ * five Bernstein coefficients there (they are the corners of a polygon
+ * whose hull holds the curve). b: those coefficients; halves the interval
+ * (de Casteljau) up to depth times where that bound is too low. An end's
+ * own coefficient is its value, so a low end ends the search. */
+static bool bern_above(const double *b, double floor, int depth)
+{
+	if (!(b[0] > floor) || !(b[4] > floor))
+		return false;
+	if (b[1] > floor && b[2] > floor && b[3] > floor)
+		return true;
+	if (depth == 0)
+		return false;
+	double c0 = 0.5 * (b[0] + b[1]), c1 = 0.5 * (b[1] + b[2]), c2 = 0.5 * (b[2] + b[3]),
+	       c3 = 0.5 * (b[3] + b[4]);
+	double d0 = 0.5 * (c0 + c1), d1 = 0.5 * (c1 + c2), d2 = 0.5 * (c2 + c3);
+	double e0 = 0.5 * (d0 + d1), e1 = 0.5 * (d1 + d2), f = 0.5 * (e0 + e1);
+	double l[5] = {b[0], c0, d0, e0, f}, r[5] = {f, e1, d2, c3, b[4]};
+	return bern_above(l, floor, depth - 1) && bern_above(r, floor, depth - 1);
+}
+
+/* Whether the quartic c (c[4] = 1, c[3] = 0, |c[i]| <= 8) is provably above
+ * zero all over [a,b] ⊂ [-1.01, 1.01], so that root_next would find no root
+ * there: its Bernstein coefficients, halved twice at most, all past 1e-9.
+ * Rounding moves those coefficients by less than 1e-12 here (Taylor
+ * coefficients below 30, scaled by (b − a)^k <= 17), and each value
+ * Horner's rule gives root_next by less than 1e-13, so every value it
+ * would look at is positive, and the answer is the one root_next gives.
+ * Most of the torus's rays are settled so: those that pass it by, and
+ * those spawned on it that leave and do not come back, whose value
+ * starts at the offset times the gradient (1e-8 and up). docs/design.md,
+ * "The torus". */
+static bool quartic_above(const double *c, double a, double b)
+{
+	double t0 = c[0], t1 = c[1], t2 = c[2], t3 = 0, t4 = 1;
+	/* the Taylor coefficients at a (three synthetic divisions by x − a) */
+	for (int k = 0; k < 4; k++) {
+		t3 += a * t4;
+		if (k < 3)
+			t2 += a * t3;
+		if (k < 2)
+			t1 += a * t2;
+		if (k < 1)
+			t0 += a * t1;
+	}
+	double h = b - a, m1 = t1 * h, m2 = t2 * h * h, m3 = t3 * h * h * h, m4 = t4 * h * h * h * h;
+	double bc[5] = {t0, t0 + m1 / 4, t0 + m1 / 2 + m2 / 6, t0 + 0.75 * m1 + m2 / 2 + m3 / 4,
+	                t0 + m1 + m2 + m3 + m4};
+	return bern_above(bc, 1e-9, 2);
+}
+
 /* Sets g up for the distances s (in units of R + r, from the ray's point
  * nearest the centre along the unit direction) where the ray meets the
- * torus, within [s0,s1] (root_next(g, 4, …)). */
-static void quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
+ * torus, within [s0,s1] (root_next(g, 4, …)); false when there are none
+ * (quartic_above). */
+static bool quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
                          struct roots *g)
 {
 	double c0 = v_dot(q, q), e = c0 + Rs * Rs - rs * rs, R4 = 4 * Rs * Rs;
 	double a2 = d.x * d.x + d.z * d.z, a1 = 2 * (q.x * d.x + q.z * d.z), a0 = q.x * q.x + q.z * q.z;
 	double c[5] = {e * e - R4 * a0, -R4 * a1, 2 * e - R4 * a2, 0, 1};
+	if (quartic_above(c, s0, s1))
+		return false;
 	roots_init(g, c, 4, s0, s1);
+	return true;
 }
 
 /* The unit outward normal at p (on the surface). */
@@ -218,7 +273,8 @@ static bool to_first(const struct object *o, const struct ray *r, double tmin, d
 		return false;
 	struct roots g[5];
 	double s;
-	quartic_hits(R / sc, rr / sc, qs, d, s0, s1, g);
+	if (!quartic_hits(R / sc, rr / sc, qs, d, s0, s1, g))
+		return false;
 	while (root_next(g, 4, &s)) {
 		*t = (tc + s * sc) / L;
 		if (!(*t > tmin && *t < tmax))
