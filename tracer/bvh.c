@@ -72,7 +72,8 @@ struct query {
 	const struct ray *r;   /* the ray in double */
 	double tmin, tmax;     /* open interval; tmax shrinks to the best hit */
 	double t0;             /* where the float ray starts along r */
-	unsigned skip;         /* leaves with these flags are ignored */
+	unsigned skip;         /* leaves with these flags are ignored (and
+	                          BVH_UV_UNREAD, which no object flag is) */
 	struct hit *h;         /* best hit so far */
 	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
@@ -280,7 +281,7 @@ HOT bool consider_obj(struct query *q, int id, const struct object *o)
 		q->best_t = t;
 	} else {
 		struct hit tmp;
-		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
+		if (!(q->skip & BVH_UV_UNREAD ? shape_intersect_bare : shape_intersect)(o, q->r, q->tmin, hi, &tmp))
 			return false;
 		*q->h = tmp;
 		t = tmp.t;

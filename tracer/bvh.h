@@ -19,6 +19,9 @@ struct bvh;
 /* A bit of a query's skip mask that is no object flag: the nearest hit may
  * come without its (u,v) and partials (NaN and zero; shape_hit_at). */
 #define BVH_NO_UV (1u << 31)
+/* Another: no hit's (u,v) or partials are read at all (the eye pass without
+ * illumination maps), so no leaf works them out (shape_intersect_bare). */
+#define BVH_UV_UNREAD (1u << 30)
 
 /* Builds the hierarchy over objs[0..n); the objects, and the array objs
  * itself (the hierarchy may use it as its list of leaves), must outlive it. */

@@ -82,9 +82,9 @@ static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
 static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
 static double v_maxc(struct vec3 a) { return d_max(a.x, d_max(a.y, a.z)); }
 
-/* The query flag for hits shaded here: (u,v) are looked at only to read
- * illumination maps (caustic_at). */
-static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV; }
+/* The query flags for hits shaded here: (u,v) and the partials are looked
+ * at only to read illumination maps (caustic_at). */
+static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV | BVH_UV_UNREAD; }
 
 /* Inlined where it is called: the shading steps of a hit, which GCC
  * otherwise leaves as calls, passing each vector argument through the

@@ -71,6 +71,21 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	return true;
 }
 
+bool shape_intersect_bare(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct hit *h)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, h);
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
+	struct local_hit lh;
+	if (!(o->kind == OBJ_TORUS ? to_hit(o, lr, tmin, tmax, &lh) : p->intersect(o, lr, tmin, tmax, &lh)))
+		return false;
+	to_world(o, r, &lh, false, h);
+	return true;
+}
+
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
 	struct hit h;

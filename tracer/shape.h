@@ -47,6 +47,11 @@ struct uv_range {
 /* Nearest hit with tmin < t < tmax; fills *h and returns true, else false. */
 bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                      struct hit *h);
+/* shape_intersect for a caller that reads no (u,v) or partials (the eye
+ * pass without illumination maps): the same t, point and normal, with
+ * (u,v) NaN and the partials zero, which the torus does not work out. */
+bool shape_intersect_bare(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct hit *h);
 /* The t of that nearest hit alone: the same t shape_intersect finds over the
  * same interval, cheaper where the primitive can skip the rest (spheres,
  * planes). */

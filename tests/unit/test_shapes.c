@@ -746,6 +746,38 @@ static void t_torus_reference(void)
 	CHECK(hits > total / 4 && spawned_miss > total / 12);
 }
 
+/* shape_intersect_bare finds what shape_intersect finds, bit for bit, less
+ * the (u,v) (NaN) and the partials (zero), for every kind. */
+static void t_bare_as_intersect(void)
+{
+	rng_seed(9);
+	int differ = 0, hits = 0, total = 0;
+	for (int k = 0; k < NKINDS(all_kinds); k++)
+		for (int i = 0; i < 2000; i++) {
+			struct object o = rnd_prim(all_kinds[k], i % 7 == 0);
+			if (i % 2)
+				o.xf = xf_keep(rnd_xform(i % 4 == 1, true));
+			struct ray r = {rnd_vec(-4, 4), rnd_dir()};
+			if (i % 3 == 0) {
+				struct vec3 p;
+				shape_uv_point(&o, rnd(), rnd(), &p, NULL, NULL);
+				r.d = v_sub(p, r.o);
+			}
+			struct hit a, b;
+			bool got = shape_intersect(&o, &r, 0, INFINITY, &a);
+			if (got != shape_intersect_bare(&o, &r, 0, INFINITY, &b))
+				differ++;
+			else if (got && (memcmp(&a.t, &b.t, sizeof a.t) || memcmp(&a.p, &b.p, sizeof a.p) ||
+			                 memcmp(&a.n, &b.n, sizeof a.n) || a.obj != b.obj || a.entering != b.entering ||
+			                 !isnan(b.u) || !isnan(b.v) || v_len(b.dpdu) != 0 || v_len(b.dpdv) != 0))
+				differ++;
+			hits += got, total++;
+		}
+	printf("# %d hits of %d rays, %d differ\n", hits, total, differ);
+	CHECK(differ == 0);
+	CHECK(hits > total / 3);
+}
+
 int main(void)
 {
 	RUN(t_sphere_known);
@@ -762,5 +794,6 @@ int main(void)
 	RUN(t_torus_far);
 	RUN(t_occluded_as_intersect);
 	RUN(t_torus_reference);
+	RUN(t_bare_as_intersect);
 	return test_done();
 }

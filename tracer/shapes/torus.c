@@ -285,16 +285,25 @@ static bool to_first(const struct object *o, const struct ray *r, double tmin, d
 	return false;
 }
 
-static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                         struct local_hit *lh)
+bool to_hit(const struct object *o, const struct ray *r, double tmin, double tmax, struct local_hit *lh)
 {
-	double R = T_R(o), t;
+	double t;
 	struct vec3 p;
 	if (!to_first(o, r, tmin, tmax, &t, &p))
 		return false;
 	lh->t = t;
 	lh->p = p;
-	lh->n = to_normal(R, p);
+	lh->n = to_normal(T_R(o), p);
+	return true;
+}
+
+static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	double R = T_R(o);
+	if (!to_hit(o, r, tmin, tmax, lh))
+		return false;
+	struct vec3 p = lh->p;
 	lh->u = prim_turns(-p.z, p.x);
 	lh->v = prim_turns(p.y, sqrt(p.x * p.x + p.z * p.z) - R);
 	return to_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
