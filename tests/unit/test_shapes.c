@@ -778,6 +778,31 @@ static void t_bare_as_intersect(void)
 	CHECK(hits > total / 3);
 }
 
+/* Two cones alike but for one radius, asked in turn (cone.c keeps the last
+ * cone's frame per thread): each hit where its own radius puts it. */
+static void t_cone_alternating(void)
+{
+	struct object k[4];
+	for (int i = 0; i < 4; i++) {
+		k[i] = mk_obj(OBJ_CONE);
+		k[i].g.cone.a = v3(0, 0, 0), k[i].g.cone.b = v3(0, 2, 0);
+		k[i].g.cone.ra = 1, k[i].g.cone.rb = 0;
+	}
+	k[1].g.cone.rb = 1;       /* a cylinder: radius 1 at y = 1 */
+	k[2].g.cone.ra = 0.5;     /* radius 0.25 at y = 1 */
+	k[3].g.cone.b = v3(0, 4, 0); /* radius 0.75 at y = 1 */
+	const double want[4] = {4.5, 4, 4.75, 4.25};
+	struct ray r = {v3(-5, 1, 0), v3(1, 0, 0)};
+	int bad = 0;
+	for (int n = 0; n < 12; n++) {
+		int i = (n * 7) % 4;
+		struct hit h;
+		bad += !shape_intersect(&k[i], &r, 0, INFINITY, &h) || fabs(h.t - want[i]) > 1e-12;
+		bad += shape_occluded(&k[i], &r, 0, want[i] - 1e-9) || !shape_occluded(&k[i], &r, 0, want[i] + 1e-9);
+	}
+	CHECK(bad == 0);
+}
+
 int main(void)
 {
 	RUN(t_sphere_known);
@@ -795,5 +820,6 @@ int main(void)
 	RUN(t_occluded_as_intersect);
 	RUN(t_torus_reference);
 	RUN(t_bare_as_intersect);
+	RUN(t_cone_alternating);
 	return test_done();
 }
