@@ -59,6 +59,9 @@ struct bvh {
 	double pad;                    /* float safety margin of every box */
 	struct bbox padded;            /* bounds grown by pad (float_ray) */
 	bool brute;                    /* few leaves: tested without Embree (brute) */
+	struct bbox lbox[LEAFBOX_MAX]; /* with box: each leaf's box grown by pad */
+	bool alone[LEAFBOX_MAX];       /* with box: no other leaf's grown box comes
+	                                  within pad of this leaf's (bvh_intersect_in) */
 	struct leafbox *box;           /* the leaves' boxes grown by pad, when brute
 	                                  tests boxes first (NULL: it does not) */
 };
@@ -72,7 +75,8 @@ struct query {
 	const struct ray *r;   /* the ray in double */
 	double tmin, tmax;     /* open interval; tmax shrinks to the best hit */
 	double t0;             /* where the float ray starts along r */
-	unsigned skip;         /* leaves with these flags are ignored */
+	unsigned skip;         /* leaves with these flags are ignored (and
+	                          BVH_UV_UNREAD, which no object flag is) */
 	struct hit *h;         /* best hit so far */
 	bool uv;               /* the hit needs its (u,v) and partials */
 	int best;              /* its primitive index, -1: an unbounded leaf */
@@ -280,7 +284,7 @@ HOT bool consider_obj(struct query *q, int id, const struct object *o)
 		q->best_t = t;
 	} else {
 		struct hit tmp;
-		if (!shape_intersect(o, q->r, q->tmin, hi, &tmp))
+		if (!(q->skip & BVH_UV_UNREAD ? shape_intersect_bare : shape_intersect)(o, q->r, q->tmin, hi, &tmp))
 			return false;
 		*q->h = tmp;
 		t = tmp.t;
@@ -426,6 +430,24 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 
 /* ==== building =========================================================== */
 
+/* Whether boxes a and b lie more than gap apart along some axis. */
+static bool apart(struct bbox a, struct bbox b, double gap)
+{
+	return a.hi.x + gap < b.lo.x || b.hi.x + gap < a.lo.x || a.hi.y + gap < b.lo.y || b.hi.y + gap < a.lo.y ||
+	       a.hi.z + gap < b.lo.z || b.hi.z + gap < a.lo.z;
+}
+
+/* t->lbox and t->alone from the leaves' grown boxes bx (bvh_intersect_in). */
+static void set_alone(struct bvh *t, const struct bbox *bx)
+{
+	for (int i = 0; i < t->nprims; i++) {
+		t->lbox[i] = bx[i];
+		t->alone[i] = true;
+		for (int j = 0; j < t->nprims && t->alone[i]; j++)
+			t->alone[i] = j == i || apart(bx[i], bx[j], t->pad);
+	}
+}
+
 struct bvh *bvh_build(struct object **objs, int n)
 {
 	struct bvh *t = mem_calloc(1, sizeof *t);
@@ -459,6 +481,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 		}
 		t->box = mem_alloc(sizeof *t->box);
 		leafbox_set(t->box, t->nprims, bx);
+		set_alone(t, bx);
 		t->brute = true;
 	}
 	if (t->brute)
@@ -867,6 +890,36 @@ bool bvh_intersect_from(const struct bvh *b, const struct ray *r, double tmin, d
                         const struct object *from, struct hit *h)
 {
 	return traverse(b, r, tmin, tmax, skip, false, from, h, NULL, NULL);
+}
+
+/* A ray that starts in leaf in's grown box, where no other leaf's box comes
+ * near (alone), reaches no other bounded leaf before it leaves that box
+ * (whether or not it starts inside the leaf, which need not be convex):
+ * when it meets that leaf (consider, after the unbounded leaves, as the
+ * full query asks them), that hit is the nearest, and the leaves' boxes are
+ * not walked. The segment up to the hit lies in the box (the hit is on the
+ * leaf, the box is convex); another leaf's hit lies in its own box, more
+ * than pad away, which no solver's rounding spans. Otherwise the full
+ * query: the leaf tested again over the same interval answers the same. */
+bool bvh_intersect_in(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                      const struct object *in, struct hit *h)
+{
+	int id = -1;
+	for (int i = 0; b->box && in && i < b->nprims; i++)
+		if (b->prims[i] == in)
+			id = i;
+	const struct bbox *x = id >= 0 && b->alone[id] ? &b->lbox[id] : NULL;
+	if (!x || !(r->o.x > x->lo.x && r->o.x < x->hi.x && r->o.y > x->lo.y && r->o.y < x->hi.y &&
+	            r->o.z > x->lo.z && r->o.z < x->hi.z))
+		return traverse(b, r, tmin, tmax, skip, false, NULL, h, NULL, NULL);
+	struct query q;
+	new_query(&q, b, r, tmin, tmax, skip, h);
+	if (b->nunbound)
+		unbounded(&q, false);
+	if (!consider(&q, id))
+		brute(&q, false);
+	finish_if(&q, NULL, NULL);
+	return q.found;
 }
 
 bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,

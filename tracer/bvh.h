@@ -19,6 +19,9 @@ struct bvh;
 /* A bit of a query's skip mask that is no object flag: the nearest hit may
  * come without its (u,v) and partials (NaN and zero; shape_hit_at). */
 #define BVH_NO_UV (1u << 31)
+/* Another: no hit's (u,v) or partials are read at all (the eye pass without
+ * illumination maps), so no leaf works them out (shape_intersect_bare). */
+#define BVH_UV_UNREAD (1u << 30)
 
 /* Builds the hierarchy over objs[0..n); the objects, and the array objs
  * itself (the hierarchy may use it as its list of leaves), must outlive it. */
@@ -41,6 +44,13 @@ bool bvh_intersect_from(const struct bvh *b, const struct ray *r, double tmin, d
                         const struct object *from, struct hit *h);
 bool bvh_occluded_from(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
                        const struct object *from);
+/* bvh_intersect_skip for a ray that starts next to leaf in and most likely
+ * meets it first (refracted into it, or reflected inside it): the same hit,
+ * found without walking the other leaves when the ray starts in that leaf's
+ * box, no other leaf lies near it (a scene of a few leaves, bvh.c) and the
+ * ray meets it; else, or with in NULL, every leaf is walked. */
+bool bvh_intersect_in(const struct bvh *b, const struct ray *r, double tmin, double tmax, unsigned skip,
+                      const struct object *in, struct hit *h);
 /* bvh_intersect_skip, where the caller may not need the whole hit: when
  * full(ctx, object hit) returns false, *h may hold only obj and t, with
  * (u,v) NaN (the rest unset), which spares working out the point, normal

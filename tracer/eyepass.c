@@ -28,6 +28,8 @@ struct path {
 	                              beforehand in a packet (eye_pixels), or NULL */
 	const struct object *from; /* the next trace's ray leaves this convex object
 	                              outward (surf.out), or NULL */
+	const struct object *in;   /* or enters this convex object, or is reflected
+	                              inside it: it meets it first (bvh_intersect_in) */
 };
 
 /* A shadow ray of a light point towards l->pos, and whether it is blocked,
@@ -82,9 +84,9 @@ static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
 static bool no_colour(struct colour c) { return c.r == 0 && c.g == 0 && c.b == 0; }
 static double v_maxc(struct vec3 a) { return d_max(a.x, d_max(a.y, a.z)); }
 
-/* The query flag for hits shaded here: (u,v) are looked at only to read
- * illumination maps (caustic_at). */
-static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV; }
+/* The query flags for hits shaded here: (u,v) and the partials are looked
+ * at only to read illumination maps (caustic_at). */
+static unsigned no_uv(const struct eye_ctx *ctx) { return ctx->ncaustics ? 0 : BVH_NO_UV | BVH_UV_UNREAD; }
 
 /* Inlined where it is called: the shading steps of a hit, which GCC
  * otherwise leaves as calls, passing each vector argument through the
@@ -363,10 +365,12 @@ HOT struct vec3 specular(struct path *pa, const struct surf *sf, struct vec3 d, 
 	struct vec3 out = v3(0, 0, 0);
 	if (v_maxc(so.T) > 0) {
 		pa->from = sf->back && v_dot(so.trans.d, sf->h->n) >= 0 ? sf->back : NULL;
+		pa->in = sf->out; /* refracted into it */
 		out = v_mul(so.T, trace(pa, &so.trans, depth + 1, weight * v_maxc(so.T), skip, NULL));
 	}
 	if (v_maxc(so.R) > 0) {
 		pa->from = sf->out; /* so.refl.d·nf = -d·nf >= 0 */
+		pa->in = sf->back;  /* reflected inside (nf inward) */
 		out = v_add(out, v_mul(so.R, trace(pa, &so.refl, depth + 1, weight * v_maxc(so.R), OF_NO_REFLECTION, NULL)));
 	}
 	return out;
@@ -590,14 +594,15 @@ static struct vec3 trace(struct path *pa, const struct ray *r, int depth, double
 {
 	const struct scene *s = pa->ctx->scene;
 	int maxd = s->gs.max_trace_level > 0 ? s->gs.max_trace_level : 5, pre = pa->pre_state;
-	const struct object *from = pa->from;
-	pa->pre_state = 0, pa->from = NULL;
+	const struct object *from = pa->from, *in = pa->in;
+	pa->pre_state = 0, pa->from = NULL, pa->in = NULL;
 	if (depth > maxd || weight < s->gs.adc_bailout)
 		return v3(0, 0, 0);
 	struct hit hit;
 	const struct hit *hp = pre > 0 ? pa->pre : &hit; /* the packet's hit is used in place */
 	pa->rays++;
-	if (pre < 0 || (!pre && !bvh_intersect_from(pa->ctx->bvh, r, 0, INFINITY, skip | no_uv(pa->ctx), from, &hit))) {
+	if (pre < 0 || (!pre && !(in ? bvh_intersect_in(pa->ctx->bvh, r, 0, INFINITY, skip | no_uv(pa->ctx), in, &hit)
+	                             : bvh_intersect_from(pa->ctx->bvh, r, 0, INFINITY, skip | no_uv(pa->ctx), from, &hit)))) {
 		struct vec3 bg = s->nsky ? sky(pa->ctx, v_norm(r->d)) : col3(s->background);
 		if (s->fog.type)
 			bg = fog(&s->fog, r->o, v_norm(r->d), 1e7, bg);
@@ -662,7 +667,7 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL};
+	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL};
 	double jx = 0.5, jy = 0.5;
 	if (jitter) {
 		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */

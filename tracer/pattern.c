@@ -151,14 +151,10 @@ static int brick(const struct pigment *pg, struct vec3 q)
 
 int pattern_block(const struct pigment *pg, struct vec3 q)
 {
-	const double small = 1e-6;
 	switch (pg->kind) {
 	case PIG_HEXAGON: return hexagon(q);
 	case PIG_BRICK: return brick(pg, q);
-	default: {
-		long s = (long)floor(q.x + small) + (long)floor(q.y + small) + (long)floor(q.z + small);
-		return (int)(s & 1);
-	}
+	default: return pattern_checker(q);
 	}
 }
 

@@ -26,6 +26,27 @@ bool pattern_normal_direct(const struct tnormal *t, struct vec3 q, struct vec3 *
 double pattern_grey(struct colour c);
 /* Which colour (0, 1, 2) of a block pattern (checker, hexagon, brick) q is in. */
 int pattern_block(const struct pigment *pg, struct vec3 q);
+
+/* (long)floor(x), inline (floor is a libm call without SSE4.1). Truncation
+ * rounds towards zero, so one step down for x below it gives the floor;
+ * x <= -2⁵² is a whole number already, and NaN, infinities and values past
+ * the range of long convert as (long)floor(x) converts them. */
+static inline long pattern_lfloor(double x)
+{
+	long i = (long)x;
+	if (x > -0x1p52 && (double)i > x)
+		i--;
+	return i;
+}
+
+/* The checker's colour (0 or 1) at pattern-space point q: pattern_block's
+ * for a checker, inline. */
+static inline int pattern_checker(struct vec3 q)
+{
+	const double small = 1e-6;
+	long s = pattern_lfloor(q.x + small) + pattern_lfloor(q.y + small) + pattern_lfloor(q.z + small);
+	return (int)(s & 1);
+}
 /* The unit normal n at world point p perturbed as POV-Ray's normal { }
  * does: in pattern space, the pattern's values at the four corners of a
  * small tetrahedron around p, scaled by the bump size, tilt n. */

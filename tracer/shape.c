@@ -71,6 +71,21 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	return true;
 }
 
+bool shape_intersect_bare(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct hit *h)
+{
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, h);
+	struct ray tmp;
+	const struct ray *lr = local_ray(o, r, &tmp);
+	struct local_hit lh;
+	if (!(o->kind == OBJ_TORUS ? to_hit(o, lr, tmin, tmax, &lh) : p->intersect(o, lr, tmin, tmax, &lh)))
+		return false;
+	to_world(o, r, &lh, false, h);
+	return true;
+}
+
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
 {
 	struct hit h;
@@ -132,23 +147,6 @@ bool shape_occluded(const struct object *o, const struct ray *r, double tmin, do
 	return p->occluded ? p->occluded(o, lr, tmin, tmax) : p->intersect(o, lr, tmin, tmax, &lh);
 }
 
-bool shape_convex(const struct object *o)
-{
-	if (o->flags & OF_INVERSE)
-		return false;
-	switch (o->kind) {
-	case OBJ_SPHERE:
-	case OBJ_BOX:
-	case OBJ_PLANE: /* a half-space */
-		return true;
-	case OBJ_CYLINDER:
-		return !(o->flags & OF_OPEN);
-	case OBJ_CONE: /* the solid between the caps; an apex where a radius is 0 */
-		return !(o->flags & OF_OPEN) && o->g.cone.ra >= 0 && o->g.cone.rb >= 0;
-	default:
-		return false;
-	}
-}
 
 bool shape_inside(const struct object *o, struct vec3 world_p)
 {

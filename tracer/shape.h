@@ -47,6 +47,11 @@ struct uv_range {
 /* Nearest hit with tmin < t < tmax; fills *h and returns true, else false. */
 bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                      struct hit *h);
+/* shape_intersect for a caller that reads no (u,v) or partials (the eye
+ * pass without illumination maps): the same t, point and normal, with
+ * (u,v) NaN and the partials zero, which the torus does not work out. */
+bool shape_intersect_bare(const struct object *o, const struct ray *r, double tmin, double tmax,
+                          struct hit *h);
 /* The t of that nearest hit alone: the same t shape_intersect finds over the
  * same interval, cheaper where the primitive can skip the rest (spheres,
  * planes). */
@@ -71,8 +76,24 @@ bool shape_occluded(const struct object *o, const struct ray *r, double tmin, do
  * surface, offset along the
  * outward normal n, with direction d·n >= 0, stays in the half-space
  * beyond the tangent plane, which holds none of the solid: it cannot hit o
- * again (bvh_intersect_from). */
-bool shape_convex(const struct object *o);
+ * again (bvh_intersect_from). Inline: the eye pass asks at every hit. */
+static inline bool shape_convex(const struct object *o)
+{
+	if (o->flags & OF_INVERSE)
+		return false;
+	switch (o->kind) {
+	case OBJ_SPHERE:
+	case OBJ_BOX:
+	case OBJ_PLANE: /* a half-space */
+		return true;
+	case OBJ_CYLINDER:
+		return !(o->flags & OF_OPEN);
+	case OBJ_CONE: /* the solid between the caps; an apex where a radius is 0 */
+		return !(o->flags & OF_OPEN) && o->g.cone.ra >= 0 && o->g.cone.rb >= 0;
+	default:
+		return false;
+	}
+}
 /* Is the world point strictly inside the solid (OF_INVERSE honoured)? */
 bool shape_inside(const struct object *o, struct vec3 world_p);
 /* World bounds of the object's SURFACE; ±INFINITY components when unbounded. */

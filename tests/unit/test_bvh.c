@@ -7,6 +7,7 @@
  * surfaces agree too, and so do shadow and camera rays asked as one
  * packet. */
 #include <stdio.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "../../tracer/bvh.h"
@@ -361,7 +362,7 @@ static void t_occluded_packet(void)
  * triangles, from inside a sphere, just grazing one (where a sphere's cheap
  * rejections, run on all lanes at once with AVX-512, are closest to
  * turning a lane away), or anywhere, from tmin 0, a tmin inside the cloud or
- * a negative one, with and without a skip mask. */
+ * a negative one, with and without a skip mask (and BVH_UV_UNREAD). */
 static void t_intersect_packet(void)
 {
 	static struct scene_fixture s;
@@ -394,7 +395,8 @@ static void t_intersect_packet(void)
 		}
 		struct hit h[BVH_PACKET];
 		bool found[BVH_PACKET];
-		bvh_intersect_packet(b, n, r, tmin, INFINITY, skip | BVH_NO_UV, h, found);
+		/* every third packet as the eye pass asks without maps: the same hits */
+		bvh_intersect_packet(b, n, r, tmin, INFINITY, skip | BVH_NO_UV | (k % 3 ? 0 : BVH_UV_UNREAD), h, found);
 		for (int i = 0; i < n; i++) {
 			struct hit h1;
 			bool f1 = bvh_intersect_skip(b, &r[i], tmin, INFINITY, skip | BVH_NO_UV, &h1);
@@ -700,6 +702,63 @@ static void t_leaving_convex(void)
 	CHECK(tested > 5000 && hits > 1000);
 }
 
+/* bvh_intersect_in answers bit for bit as bvh_intersect_skip, in a scene of
+ * a few leaves (by their boxes), some far apart, two overlapping, a plane
+ * through some: for rays refracted into a leaf or reflected inside it (as
+ * the eye pass asks), rays from anywhere in its box, and rays given the
+ * wrong leaf. */
+static void t_inside_leaf(void)
+{
+	enum { NO = 7 };
+	static struct object o[NO + 1];
+	struct object *top[NO + 1];
+	const enum object_kind kind[NO] = {OBJ_SPHERE, OBJ_BOX, OBJ_CYLINDER, OBJ_CONE, OBJ_TORUS, OBJ_SPHERE, OBJ_BOX};
+	const struct vec3 at[NO] = {{-9, 0, 0}, {0, 0, 0}, {9, 0, 0}, {0, 9, 0}, {0, -9, 0}, {0.2, 0.1, 0}, {0, 0, 9}};
+	rng_seed(27);
+	for (int i = 0; i < NO; i++) {
+		o[i] = rnd_prim(kind[i], false);
+		o[i].xf = xf_keep(xf_then(rnd_xform(i % 2, true), xf_translate(at[i])));
+		top[i] = &o[i];
+	}
+	o[NO] = mk_obj(OBJ_PLANE);
+	o[NO].g.plane.n = v3(0.1, 1, 0), o[NO].g.plane.d = 0.3;
+	top[NO] = &o[NO];
+	struct bvh *b = bvh_build(top, NO + 1);
+	int mism = 0, hits = 0, inside = 0;
+	for (int i = 0; i < 30000; i++) {
+		const struct object *s = top[i % NO];
+		struct bbox bx = shape_bounds(s);
+		struct vec3 c = v_scale(v_add(bx.lo, bx.hi), 0.5);
+		struct ray r = {v_madd(c, rnd_dir(), 30), v3(0, 0, 0)};
+		r.d = v_sub(v_add(c, rnd_vec(-0.5, 0.5)), r.o);
+		struct hit h;
+		if (!shape_intersect(s, &r, 0, INFINITY, &h))
+			continue;
+		double eps = 1e-7 * (1 + fmax(fabs(h.p.x), fmax(fabs(h.p.y), fabs(h.p.z))));
+		struct vec3 n = h.entering ? h.n : v_neg(h.n), d = rnd_dir(); /* n: outward */
+		if (v_dot(d, n) > 0)
+			d = v_neg(d);
+		struct ray q = {v_madd(h.p, n, -eps), d}; /* into it */
+		if (i % 5 == 3 || (i % NO == 1 && i % 2)) /* anywhere in its box (often in the two that overlap) */
+			q.o = v3(bx.lo.x + rnd() * (bx.hi.x - bx.lo.x), bx.lo.y + rnd() * (bx.hi.y - bx.lo.y),
+			         bx.lo.z + rnd() * (bx.hi.z - bx.lo.z));
+		const struct object *in = i % 7 == 6 ? top[(i + 3) % NO] : s;
+		double tmax = i % 3 ? INFINITY : rndr(0.1, 5);
+		unsigned skip = i % 11 == 10 ? OF_NO_IMAGE : 0;
+		struct hit hs, hi;
+		bool gs = bvh_intersect_skip(b, &q, 0, tmax, skip | BVH_NO_UV, &hs);
+		bool gi = bvh_intersect_in(b, &q, 0, tmax, skip | BVH_NO_UV | (i % 2 ? BVH_UV_UNREAD : 0), in, &hi);
+		hits += gs;
+		inside += gs && hs.obj == s;
+		mism += gs != gi || (gs && (memcmp(&hs.t, &hi.t, sizeof hs.t) || hs.obj != hi.obj ||
+		                            memcmp(&hs.p, &hi.p, sizeof hs.p) || memcmp(&hs.n, &hi.n, sizeof hs.n)));
+	}
+	bvh_free(b);
+	printf("# %d hits, %d on the leaf they start in, %d mismatches\n", hits, inside, mism);
+	CHECK(mism == 0);
+	CHECK(hits > 10000 && inside > hits / 2);
+}
+
 int main(void)
 {
 	RUN(t_same_as_brute_force);
@@ -713,5 +772,6 @@ int main(void)
 	RUN(t_intersect_packet);
 	RUN(t_leafbox);
 	RUN(t_leaving_convex);
+	RUN(t_inside_leaf);
 	return test_done();
 }

@@ -1,8 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* test_pattern.c: POV-Ray's patterns (tracer/pattern.c) at points where
- * their values are known in closed form, and the waves. */
+ * their values are known in closed form, the waves, and the plain
+ * checker's inline path. */
 #include <math.h>
+#include <string.h>
 
+#include "../../tracer/material.h"
 #include "../../tracer/pattern.h"
 #include "test.h"
 
@@ -108,11 +111,48 @@ static void t_perturb(void)
 	CHECK_NEAR(n.y, 1, 1e-12);
 }
 
+/* pattern_lfloor is (long)floor: on whole numbers, either side of them by an
+ * ulp, ±0, tiny values, at and past 2⁵², and on a sweep of values. A plain
+ * checker read in place (mat_pigment) gives the colour of pigment_at's
+ * steps: pattern_point, pattern_block, pig_colour, near cell edges too. */
+static void t_checker_floor(void)
+{
+	const double edge[] = {0.0, -0.0, 0.5, -0.5, 1, -1, 3, -3, 1e-300, -1e-300, 0x1p52, -0x1p52,
+	                       0x1p52 + 1, -0x1p52 - 1, 0x1p62, -0x1p62, 4503599627370495.5,
+	                       -4503599627370495.5, 1e15 + 0.25, -1e15 - 0.25};
+	int bad = 0, n = 0;
+	for (int i = 0; i < (int)(sizeof edge / sizeof edge[0]); i++)
+		for (int s = -1; s <= 1; s++) {
+			double x = s < 0 ? nextafter(edge[i], -INFINITY) : s > 0 ? nextafter(edge[i], INFINITY) : edge[i];
+			bad += pattern_lfloor(x) != (long)floor(x), n++;
+		}
+	for (int i = 0; i < 20000; i++) {
+		double x = (i - 10000) * 0.37 + (i % 7) * 1e-7;
+		bad += pattern_lfloor(x) != (long)floor(x), n++;
+	}
+	CHECK(bad == 0 && n == 20060);
+	struct pigment g = pig(PIG_CHECKER, PAT_RADIAL);
+	g.c[0] = c_rgb(1, 0.5, 0.25);
+	own(&g)->more[0] = c_rgb(0.2, 0.3, 0.4);
+	int differ = 0, ones = 0;
+	for (int i = 0; i < 4000; i++) {
+		double a = (i % 41 - 20) * 0.5, b = (i % 23 - 11) * 0.25;
+		struct vec3 p = v3(a - 1e-6 + (i % 3 - 1) * 1e-12, b * 0.7, (i % 5 - 2) * (1 - 1e-6));
+		struct colour want = pig_colour(&g, pattern_block(&g, pattern_point(&g, p)));
+		struct colour got = mat_pigment(NULL, &g, p);
+		differ += memcmp(&want, &got, sizeof want) != 0;
+		ones += got.r == 0.2;
+	}
+	CHECK(differ == 0);
+	CHECK(ones > 1000 && ones < 3000);
+}
+
 int main(void)
 {
 	RUN(t_continuous);
 	RUN(t_waves);
 	RUN(t_blocks);
+	RUN(t_checker_floor);
 	RUN(t_perturb);
 	return test_done();
 }

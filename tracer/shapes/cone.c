@@ -21,6 +21,7 @@
  * Cell areas split at the seams; caps are exact under any affine map, the
  * side exact under similarities and integrated numerically otherwise. */
 #include <math.h>
+#include <string.h>
 
 #include "prim.h"
 
@@ -46,6 +47,29 @@ static bool kn_axes(const struct object *o, struct kframe *f)
 	f->w = v_scale(ab, 1 / f->h);
 	shape_basis(f->w, &f->e1, &f->e2);
 	return true;
+}
+
+/* kn_axes of the cone this thread asked last, kept: a query tests the same
+ * cone ray after ray, and the frame is a function of its ends and radii
+ * alone (compared bit for bit), so the copy is what kn_axes would give
+ * (its square root, division, basis and two calls of fmax spared). */
+static _Thread_local struct {
+	struct vec3 a, b;
+	double ra, rb;
+	bool ok;
+	struct kframe f;
+} kn_last;
+
+static bool kn_axes_kept(const struct object *o, struct kframe *f)
+{
+	if (memcmp(&kn_last.a, &o->g.cone.a, sizeof kn_last.a) || memcmp(&kn_last.b, &o->g.cone.b, sizeof kn_last.b) ||
+	    memcmp(&kn_last.ra, &o->g.cone.ra, sizeof kn_last.ra) || memcmp(&kn_last.rb, &o->g.cone.rb, sizeof kn_last.rb)) {
+		kn_last.a = o->g.cone.a, kn_last.b = o->g.cone.b, kn_last.ra = o->g.cone.ra, kn_last.rb = o->g.cone.rb;
+		kn_last.f = (struct kframe){.h = 0};
+		kn_last.ok = kn_axes(o, &kn_last.f);
+	}
+	*f = kn_last.f;
+	return kn_last.ok;
 }
 
 static void kn_lengths(const struct object *o, struct kframe *f)
@@ -187,7 +211,7 @@ static bool kn_intersect(const struct object *o, const struct ray *r, double tmi
 {
 	struct kframe f;
 	struct cand c[4];
-	if (!kn_axes(o, &f))
+	if (!kn_axes_kept(o, &f))
 		return false;
 	int best = prim_cand_nearest(c, kn_candidates(o, &f, r, c), tmin, tmax);
 	if (best < 0)
@@ -202,7 +226,7 @@ static bool kn_occluded(const struct object *o, const struct ray *r, double tmin
 {
 	struct kframe f;
 	struct cand c[4];
-	if (!kn_axes(o, &f))
+	if (!kn_axes_kept(o, &f))
 		return false;
 	return prim_cand_any(c, kn_candidates(o, &f, r, c), tmin, tmax);
 }

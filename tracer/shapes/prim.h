@@ -73,6 +73,9 @@ bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, do
 /* The hit at the root t that pl_prep_hit_t found, as the plane's intersect
  * fills it there. */
 void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh);
+/* The torus's intersect without (u,v) and the partials (left unset):
+ * the same t, point and normal (shape_intersect_bare). */
+bool to_hit(const struct object *o, const struct ray *r, double tmin, double tmax, struct local_hit *lh);
 /* The hit at a root t that sph_hit_t returned, as sph_intersect fills it;
  * without uv, (u,v) and the partials are left unset (shape_hit_at). */
 bool sph_hit_at(const struct object *o, const struct ray *r, double t, bool uv, struct local_hit *lh);

@@ -47,7 +47,9 @@ static double peval(const double *c, int n, double x, double *d)
 
 /* The root of c in [lo,hi], where c(lo) and c(hi) have opposite signs and c
  * is monotone: Newton steps kept inside a shrinking bracket, bisection when
- * a step would leave it. */
+ * a step would leave it. lo and hi are never NaN (the ends of to_first's
+ * interval or roots refined inside it), so d_max is fmax here, inline: a
+ * call in this loop saved and restored the bracket around each step. */
 static double refine(const double *c, int n, double lo, double hi, double flo)
 {
 	double x = 0.5 * (lo + hi);
@@ -62,39 +64,85 @@ static double refine(const double *c, int n, double lo, double hi, double flo)
 		double nx = d != 0 ? x - f / d : lo;
 		if (!(nx > lo && nx < hi))
 			nx = 0.5 * (lo + hi);
-		if (nx == x || hi - lo <= 4e-16 * fmax(fabs(lo), fabs(hi)))
+		if (nx == x || hi - lo <= 4e-16 * d_max(fabs(lo), fabs(hi)))
 			return nx;
 		x = nx;
 	}
 	return x;
 }
 
-/* Real roots of the degree-n polynomial c in [lo,hi], ascending. */
-static int roots_in(const double *c, int n, double lo, double hi, double *out)
+/* The real roots of a polynomial in [lo,hi], ascending, one at a time, so
+ * that a caller that wants the first root in some range stops there. Each
+ * level n holds a polynomial of degree n, level n − 1 its derivative: the
+ * roots of level n − 1 cut [lo,hi] into monotone intervals, and each
+ * interval whose ends' values differ in sign holds one root, refined there.
+ * An end where the value is 0 is itself a root (once). A root needs the
+ * derivative's roots up to the end of its interval only, so the work past
+ * the first root a caller takes is not done; the roots and their order are
+ * what working them all out first gives. */
+struct roots {
+	double c[5];  /* the coefficients */
+	double a, fa; /* the next interval's left end and the value there */
+	double hi;
+	double last;  /* the root given last (with k > 0) */
+	int k;        /* roots given */
+	int phase;    /* 0: intervals left; 1: hi's own zero left; 2: done */
+};
+
+/* Sets up levels 1 to n of g for c (degree n) over [lo,hi]. */
+static void roots_init(struct roots *g, const double *c, int n, double lo, double hi)
 {
-	if (n == 1) {
-		double x = c[1] != 0 ? -c[0] / c[1] : NAN;
-		out[0] = x;
-		return x >= lo && x <= hi;
+	for (int i = 0; i <= n; i++)
+		g[n].c[i] = c[i];
+	for (int m = n; m >= 1; m--) {
+		struct roots *l = &g[m];
+		if (m > 1)
+			for (int i = 1; i <= m; i++)
+				g[m - 1].c[i - 1] = i * l->c[i];
+		l->a = lo, l->hi = hi, l->k = 0, l->phase = 0, l->last = 0;
+		l->fa = m > 1 ? peval(l->c, m, lo, NULL) : 0;
 	}
-	double dc[4], b[6];
-	for (int i = 1; i <= n; i++)
-		dc[i - 1] = i * c[i];
-	int m = roots_in(dc, n - 1, lo, hi, b + 1), k = 0;
-	b[0] = lo;
-	b[m + 1] = hi;
-	for (int i = 0; i <= m; i++) {
-		double f0 = peval(c, n, b[i], NULL), f1 = peval(c, n, b[i + 1], NULL);
-		if (f0 == 0) {
-			if (k == 0 || out[k - 1] != b[i])
-				out[k++] = b[i];
-		} else if ((f0 < 0) != (f1 < 0) && f1 != 0) {
-			out[k++] = refine(c, n, b[i], b[i + 1], f0);
+}
+
+static bool root_give(struct roots *l, double x, double *out)
+{
+	l->k++, l->last = x, *out = x;
+	return true;
+}
+
+/* The next root of level n of g into *x; false when there are no more. */
+static bool root_next(struct roots *g, int n, double *x)
+{
+	struct roots *l = &g[n];
+	if (n == 1) {
+		if (l->phase)
+			return false;
+		l->phase = 2;
+		double r = l->c[1] != 0 ? -l->c[0] / l->c[1] : NAN;
+		*x = r;
+		return r >= l->a && r <= l->hi;
+	}
+	while (l->phase == 0) {
+		double b;
+		if (!root_next(g, n - 1, &b)) {
+			b = l->hi;
+			l->phase = 1;
+		}
+		double a = l->a, fa = l->fa, fb = peval(l->c, n, b, NULL);
+		l->a = b, l->fa = fb;
+		if (fa == 0) {
+			if (l->k == 0 || l->last != a)
+				return root_give(l, a, x);
+		} else if ((fa < 0) != (fb < 0) && fb != 0) {
+			return root_give(l, refine(l->c, n, a, b, fa), x);
 		}
 	}
-	if (peval(c, n, hi, NULL) == 0 && (k == 0 || out[k - 1] != hi))
-		out[k++] = hi;
-	return k;
+	if (l->phase == 1) {
+		l->phase = 2; /* l->fa is the value at hi */
+		if (l->fa == 0 && (l->k == 0 || l->last != l->hi))
+			return root_give(l, l->hi, x);
+	}
+	return false;
 }
 
 /* ==== parametrisation ===================================================== */
@@ -117,15 +165,71 @@ static bool to_uv_point(const struct object *o, double u, double v, struct vec3 
 
 /* ==== intersection ======================================================= */
 
-/* Distances s (in units of R + r, from the ray's point nearest the centre
- * along the unit direction) where the ray meets the torus, within [s0,s1]. */
-static int quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
-                        double *s)
+/* A quartic's least value over an interval is at least the least of its
+ * five Bernstein coefficients there (they are the corners of a polygon
+ * whose hull holds the curve). b: those coefficients; halves the interval
+ * (de Casteljau) up to depth times where that bound is too low. An end's
+ * own coefficient is its value, so a low end ends the search. */
+static bool bern_above(const double *b, double floor, int depth)
+{
+	if (!(b[0] > floor) || !(b[4] > floor))
+		return false;
+	if (b[1] > floor && b[2] > floor && b[3] > floor)
+		return true;
+	if (depth == 0)
+		return false;
+	double c0 = 0.5 * (b[0] + b[1]), c1 = 0.5 * (b[1] + b[2]), c2 = 0.5 * (b[2] + b[3]),
+	       c3 = 0.5 * (b[3] + b[4]);
+	double d0 = 0.5 * (c0 + c1), d1 = 0.5 * (c1 + c2), d2 = 0.5 * (c2 + c3);
+	double e0 = 0.5 * (d0 + d1), e1 = 0.5 * (d1 + d2), f = 0.5 * (e0 + e1);
+	double l[5] = {b[0], c0, d0, e0, f}, r[5] = {f, e1, d2, c3, b[4]};
+	return bern_above(l, floor, depth - 1) && bern_above(r, floor, depth - 1);
+}
+
+/* Whether the quartic c (c[4] = 1, c[3] = 0, |c[i]| <= 8) is provably above
+ * zero all over [a,b] ⊂ [-1.01, 1.01], so that root_next would find no root
+ * there: its Bernstein coefficients, halved twice at most, all past 1e-9.
+ * Rounding moves those coefficients by less than 1e-12 here (Taylor
+ * coefficients below 30, scaled by (b − a)^k <= 17), and each value
+ * Horner's rule gives root_next by less than 1e-13, so every value it
+ * would look at is positive, and the answer is the one root_next gives.
+ * Most of the torus's rays are settled so: those that pass it by, and
+ * those spawned on it that leave and do not come back, whose value
+ * starts at the offset times the gradient (1e-8 and up). docs/design.md,
+ * "The torus". */
+static bool quartic_above(const double *c, double a, double b)
+{
+	double t0 = c[0], t1 = c[1], t2 = c[2], t3 = 0, t4 = 1;
+	/* the Taylor coefficients at a (three synthetic divisions by x − a) */
+	for (int k = 0; k < 4; k++) {
+		t3 += a * t4;
+		if (k < 3)
+			t2 += a * t3;
+		if (k < 2)
+			t1 += a * t2;
+		if (k < 1)
+			t0 += a * t1;
+	}
+	double h = b - a, m1 = t1 * h, m2 = t2 * h * h, m3 = t3 * h * h * h, m4 = t4 * h * h * h * h;
+	double bc[5] = {t0, t0 + m1 / 4, t0 + m1 / 2 + m2 / 6, t0 + 0.75 * m1 + m2 / 2 + m3 / 4,
+	                t0 + m1 + m2 + m3 + m4};
+	return bern_above(bc, 1e-9, 2);
+}
+
+/* Sets g up for the distances s (in units of R + r, from the ray's point
+ * nearest the centre along the unit direction) where the ray meets the
+ * torus, within [s0,s1] (root_next(g, 4, …)); false when there are none
+ * (quartic_above). */
+static bool quartic_hits(double Rs, double rs, struct vec3 q, struct vec3 d, double s0, double s1,
+                         struct roots *g)
 {
 	double c0 = v_dot(q, q), e = c0 + Rs * Rs - rs * rs, R4 = 4 * Rs * Rs;
 	double a2 = d.x * d.x + d.z * d.z, a1 = 2 * (q.x * d.x + q.z * d.z), a0 = q.x * q.x + q.z * q.z;
 	double c[5] = {e * e - R4 * a0, -R4 * a1, 2 * e - R4 * a2, 0, 1};
-	return roots_in(c, 4, s0, s1, s);
+	if (quartic_above(c, s0, s1))
+		return false;
+	roots_init(g, c, 4, s0, s1);
+	return true;
 }
 
 /* The unit outward normal at p (on the surface). */
@@ -167,28 +271,39 @@ static bool to_first(const struct object *o, const struct ray *r, double tmin, d
 	double m = reach * rr / sc, y0 = qs.y + d.y * s0, y1 = qs.y + d.y * s1;
 	if ((y0 > m && y1 > m) || (y0 < -m && y1 < -m))
 		return false;
-	double s[4];
-	int n = quartic_hits(R / sc, rr / sc, qs, d, s0, s1, s);
-	for (int i = 0; i < n; i++) {
-		*t = (tc + s[i] * sc) / L;
+	struct roots g[5];
+	double s;
+	if (!quartic_hits(R / sc, rr / sc, qs, d, s0, s1, g))
+		return false;
+	while (root_next(g, 4, &s)) {
+		*t = (tc + s * sc) / L;
 		if (!(*t > tmin && *t < tmax))
 			continue;
-		*p = v_madd(q, d, s[i] * sc);
+		*p = v_madd(q, d, s * sc);
 		return true;
 	}
 	return false;
 }
 
-static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                         struct local_hit *lh)
+bool to_hit(const struct object *o, const struct ray *r, double tmin, double tmax, struct local_hit *lh)
 {
-	double R = T_R(o), t;
+	double t;
 	struct vec3 p;
 	if (!to_first(o, r, tmin, tmax, &t, &p))
 		return false;
 	lh->t = t;
 	lh->p = p;
-	lh->n = to_normal(R, p);
+	lh->n = to_normal(T_R(o), p);
+	return true;
+}
+
+static bool to_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                         struct local_hit *lh)
+{
+	double R = T_R(o);
+	if (!to_hit(o, r, tmin, tmax, lh))
+		return false;
+	struct vec3 p = lh->p;
 	lh->u = prim_turns(-p.z, p.x);
 	lh->v = prim_turns(p.y, sqrt(p.x * p.x + p.z * p.z) - R);
 	return to_uv_point(o, lh->u, lh->v, NULL, &lh->dpdu, &lh->dpdv);
