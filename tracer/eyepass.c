@@ -658,7 +658,7 @@ static void put3(float *dst, struct vec3 v, double k)
 /* Starts sample i of pixel (x, y): its path (random numbers drawn so far)
  * and its camera ray, stratified over an m×m grid of the pixel (m =
  * ⌊√spp⌋, remaining samples uniform). */
-static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa)
+static void camera_sample_to(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa, struct ray *r)
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
@@ -677,7 +677,14 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 		l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
 	else
 		pa->rng.dim += 2; /* the numbers after it stay the same */
-	return cam_ray_fast(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+	cam_ray_to(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2, r);
+}
+
+static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa)
+{
+	struct ray r;
+	camera_sample_to(ctx, x, y, i, pa, &r);
+	return r;
 }
 
 /* Sample i's path and camera ray: sample 0's as eye_pixels started and
@@ -879,7 +886,7 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	struct path pa[BVH_PACKET];
 	bool found[BVH_PACKET];
 	for (int i = 0; i < n; i++)
-		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
+		camera_sample_to(ctx, x[i], y[i], 0, &pa[i], &r[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
 	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
