@@ -360,7 +360,8 @@ static void t_occluded_packet(void)
  * one eye towards nearby points of the cloud of spheres, boxes and
  * triangles, from inside a sphere, just grazing one (where a sphere's cheap
  * rejections, run on all lanes at once with AVX-512, are closest to
- * turning a lane away), or anywhere, from tmin 0, a tmin inside the cloud or
+ * turning a lane away; there its roots are solved on all lanes at once
+ * too, roots16), or anywhere, from tmin 0, a tmin inside the cloud or
  * a negative one, with and without a skip mask. */
 static void t_intersect_packet(void)
 {
