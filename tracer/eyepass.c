@@ -906,6 +906,54 @@ static bool plain_miss(const struct eye_ctx *ctx)
 }
 
 #ifdef EYE_SIMD
+/* Whether camera16 may start the packet's samples: one sample a pixel (no
+ * jitter) through a perspective camera without a lens (cam_ray_to's
+ * inline case). */
+static bool camera16_fits(const struct eye_ctx *ctx)
+{
+	return ctx->simd16 && ctx->spp == 1 && ctx->cam.kind == CAM_PERSPECTIVE && !(ctx->cam.aperture > 0);
+}
+
+/* camera_sample_to for sample 0 of the n pixels (x[i], y[i]) (n <= 16)
+ * where camera16_fits: each path as it starts it, and the film coordinates
+ * and ray directions of all sixteen lanes at once (AVX-512), the same
+ * operations on the same doubles as cam_ray_to's. */
+__attribute__((target("avx512f"))) static void camera16(const struct eye_ctx *ctx, int n, const int *x,
+                                                       const int *y, struct path *pa, struct ray *r)
+{
+	_Alignas(64) int xi[BVH_PACKET], yi[BVH_PACKET];
+	_Alignas(64) double d[3][BVH_PACKET];
+	for (int i = 0; i < BVH_PACKET; i++) {
+		xi[i] = x[i < n ? i : 0], yi[i] = y[i < n ? i : 0];
+		if (i >= n)
+			continue;
+		uint64_t pixel = ((uint64_t)y[i] * (uint64_t)ctx->w + (uint64_t)x[i]) ^ ctx->seed_key;
+		pa[i] = (struct path){ctx, smp_start(pixel, 0), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL};
+		pa[i].rng.dim += 2; /* no lens sample: the numbers after it stay the same */
+	}
+	const struct cam *c = &ctx->cam;
+	const __m512d half = _mm512_set1_pd(0.5), w = _mm512_set1_pd((double)ctx->w);
+	const __m512d h = _mm512_set1_pd((double)ctx->h);
+	const double dir[3] = {c->dir.x, c->dir.y, c->dir.z}, right[3] = {c->right.x, c->right.y, c->right.z};
+	const double up[3] = {c->up.x, c->up.y, c->up.z};
+	for (int k = 0; k < 2; k++) {
+		__m512d sx = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(_mm256_load_si256((const __m256i *)(xi + 8 * k))),
+		                                         half), w);
+		__m512d sy = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(_mm256_load_si256((const __m256i *)(yi + 8 * k))),
+		                                         half), h);
+		__m512d fx = _mm512_sub_pd(sx, half), fy = _mm512_sub_pd(half, sy); /* cam_ray_to's x, y */
+		for (int a = 0; a < 3; a++)
+			_mm512_store_pd(d[a] + 8 * k,
+			                _mm512_add_pd(_mm512_set1_pd(dir[a]),
+			                              _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(right[a]), fx),
+			                                            _mm512_mul_pd(_mm512_set1_pd(up[a]), fy))));
+	}
+	for (int i = 0; i < n; i++) {
+		r[i].o = c->loc;
+		r[i].d = v3(d[0][i], d[1][i], d[2][i]);
+	}
+}
+
 /* The pre_geo of the camera hits h of rays r (lanes of m, n <= 16) into
  * g[i], towards light l (or NULL), sixteen lanes at a time: v_norm, v_neg
  * and towards' subtraction, length and scaling, the same operations on
@@ -966,8 +1014,13 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	struct hit h[BVH_PACKET];
 	struct path pa[BVH_PACKET];
 	bool found[BVH_PACKET];
-	for (int i = 0; i < n; i++)
-		camera_sample_to(ctx, x[i], y[i], 0, &pa[i], &r[i]);
+#ifdef EYE_SIMD
+	if (camera16_fits(ctx))
+		camera16(ctx, n, x, y, pa, r);
+	else
+#endif
+		for (int i = 0; i < n; i++)
+			camera_sample_to(ctx, x[i], y[i], 0, &pa[i], &r[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
 	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
