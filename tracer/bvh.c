@@ -271,12 +271,18 @@ HOT bool sphere_t(const struct object *o, const struct ray *r, double tmin, doub
 
 /* Tests primitive id for query q: on a better hit, records it (a sphere by
  * its t alone; traverse fills *h at the end) and returns true. */
+/* The end of the interval primitive id is tested over for query q: a tie
+ * with the best so far is looked at, and the lower index wins. */
+HOT double upper_end(const struct query *q, int id)
+{
+	return q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax;
+}
+
 HOT bool consider_obj(struct query *q, int id, const struct object *o)
 {
 	if ((o->flags & q->skip) || o == q->from)
 		return false;
-	/* a tie with the best so far is looked at: the lower index wins */
-	double hi = q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax, t;
+	double hi = upper_end(q, id), t;
 	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return false;
@@ -305,16 +311,21 @@ HOT bool consider(struct query *q, int id)
 /* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
  * single ray) for query q: on a better hit, records it and shrinks the
  * lane's tfar just past it. */
-static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
-                      unsigned i, unsigned geom)
+static void lane_hit(const struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i,
+                     unsigned geom)
 {
-	if (!consider_obj(q, id, o))
-		return;
 	/* RTCRayHitN is a structure of arrays: tfar is float row 8, the hit's
 	 * primID and geomID are rows 12 + 5 and 12 + 6 */
 	((float *)rayhit)[8 * N + i] = up((q->tmax - q->t0) * (1 + 1e-6));
 	((unsigned *)rayhit)[17 * N + i] = (unsigned)id;
 	((unsigned *)rayhit)[18 * N + i] = geom;
+}
+
+static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
+                      unsigned i, unsigned geom)
+{
+	if (consider_obj(q, id, o))
+		lane_hit(q, id, rayhit, N, i, geom);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -370,6 +381,77 @@ __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *
 	}
 	return m;
 }
+
+/* prim_sphere_t on all sixteen lanes of a native 16-wide packet at once,
+ * for sphere o (no transform, radius > 0): the lanes (a bit mask) whose
+ * two roots it would go on to compare with the interval, those roots in
+ * t0[i] <= t1[i] (prim_quadratic's), and the lanes lanes16 turns away left
+ * out. The same operations on the same doubles in the same order (AVX-512
+ * multiplies, adds, divisions and square roots, each rounded as the scalar
+ * one: -std=c11 contracts nothing into a fused multiply-add; comparisons
+ * that treat a NaN as the scalar ones do), so every root has the scalar
+ * bits. The scalar test solved each lane that lanes16 let through in turn,
+ * its square roots and divisions one after another: 60 % of intersect_cb's
+ * samples on bench/eye/grid.scn (perf). */
+__attribute__((target("avx512f"))) static unsigned roots16(const struct packet *P, const struct object *o,
+                                                          double *t0, double *t1)
+{
+	const double rad = o->g.sphere.r, r2 = rad * rad;
+	const __m512d cx = _mm512_set1_pd(o->g.sphere.c.x), cy = _mm512_set1_pd(o->g.sphere.c.y);
+	const __m512d cz = _mm512_set1_pd(o->g.sphere.c.z);
+	const __m512d rr = _mm512_set1_pd(r2), rrm = _mm512_set1_pd(r2 * (1 + 1e-9)), eps = _mm512_set1_pd(1e-12);
+	const __m512d zero = _mm512_setzero_pd(), two = _mm512_set1_pd(2), four = _mm512_set1_pd(4);
+	const __m512d half = _mm512_set1_pd(-0.5), vrad = _mm512_set1_pd(rad);
+	const __m512i sign = _mm512_set1_epi64((long long)0x8000000000000000ull);
+	bool ahead = P->tmin >= 0;
+	unsigned m = 0;
+	for (int h = 0; h < 2; h++) {
+		__m512d fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), cx);
+		__m512d fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), cy);
+		__m512d fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), cz);
+		__m512d dx = _mm512_load_pd(P->dx + 8 * h), dy = _mm512_load_pd(P->dy + 8 * h);
+		__m512d dz = _mm512_load_pd(P->dz + 8 * h), a = _mm512_load_pd(P->dd + 8 * h);
+		__m512d fd = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, dx), _mm512_mul_pd(fy, dy)),
+		                           _mm512_mul_pd(fz, dz));
+		__m512d ff = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, fx), _mm512_mul_pd(fy, fy)),
+		                           _mm512_mul_pd(fz, fz));
+		/* lanes16's two rejections */
+		__m512d lhs = _mm512_sub_pd(_mm512_mul_pd(a, ff), _mm512_mul_pd(fd, fd));
+		__m512d rhs = _mm512_mul_pd(a, _mm512_add_pd(rrm, _mm512_mul_pd(ff, eps)));
+		__m512d cc = _mm512_sub_pd(ff, rr);
+		__mmask8 away = _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
+		__mmask8 behind = ahead ? (__mmask8)(_mm512_cmp_pd_mask(fd, zero, _CMP_GT_OQ) &
+		                                     _mm512_cmp_pd_mask(cc, zero, _CMP_GT_OQ))
+		                        : 0;
+		/* !(a > 0), then prim_quadratic's disc < 0 || a == 0 */
+		__mmask8 go = (__mmask8)(~(away | behind) & _mm512_cmp_pd_mask(a, zero, _CMP_GT_OQ));
+		if (!go)
+			continue;
+		__m512d b = _mm512_mul_pd(two, fd);
+		__m512d k = _mm512_div_pd(_mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(fd), sign)), a);
+		__m512d px = _mm512_add_pd(fx, _mm512_mul_pd(dx, k)), py = _mm512_add_pd(fy, _mm512_mul_pd(dy, k));
+		__m512d pz = _mm512_add_pd(fz, _mm512_mul_pd(dz, k));
+		__m512d lp = _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(px, px), _mm512_mul_pd(py, py)),
+		                                          _mm512_mul_pd(pz, pz)));
+		__m512d disc = _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(four, a), _mm512_add_pd(vrad, lp)),
+		                             _mm512_sub_pd(vrad, lp));
+		go &= (__mmask8)~_mm512_cmp_pd_mask(disc, zero, _CMP_LT_OQ);
+		go &= (__mmask8)~_mm512_cmp_pd_mask(a, zero, _CMP_EQ_OQ);
+		if (!go)
+			continue;
+		/* q = -0.5·(b + copysign(√disc, b)) */
+		__m512i bs = _mm512_and_si512(_mm512_castpd_si512(b), sign);
+		__m512i sq = _mm512_andnot_si512(sign, _mm512_castpd_si512(_mm512_sqrt_pd(disc)));
+		__m512d q = _mm512_mul_pd(half, _mm512_add_pd(b, _mm512_castsi512_pd(_mm512_or_si512(sq, bs))));
+		__m512d r0 = _mm512_div_pd(q, a);
+		__m512d r1 = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(q, zero, _CMP_NEQ_UQ), r0, _mm512_div_pd(cc, q));
+		/* d_min(r0, r1) = r0 < r1 ? r0 : r1; d_max = r0 > r1 ? r0 : r1 */
+		_mm512_storeu_pd(t0 + 8 * h, _mm512_mask_blend_pd(_mm512_cmp_pd_mask(r0, r1, _CMP_LT_OQ), r1, r0));
+		_mm512_storeu_pd(t1 + 8 * h, _mm512_mask_blend_pd(_mm512_cmp_pd_mask(r0, r1, _CMP_GT_OQ), r1, r0));
+		m |= (unsigned)go << (8 * h);
+	}
+	return m;
+}
 #endif
 
 /* The lanes of packet P (N rays; NULL: a single ray) that object o may
@@ -395,6 +477,34 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
 	struct query *lane = P ? &P->q[P->base] : q; /* lane i's query: lane[i], or q alone */
 	const struct object *o = lane->b->prims[a->primID]; /* looked up once for every lane */
+#ifdef LANES16
+	if (native16 && P && a->N == BVH_PACKET && o->kind == OBJ_SPHERE && !o->xf && o->g.sphere.r > 0) {
+		_Alignas(64) double t0[BVH_PACKET], t1[BVH_PACKET];
+		if (!P->rows)
+			packet_rows(P);
+		unsigned m = roots16(P, o, t0, t1);
+		for (; m; m &= m - 1) { /* consider_obj with the roots in hand */
+			unsigned i = (unsigned)__builtin_ctz(m);
+			struct query *qi = &lane[i];
+			if (!a->valid[i] || (o->flags & qi->skip) || o == qi->from)
+				continue;
+			double hi = upper_end(qi, (int)a->primID), t;
+			if (t0[i] > qi->tmin && t0[i] < hi)
+				t = t0[i];
+			else if (t1[i] > qi->tmin && t1[i] < hi)
+				t = t1[i];
+			else
+				continue;
+			qi->deferred = true;
+			qi->best_t = qi->tmax = t;
+			qi->best = (int)a->primID;
+			qi->best_hi = hi;
+			qi->found = true;
+			lane_hit(qi, (int)a->primID, a->rayhit, a->N, i, a->geomID);
+		}
+		return;
+	}
+#endif
 	unsigned m = may_meet(P, a->N, o);
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i] && (m >> (i & 31) & 1))
@@ -572,6 +682,8 @@ HOT bool enter(struct bbox b, const struct ray *r, double tmin, double tmax, dou
  * where q's ray enters the padded box of everything bounded, and its
  * interval is rounded outward. False (and no ray) when the ray misses
  * that box within q's interval. */
+HOT bool float_ray_from(struct query *q, float *f, unsigned N, unsigned i, bool hit, double te);
+
 static inline bool float_ray(struct query *q, float *f, unsigned N, unsigned i, bool hit)
 {
 	const struct bbox *bx = &q->b->padded;
@@ -581,6 +693,13 @@ static inline bool float_ray(struct query *q, float *f, unsigned N, unsigned i, 
 	              r->o.z >= bx->lo.z && r->o.z <= bx->hi.z;
 	if (!inside && !enter(*bx, r, -INFINITY, INFINITY, &te))
 		return false;
+	return float_ray_from(q, f, N, i, hit, te);
+}
+
+/* float_ray, where q's ray enters the padded box at te (float_ray's te). */
+HOT bool float_ray_from(struct query *q, float *f, unsigned N, unsigned i, bool hit, double te)
+{
+	const struct ray *r = q->r;
 	if (!(te < q->tmax))
 		return false;
 	double t0 = q->t0 = te > 0 ? te : 0; /* the float ray starts here along r */
@@ -772,13 +891,77 @@ HOT bool traverse(const struct bvh *b, const struct ray *r, double tmin, double 
 
 /* Lane i of a packet gets query q's float ray (into rh, or into rh8
  * without native 16-wide packets); valid[i] says whether it has one (false:
- * it misses the scene's box). */
-static bool packet_lane(struct query *q, int i, int *valid, struct RTCRayHit16 *rh, struct RTCRayHit8 *rh8)
+ * it misses the scene's box). With te (packet_enter), the ray enters the
+ * box at te[i] if bit i of in is set, else misses it. */
+HOT bool packet_lane(struct query *q, int i, int *valid, struct RTCRayHit16 *rh, struct RTCRayHit8 *rh8,
+                     const double *te, unsigned in)
 {
-	bool ok = native16 ? float_ray(q, (float *)rh, BVH_PACKET, (unsigned)i, true)
-	                   : float_ray(q, (float *)&rh8[i / 8], 8, (unsigned)i % 8, true);
+	bool ok = !te   ? native16 ? float_ray(q, (float *)rh, BVH_PACKET, (unsigned)i, true)
+	                           : float_ray(q, (float *)&rh8[i / 8], 8, (unsigned)i % 8, true)
+	          : in >> i & 1 ? float_ray_from(q, (float *)rh, BVH_PACKET, (unsigned)i, true, te[i])
+	                        : false;
 	valid[i] = ok ? -1 : 0;
 	return ok;
+}
+
+#ifdef LANES16
+/* float_ray's entry into box b of the n rays r (n <= 16) at once, as
+ * float_ray finds them one by one: te[i], and the lanes whose ray
+ * starts inside or enters the box as a bit mask. The same divisions,
+ * subtractions, multiplies and comparisons on the same doubles (enter's
+ * early exit aside: its bounds only narrow, so a lane once empty stays
+ * empty), with AVX-512: the scalar slabs, one division after another, were
+ * two fifths of bvh_intersect_packet's own samples (perf, grid 100k). */
+__attribute__((target("avx512f"))) static unsigned enter16(const struct bbox *b, int n, const struct ray *r,
+                                                          double *te)
+{
+	_Alignas(64) double ox[BVH_PACKET], oy[BVH_PACKET], oz[BVH_PACKET];
+	_Alignas(64) double dx[BVH_PACKET], dy[BVH_PACKET], dz[BVH_PACKET];
+	for (int i = 0; i < BVH_PACKET; i++) {
+		const struct ray *ri = &r[i < n ? i : 0];
+		ox[i] = ri->o.x, oy[i] = ri->o.y, oz[i] = ri->o.z;
+		dx[i] = ri->d.x, dy[i] = ri->d.y, dz[i] = ri->d.z;
+	}
+	const double *o3[3] = {ox, oy, oz}, *d3[3] = {dx, dy, dz};
+	const double lo3[3] = {b->lo.x, b->lo.y, b->lo.z}, hi3[3] = {b->hi.x, b->hi.y, b->hi.z};
+	const __m512d one = _mm512_set1_pd(1), zero = _mm512_setzero_pd();
+	unsigned m = 0;
+	for (int h = 0; h < 2; h++) {
+		__mmask8 inside = 0xff;
+		__m512d tmin = _mm512_set1_pd(-INFINITY), tmax = _mm512_set1_pd(INFINITY);
+		for (int k = 0; k < 3; k++) {
+			__m512d o = _mm512_load_pd(o3[k] + 8 * h), d = _mm512_load_pd(d3[k] + 8 * h);
+			__m512d lo = _mm512_set1_pd(lo3[k]), hi = _mm512_set1_pd(hi3[k]);
+			inside &= _mm512_cmp_pd_mask(o, lo, _CMP_GE_OQ) & _mm512_cmp_pd_mask(o, hi, _CMP_LE_OQ);
+			__m512d inv = _mm512_div_pd(one, d);
+			__m512d t0 = _mm512_mul_pd(_mm512_sub_pd(lo, o), inv), t1 = _mm512_mul_pd(_mm512_sub_pd(hi, o), inv);
+			__mmask8 sw = _mm512_cmp_pd_mask(t0, t1, _CMP_GT_OQ);
+			__m512d near = _mm512_mask_blend_pd(sw, t0, t1), far = _mm512_mask_blend_pd(sw, t1, t0);
+			tmin = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(near, tmin, _CMP_GT_OQ), tmin, near);
+			tmax = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(far, tmax, _CMP_LT_OQ), tmax, far);
+		}
+		__mmask8 meets = (__mmask8)~_mm512_cmp_pd_mask(tmin, tmax, _CMP_GT_OQ);
+		_mm512_store_pd(te + 8 * h, _mm512_mask_blend_pd(inside, tmin, zero));
+		m |= (unsigned)(uint8_t)(inside | meets) << (8 * h);
+	}
+	return m;
+}
+#endif
+
+/* The entry of every ray of a packet into the padded box at once (enter16)
+ * where Embree takes native 16-wide packets: te is then set and *in holds
+ * the lanes that meet it; NULL otherwise (float_ray finds each). */
+static const double *packet_enter(const struct bvh *b, int n, const struct ray *r, double *te, unsigned *in)
+{
+#ifdef LANES16
+	if (native16 && b->scene && b->nprims > 0) {
+		*in = enter16(&b->padded, n, r, te);
+		return te;
+	}
+#else
+	(void)b, (void)n, (void)r, (void)in;
+#endif
+	return NULL;
 }
 
 /* Embree's context for a packet of camera or shadow rays (coherent). */
@@ -792,9 +975,96 @@ static void packet_start(struct packet *Q, double tmin)
 	Q->base = 0;
 }
 
+#ifdef LANES16
+/* finish_hit for the lanes of packet Q (bit i of m: lane i) whose winner
+ * is a sphere without a transform found by its t alone, without (u,v):
+ * shape_hit_at's point and normal (prim_sphere_at, then to_world's
+ * v_norm) on all sixteen lanes at once, the same operations on the same
+ * doubles; the lanes whose point lies at the centre (no normal) are left
+ * to finish_hit, as are the flags and the record, per lane. Their two
+ * square roots and divisions one lane after another were most of
+ * shape_hit_at's samples (perf, grid 100k). Returns the lanes done. */
+__attribute__((target("avx512f"))) static unsigned hits16(struct packet *Q, unsigned m)
+{
+	_Alignas(64) double t[BVH_PACKET], cx[BVH_PACKET], cy[BVH_PACKET], cz[BVH_PACKET], rad[BVH_PACKET];
+	_Alignas(64) double out[6][BVH_PACKET]; /* p, then n */
+	if (!Q->rows)
+		packet_rows(Q);
+	for (int i = 0; i < BVH_PACKET; i++) {
+		const struct object *o = Q->q[i].b->prims[Q->q[i].best < 0 ? 0 : Q->q[i].best];
+		bool on = m >> i & 1;
+		t[i] = on ? Q->q[i].best_t : 0;
+		cx[i] = on ? o->g.sphere.c.x : 0, cy[i] = on ? o->g.sphere.c.y : 0, cz[i] = on ? o->g.sphere.c.z : 0;
+		rad[i] = on ? o->g.sphere.r : 0;
+	}
+	const __m512d one = _mm512_set1_pd(1), zero = _mm512_setzero_pd();
+	unsigned ok = 0;
+	for (int h = 0; h < 2; h++) {
+		__m512d tt = _mm512_load_pd(t + 8 * h);
+		__m512d ccx = _mm512_load_pd(cx + 8 * h), ccy = _mm512_load_pd(cy + 8 * h);
+		__m512d ccz = _mm512_load_pd(cz + 8 * h), rr = _mm512_load_pd(rad + 8 * h);
+		/* prim_sphere_at: q = ray_at(r, t) - c, reprojected */
+		__m512d qx = _mm512_sub_pd(_mm512_add_pd(_mm512_load_pd(Q->ox + 8 * h),
+		                                         _mm512_mul_pd(_mm512_load_pd(Q->dx + 8 * h), tt)), ccx);
+		__m512d qy = _mm512_sub_pd(_mm512_add_pd(_mm512_load_pd(Q->oy + 8 * h),
+		                                         _mm512_mul_pd(_mm512_load_pd(Q->dy + 8 * h), tt)), ccy);
+		__m512d qz = _mm512_sub_pd(_mm512_add_pd(_mm512_load_pd(Q->oz + 8 * h),
+		                                         _mm512_mul_pd(_mm512_load_pd(Q->dz + 8 * h), tt)), ccz);
+		__m512d l = _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(qx, qx), _mm512_mul_pd(qy, qy)),
+		                                         _mm512_mul_pd(qz, qz)));
+		__mmask8 good = _mm512_cmp_pd_mask(l, zero, _CMP_GT_OQ);
+		__m512d k = _mm512_div_pd(one, l);
+		qx = _mm512_mul_pd(qx, k), qy = _mm512_mul_pd(qy, k), qz = _mm512_mul_pd(qz, k);
+		_mm512_store_pd(out[0] + 8 * h, _mm512_add_pd(ccx, _mm512_mul_pd(qx, rr)));
+		_mm512_store_pd(out[1] + 8 * h, _mm512_add_pd(ccy, _mm512_mul_pd(qy, rr)));
+		_mm512_store_pd(out[2] + 8 * h, _mm512_add_pd(ccz, _mm512_mul_pd(qz, rr)));
+		/* to_world: n = v_norm(q) */
+		__m512d l2 = _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(qx, qx), _mm512_mul_pd(qy, qy)),
+		                                          _mm512_mul_pd(qz, qz)));
+		__mmask8 pos = _mm512_cmp_pd_mask(l2, zero, _CMP_GT_OQ);
+		__m512d k2 = _mm512_div_pd(one, l2);
+		_mm512_store_pd(out[3] + 8 * h, _mm512_mask_blend_pd(pos, qx, _mm512_mul_pd(qx, k2)));
+		_mm512_store_pd(out[4] + 8 * h, _mm512_mask_blend_pd(pos, qy, _mm512_mul_pd(qy, k2)));
+		_mm512_store_pd(out[5] + 8 * h, _mm512_mask_blend_pd(pos, qz, _mm512_mul_pd(qz, k2)));
+		ok |= (unsigned)(uint8_t)good << (8 * h);
+	}
+	ok &= m;
+	for (unsigned mm = ok; mm; mm &= mm - 1) {
+		int i = __builtin_ctz(mm);
+		struct query *q = &Q->q[i];
+		const struct object *o = q->b->prims[q->best];
+		struct hit *hh = q->h;
+		struct vec3 n = v3(out[3][i], out[4][i], out[5][i]);
+		if (o->flags & OF_INVERSE)
+			n = v_neg(n);
+		hh->t = t[i];
+		hh->p = v3(out[0][i], out[1][i], out[2][i]);
+		hh->n = n;
+		hh->obj = o;
+		hh->entering = v_dot(q->r->d, n) < 0;
+		hh->u = hh->v = NAN;
+		hh->dpdu = hh->dpdv = v3(0, 0, 0);
+		q->deferred = false;
+	}
+	return ok;
+}
+#endif
+
 /* The packet's hits, completed (finish), and whether each lane hit. */
 static void done(struct packet *Q, int n, bool *found)
 {
+#ifdef LANES16
+	if (native16) { /* the plain spheres' hits at once (hits16) */
+		unsigned m = 0;
+		for (int i = 0; i < n; i++) {
+			const struct query *q = &Q->q[i];
+			if (q->deferred && !q->uv && !q->b->prims[q->best]->xf)
+				m |= 1u << i;
+		}
+		if (m)
+			hits16(Q, m);
+	}
+#endif
 	for (int i = 0; i < n; i++) {
 		finish(&Q->q[i]);
 		found[i] = Q->q[i].found;
@@ -808,6 +1078,9 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 	_Alignas(64) struct RTCRayHit16 rh;
 	_Alignas(64) struct RTCRayHit8 rh8[2];
 	_Alignas(64) int valid[BVH_PACKET];
+	_Alignas(64) double te[BVH_PACKET];
+	unsigned in = 0;
+	const double *ten = packet_enter(b, n, r, te, &in);
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
@@ -823,7 +1096,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
 			brute(q, false);
 			continue;
 		}
-		any |= packet_lane(q, i, valid, &rh, rh8);
+		any |= packet_lane(q, i, valid, &rh, rh8, ten, in);
 	}
 	if (!any) {
 		done(&Q, n, found);
@@ -847,6 +1120,9 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 	_Alignas(64) struct RTCRayHit16 rh;
 	_Alignas(64) struct RTCRayHit8 rh8[2];
 	_Alignas(64) int valid[BVH_PACKET];
+	_Alignas(64) double te[BVH_PACKET];
+	unsigned in = 0;
+	const double *ten = packet_enter(b, n, r, te, &in);
 	bool any = false;
 	for (int i = 0; i < BVH_PACKET; i++) {
 		struct query *q = &Q.q[i];
@@ -858,7 +1134,7 @@ void bvh_occluded_packet(const struct bvh *b, int n, const struct ray *r, const 
 			brute(q, true);
 			continue;
 		}
-		any |= packet_lane(q, i, valid, &rh, rh8);
+		any |= packet_lane(q, i, valid, &rh, rh8, ten, in);
 	}
 	if (any) {
 		packet_start(&Q, 0);

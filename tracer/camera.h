@@ -41,14 +41,21 @@ bool cam_has_dof(const struct cam *c);
  * is zero where the camera shoots no ray (outside a fisheye's circle), and
  * such a sample is black and uncovered, as in POV-Ray. */
 struct ray cam_ray(const struct cam *c, double sx, double sy, double l1, double l2);
-/* cam_ray, inline for a perspective camera without a lens (the camera rays
- * of most scenes, one per pixel): the same arithmetic, the same bits. */
-static inline struct ray cam_ray_fast(const struct cam *c, double sx, double sy, double l1, double l2)
+/* cam_ray into *r, inline for a perspective camera without a lens (the
+ * camera rays of most scenes, one per pixel): the same arithmetic, the
+ * same bits. Written field by field: a ray returned by value went through
+ * a temporary on the stack, copied at once with loads of other widths
+ * than its stores, which the CPU cannot forward (a third of eye_pixels'
+ * own time, perf, bench/eye/grid.scn). */
+static inline void cam_ray_to(const struct cam *c, double sx, double sy, double l1, double l2, struct ray *r)
 {
-	if (c->kind != CAM_PERSPECTIVE || c->aperture > 0)
-		return cam_ray(c, sx, sy, l1, l2);
+	if (c->kind != CAM_PERSPECTIVE || c->aperture > 0) {
+		*r = cam_ray(c, sx, sy, l1, l2);
+		return;
+	}
 	double x = sx - 0.5, y = 0.5 - sy;
-	return (struct ray){c->loc, v_add(c->dir, v_add(v_scale(c->right, x), v_scale(c->up, y)))};
+	r->o = c->loc;
+	r->d = v_add(c->dir, v_add(v_scale(c->right, x), v_scale(c->up, y)));
 }
 
 /* The camera as matrices for row vectors (p' = p·M, translation in the last

@@ -2,6 +2,10 @@
 /* eyepass.c: Whitted ray tracing from the camera (see eyepass.h). */
 #include "eyepass.h"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define EYE_SIMD 1
+#endif
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -30,6 +34,19 @@ struct path {
 	                              outward (surf.out), or NULL */
 	const struct object *in;   /* or enters this convex object, or is reflected
 	                              inside it: it meets it first (bvh_intersect_in) */
+	const struct pre_geo *geo; /* for the hit pre: its directions, worked out
+	                              beforehand (eye_pixels), or NULL */
+};
+
+/* The unit directions the shading of a camera hit h along d begins with,
+ * worked out for a whole packet at once (geo16): v = -v_norm(d), and the
+ * direction L and distance dist from h->p towards light (the scene's
+ * first, a point or spot light without an area), as towards() gives them;
+ * light NULL: v alone. The same bits as the scalar steps. */
+struct pre_geo {
+	struct vec3 v, L;
+	double dist;
+	const struct light *light;
 };
 
 /* A shadow ray of a light point towards l->pos, and whether it is blocked,
@@ -78,6 +95,7 @@ struct surf {
 	                               normal (flipped, not perturbed): the
 	                               transmitted ray, offset along -nf, leaves it
 	                               when it goes along d·n >= 0 */
+	const struct pre_geo *geo;  /* h's directions worked out beforehand, or NULL */
 };
 
 static struct vec3 col3(struct colour c) { return v3(c.r, c.g, c.b); }
@@ -247,7 +265,12 @@ HOT struct vec3 from_point(struct path *pa, const struct light *l, const struct 
 	const struct scene *s = pa->ctx->scene;
 	const struct finish *f = tex_finish(sf->tex);
 	struct vec3 L;
-	double dist = towards(l, sf->h->p, q, &L), c = v_dot(sf->nf, L);
+	double dist;
+	if (sf->geo && sf->geo->light == l && !l->area) /* q is l->pos (light_one) */
+		L = sf->geo->L, dist = sf->geo->dist;
+	else
+		dist = towards(l, sf->h->p, q, &L);
+	double c = v_dot(sf->nf, L);
 	if (c <= 0)
 		return v3(0, 0, 0);
 	struct vec3 Li = v_scale(arriving(s, l, dist), w);
@@ -398,7 +421,8 @@ static struct vec3 shade_tex(struct path *pa, const struct hit *h, const struct 
                              int depth, double weight, unsigned skip, struct aov *aov, bool upper)
 {
 	const struct scene *s = pa->ctx->scene;
-	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, v_neg(v_norm(d)), 1, NULL, NULL};
+	const struct pre_geo *g = pa->geo && h == pa->pre ? pa->geo : NULL; /* the camera hit's, in hand */
+	struct surf sf = {h, tex, {0, 0, 0, 0, 0}, h->n, g ? g->v : v_neg(v_norm(d)), 1, NULL, NULL, g};
 	sf.pc = tex->pigment.kind == PIG_SOLID ? tex->pigment.c[0] /* as mat_pigment, without the calls */
 	                                       : mat_pigment(pa->ctx->mats, &tex->pigment, h->p);
 	if (v_dot(sf.nf, sf.v) < 0) { /* decided by the true normal */
@@ -648,6 +672,9 @@ void eye_setup(struct eye_ctx *ctx, const struct scene *s, const struct bvh *b,
 	ctx->h = h;
 	cam_setup(&ctx->cam, &s->camera);
 	ctx->see_through = surf_any_straight(s);
+#ifdef EYE_SIMD
+	ctx->simd16 = __builtin_cpu_supports("avx512f");
+#endif
 	ctx->spp = spp > 0 ? spp : 1;
 	if (cam_has_dof(&ctx->cam) && ctx->cam.blur_samples > ctx->spp)
 		ctx->spp = ctx->cam.blur_samples;
@@ -663,11 +690,11 @@ static void put3(float *dst, struct vec3 v, double k)
 /* Starts sample i of pixel (x, y): its path (random numbers drawn so far)
  * and its camera ray, stratified over an m×m grid of the pixel (m =
  * ⌊√spp⌋, remaining samples uniform). */
-static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa)
+static void camera_sample_to(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa, struct ray *r)
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
 	bool jitter = ctx->spp > 1;
-	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL};
+	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL, NULL};
 	double jx = 0.5, jy = 0.5;
 	if (jitter) {
 		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
@@ -682,7 +709,14 @@ static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, 
 		l1 = smp_next(&pa->rng), l2 = smp_next(&pa->rng);
 	else
 		pa->rng.dim += 2; /* the numbers after it stay the same */
-	return cam_ray_fast(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2);
+	cam_ray_to(&ctx->cam, (x + jx) / ctx->w, (y + jy) / ctx->h, l1, l2, r);
+}
+
+static struct ray camera_sample(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa)
+{
+	struct ray r;
+	camera_sample_to(ctx, x, y, i, pa, &r);
+	return r;
 }
 
 /* Sample i's path and camera ray: sample 0's as eye_pixels started and
@@ -876,6 +910,108 @@ static bool plain_miss(const struct eye_ctx *ctx)
 	       !(1 < s->gs.adc_bailout);
 }
 
+#ifdef EYE_SIMD
+/* Whether camera16 may start the packet's samples: one sample a pixel (no
+ * jitter) through a perspective camera without a lens (cam_ray_to's
+ * inline case). */
+static bool camera16_fits(const struct eye_ctx *ctx)
+{
+	return ctx->simd16 && ctx->spp == 1 && ctx->cam.kind == CAM_PERSPECTIVE && !(ctx->cam.aperture > 0);
+}
+
+/* camera_sample_to for sample 0 of the n pixels (x[i], y[i]) (n <= 16)
+ * where camera16_fits: each path as it starts it, and the film coordinates
+ * and ray directions of all sixteen lanes at once (AVX-512), the same
+ * operations on the same doubles as cam_ray_to's. */
+__attribute__((target("avx512f"))) static void camera16(const struct eye_ctx *ctx, int n, const int *x,
+                                                       const int *y, struct path *pa, struct ray *r)
+{
+	_Alignas(64) int xi[BVH_PACKET], yi[BVH_PACKET];
+	_Alignas(64) double d[3][BVH_PACKET];
+	for (int i = 0; i < BVH_PACKET; i++) {
+		xi[i] = x[i < n ? i : 0], yi[i] = y[i < n ? i : 0];
+		if (i >= n)
+			continue;
+		uint64_t pixel = ((uint64_t)y[i] * (uint64_t)ctx->w + (uint64_t)x[i]) ^ ctx->seed_key;
+		pa[i] = (struct path){ctx, smp_start(pixel, 0), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL, NULL};
+		pa[i].rng.dim += 2; /* no lens sample: the numbers after it stay the same */
+	}
+	const struct cam *c = &ctx->cam;
+	const __m512d half = _mm512_set1_pd(0.5), w = _mm512_set1_pd((double)ctx->w);
+	const __m512d h = _mm512_set1_pd((double)ctx->h);
+	const double dir[3] = {c->dir.x, c->dir.y, c->dir.z}, right[3] = {c->right.x, c->right.y, c->right.z};
+	const double up[3] = {c->up.x, c->up.y, c->up.z};
+	for (int k = 0; k < 2; k++) {
+		__m512d sx = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(_mm256_load_si256((const __m256i *)(xi + 8 * k))),
+		                                         half), w);
+		__m512d sy = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(_mm256_load_si256((const __m256i *)(yi + 8 * k))),
+		                                         half), h);
+		__m512d fx = _mm512_sub_pd(sx, half), fy = _mm512_sub_pd(half, sy); /* cam_ray_to's x, y */
+		for (int a = 0; a < 3; a++)
+			_mm512_store_pd(d[a] + 8 * k,
+			                _mm512_add_pd(_mm512_set1_pd(dir[a]),
+			                              _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(right[a]), fx),
+			                                            _mm512_mul_pd(_mm512_set1_pd(up[a]), fy))));
+	}
+	for (int i = 0; i < n; i++) {
+		r[i].o = c->loc;
+		r[i].d = v3(d[0][i], d[1][i], d[2][i]);
+	}
+}
+
+/* The pre_geo of the camera hits h of rays r (lanes of m, n <= 16) into
+ * g[i], towards light l (or NULL), sixteen lanes at a time: v_norm, v_neg
+ * and towards' subtraction, length and scaling, the same operations on
+ * the same doubles (AVX-512). One lane after another in the shading, their
+ * square roots and divisions were a tenth of shade_map's samples (perf,
+ * bench/eye/grid.scn). */
+__attribute__((target("avx512f"))) static void geo16(unsigned m, const struct ray *r, const struct hit *h,
+                                                    const struct light *l, struct pre_geo *g)
+{
+	_Alignas(64) double in[6][BVH_PACKET], out[7][BVH_PACKET];
+	for (int i = 0; i < BVH_PACKET; i++) {
+		bool on = m >> i & 1;
+		in[0][i] = on ? r[i].d.x : 0, in[1][i] = on ? r[i].d.y : 0, in[2][i] = on ? r[i].d.z : 0;
+		in[3][i] = on ? h[i].p.x : 0, in[4][i] = on ? h[i].p.y : 0, in[5][i] = on ? h[i].p.z : 0;
+	}
+	const __m512d one = _mm512_set1_pd(1), zero = _mm512_setzero_pd();
+	const __m512i sign = _mm512_set1_epi64((long long)0x8000000000000000ull);
+	for (int k = 0; k < 2; k++) {
+		__m512d dx = _mm512_load_pd(in[0] + 8 * k), dy = _mm512_load_pd(in[1] + 8 * k);
+		__m512d dz = _mm512_load_pd(in[2] + 8 * k);
+		__m512d len = _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+		                                           _mm512_mul_pd(dz, dz)));
+		__mmask8 pos = _mm512_cmp_pd_mask(len, zero, _CMP_GT_OQ);
+		__m512d inv = _mm512_div_pd(one, len);
+		dx = _mm512_mask_blend_pd(pos, dx, _mm512_mul_pd(dx, inv));
+		dy = _mm512_mask_blend_pd(pos, dy, _mm512_mul_pd(dy, inv));
+		dz = _mm512_mask_blend_pd(pos, dz, _mm512_mul_pd(dz, inv));
+		_mm512_store_pd(out[0] + 8 * k, _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(dx), sign)));
+		_mm512_store_pd(out[1] + 8 * k, _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(dy), sign)));
+		_mm512_store_pd(out[2] + 8 * k, _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(dz), sign)));
+		if (!l)
+			continue;
+		__m512d lx = _mm512_sub_pd(_mm512_set1_pd(l->pos.x), _mm512_load_pd(in[3] + 8 * k));
+		__m512d ly = _mm512_sub_pd(_mm512_set1_pd(l->pos.y), _mm512_load_pd(in[4] + 8 * k));
+		__m512d lz = _mm512_sub_pd(_mm512_set1_pd(l->pos.z), _mm512_load_pd(in[5] + 8 * k));
+		__m512d dist = _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(lx, lx), _mm512_mul_pd(ly, ly)),
+		                                            _mm512_mul_pd(lz, lz)));
+		__m512d id = _mm512_div_pd(one, dist);
+		_mm512_store_pd(out[3] + 8 * k, _mm512_mul_pd(lx, id));
+		_mm512_store_pd(out[4] + 8 * k, _mm512_mul_pd(ly, id));
+		_mm512_store_pd(out[5] + 8 * k, _mm512_mul_pd(lz, id));
+		_mm512_store_pd(out[6] + 8 * k, dist);
+	}
+	for (; m; m &= m - 1) {
+		int i = __builtin_ctz(m);
+		g[i].v = v3(out[0][i], out[1][i], out[2][i]);
+		g[i].light = l;
+		if (l)
+			g[i].L = v3(out[3][i], out[4][i], out[5][i]), g[i].dist = out[6][i];
+	}
+}
+#endif
+
 void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, struct eye_px *out,
                 long long *rays)
 {
@@ -883,13 +1019,35 @@ void eye_pixels(const struct eye_ctx *ctx, int n, const int *x, const int *y, st
 	struct hit h[BVH_PACKET];
 	struct path pa[BVH_PACKET];
 	bool found[BVH_PACKET];
-	for (int i = 0; i < n; i++)
-		r[i] = camera_sample(ctx, x[i], y[i], 0, &pa[i]);
+#ifdef EYE_SIMD
+	if (camera16_fits(ctx))
+		camera16(ctx, n, x, y, pa, r);
+	else
+#endif
+		for (int i = 0; i < n; i++)
+			camera_sample_to(ctx, x[i], y[i], 0, &pa[i], &r[i]);
 	bvh_intersect_packet(ctx->bvh, n, r, 0, INFINITY, OF_NO_IMAGE | no_uv(ctx), h, found);
 	struct shadow_memo memo[BVH_PACKET][EYE_MEMO];
 	if (!ctx->see_through && ctx->scene->nlights > 0 && bvh_walks(ctx->bvh))
 		shadow_packets(ctx, n, r, h, found, pa, memo);
 	bool one = ctx->beauty_only && ctx->spp == 1, bg = plain_miss(ctx);
+#ifdef EYE_SIMD
+	struct pre_geo geo[BVH_PACKET];
+	if (ctx->simd16) {
+		unsigned m = 0;
+		for (int i = 0; i < n; i++)
+			m |= (unsigned)found[i] << i;
+		const struct scene *s = ctx->scene;
+		const struct light *l = s->nlights > 0 ? &s->lights[0] : NULL;
+		if (l && (l->area || l->kind == LIGHT_PARALLEL))
+			l = NULL; /* towards() for a point or spot light's centre only */
+		if (m) {
+			geo16(m, r, h, l, geo);
+			for (int i = 0; i < n; i++)
+				pa[i].geo = found[i] ? &geo[i] : NULL;
+		}
+	}
+#endif
 	for (int i = 0; i < n; i++) {
 		if (one)
 			pixel_one(ctx, &out[i], rays, &pa[i], &r[i], &h[i], found[i], bg);

@@ -44,6 +44,8 @@ struct eye_ctx {
 	bool spectral;                 /* passes spectral: dispersive glass splits a path
 	                                  into wavelengths, not into channels */
 	uint64_t seed_key;             /* --seed, mixed into every pixel's key (0: seed 0) */
+	bool simd16;                   /* the CPU has AVX-512: a packet's camera hits
+	                                  get their directions at once (eyepass.c) */
 };
 
 /* One pixel's result. The beauty splits into layers the way Cycles' colour ×

@@ -88,18 +88,17 @@ static void do_tile(void *arg, long t, int worker)
 	/* blocks of 4×4 pixels, whose camera rays Embree traces as one packet */
 	for (int by = y0; by < y0 + TILE && by < j->h; by += 4)
 		for (int bx = x0; bx < x0 + TILE && bx < j->w; bx += 4) {
-			int xs[BVH_PACKET], ys[BVH_PACKET], n = 0;
-			for (int y = by; y < by + 4 && y < j->h; y++)
-				for (int x = bx; x < bx + 4 && x < j->w; x++)
-					xs[n] = x, ys[n++] = y;
-			int ax[BVH_PACKET], ay[BVH_PACKET];
-			struct eye_px px[BVH_PACKET];
-			for (int i = 0; i < n; i++)
-				ax[i] = j->x0 + xs[i], ay[i] = j->y0 + ys[i];
-			eye_pixels(j->ctx, n, ax, ay, px, &rays);
+			/* each pixel's image coordinates and plane index in one loop:
+			 * a second loop over xs[] read them back as vectors just
+			 * after they were stored one by one, which the CPU cannot
+			 * forward (a third of do_tile's time, perf, grid 100k) */
+			int ax[BVH_PACKET], ay[BVH_PACKET], n = 0;
 			size_t at[BVH_PACKET];
-			for (int i = 0; i < n; i++)
-				at[i] = (size_t)ys[i] * (size_t)j->w + (size_t)xs[i];
+			for (int y = by; y < by + 4 && y < j->h; y++)
+				for (int x = bx; x < bx + 4 && x < j->w; x++, n++)
+					ax[n] = j->x0 + x, ay[n] = j->y0 + y, at[n] = (size_t)y * (size_t)j->w + (size_t)x;
+			struct eye_px px[BVH_PACKET];
+			eye_pixels(j->ctx, n, ax, ay, px, &rays);
 			store(j, n, at, px);
 		}
 	j->rays[worker] += rays;

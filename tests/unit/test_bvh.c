@@ -357,11 +357,14 @@ static void t_occluded_packet(void)
 }
 
 /* Camera rays as one packet (bvh_intersect_packet) get the hits they get
- * one by one (bvh_intersect_skip), bit for bit: 1 to 16 rays at a time from
+ * one by one (bvh_intersect_skip), bit for bit (t, object, point, normal,
+ * entering; with AVX-512 a packet's sphere hits are finished sixteen lanes
+ * at a time, hits16): 1 to 16 rays at a time from
  * one eye towards nearby points of the cloud of spheres, boxes and
  * triangles, from inside a sphere, just grazing one (where a sphere's cheap
  * rejections, run on all lanes at once with AVX-512, are closest to
- * turning a lane away), or anywhere, from tmin 0, a tmin inside the cloud or
+ * turning a lane away; there its roots are solved on all lanes at once
+ * too, roots16), or anywhere, from tmin 0, a tmin inside the cloud or
  * a negative one, with and without a skip mask (and BVH_UV_UNREAD). */
 static void t_intersect_packet(void)
 {
@@ -402,7 +405,8 @@ static void t_intersect_packet(void)
 			bool f1 = bvh_intersect_skip(b, &r[i], tmin, INFINITY, skip | BVH_NO_UV, &h1);
 			bool bad = f1 != found[i] ||
 			           (f1 && (h1.t != h[i].t || h1.obj != h[i].obj || h1.n.x != h[i].n.x ||
-			                   h1.n.y != h[i].n.y || h1.n.z != h[i].n.z));
+			                   h1.n.y != h[i].n.y || h1.n.z != h[i].n.z || h1.p.x != h[i].p.x ||
+			                   h1.p.y != h[i].p.y || h1.p.z != h[i].p.z || h1.entering != h[i].entering));
 			if (bad && mism++ < 5)
 				printf("#   packet %d lane %d: one %d t %.17g, packet %d t %.17g\n", k, i, f1, f1 ? h1.t : 0,
 				       found[i], found[i] ? h[i].t : 0);

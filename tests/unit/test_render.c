@@ -10,7 +10,9 @@
  *   - fn_pattern: a function pattern shows the function's value;
  *   - iso_sphere_a/b: the isosurface of x² + y² + z² = 1 renders as the
  *     sphere does, its caustic included;
- *   - g_glass, flags: a beauty-only render has the R G B of a full one. */
+ *   - g_glass, flags: a beauty-only render has the R G B of a full one;
+ *   - bench/eye grid and spheres: a block of pixels shaded from one packet
+ *     (eye_pixels) has the bits of each pixel shaded alone (eye_pixel). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -18,6 +20,9 @@
 #include "../../common/diag.h"
 #include "../../eval/eval.h"
 #include "../../tracer/output/exrout.h"
+#include "../../tracer/bvh.h"
+#include "../../tracer/eyepass.h"
+#include "../../tracer/material.h"
 #include "../../tracer/render.h"
 #include "test.h"
 
@@ -287,6 +292,61 @@ static void t_beauty_only(void)
 		}
 }
 
+/* The pixels of 4×4 blocks shaded as the eye pass shades them, from one
+ * packet of camera rays (eye_pixels: with AVX-512 the rays' entry into the
+ * scene, the spheres' roots, points and normals, the view vector and the
+ * first light's direction are worked out sixteen lanes at a time), have
+ * the bits of each pixel shaded alone (eye_pixel: every step scalar), with
+ * all layers and with R G B alone: a few hundred small spheres, on a grid
+ * (bench/eye/grid.scn) and at random (spheres.scn), enough for Embree. */
+static void t_packet_as_one(void)
+{
+	const char *files[] = {"bench/eye/grid.scn", "bench/eye/spheres.scn"};
+	const char *defs[] = {"N=400"};
+	enum { W = 64, H = 48 };
+	for (int f = 0; f < 2; f++) {
+		struct eval_options eo;
+		eval_default_options(&eo);
+		eo.width = W, eo.height = H, eo.defines = defs, eo.ndefines = 1;
+		struct diag dg;
+		diag_init(&dg, stdout);
+		struct scene s;
+		CHECK(eval_scene(files[f], &eo, &dg, &s) == 0);
+		struct mat_cache mats = {0};
+		CHECK(mat_cache_load(&mats, &s, NULL, TDG) == 0);
+		struct bvh *b = bvh_build(s.objects, s.nobjects);
+		CHECK(bvh_walks(b));
+		for (int beauty = 0; beauty < 2; beauty++) {
+			struct eye_ctx ctx;
+			eye_setup(&ctx, &s, b, &mats, W, H, 1);
+			ctx.beauty_only = beauty;
+			int differ = 0, lit = 0;
+			long long rays = 0;
+			for (int by = 0; by < H; by += 4)
+				for (int bx = 0; bx < W; bx += 4) {
+					int xs[BVH_PACKET], ys[BVH_PACKET];
+					for (int i = 0; i < BVH_PACKET; i++)
+						xs[i] = bx + i % 4, ys[i] = by + i / 4;
+					struct eye_px pk[BVH_PACKET], one;
+					eye_pixels(&ctx, BVH_PACKET, xs, ys, pk, &rays);
+					for (int i = 0; i < BVH_PACKET; i++) {
+						eye_pixel(&ctx, xs[i], ys[i], &one, &rays);
+						size_t n = beauty ? sizeof one.rgb : sizeof one;
+						differ += memcmp(&one, &pk[i], n) != 0;
+						lit += one.rgb[0] > 0.1f;
+					}
+				}
+			printf("# %s, %s: %d of %d pixels differ, %d lit\n", files[f], beauty ? "R G B" : "all layers",
+			       differ, W * H, lit);
+			CHECK(differ == 0);
+			CHECK(lit > W * H / 20);
+		}
+		bvh_free(b);
+		mat_cache_free(&mats);
+		scene_free(&s);
+	}
+}
+
 int main(void)
 {
 	RUN(t_plane_direct);
@@ -297,5 +357,6 @@ int main(void)
 	RUN(t_function_pattern);
 	RUN(t_isosurface_sphere);
 	RUN(t_beauty_only);
+	RUN(t_packet_as_one);
 	return test_done();
 }
