@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 struct arena_block {
@@ -27,6 +28,18 @@ static long fail_at = -1; /* from ARVO_FAIL_ALLOC; -1 until read, 0 when off */
 static long calls;
 
 void mem_set_oom(void (*handler)(size_t)) { oom_handler = handler ? handler : default_oom; }
+
+void mem_huge(void *p, size_t n)
+{
+#ifdef MADV_HUGEPAGE
+	const uintptr_t huge = (uintptr_t)2 << 20;
+	uintptr_t lo = ((uintptr_t)p + huge - 1) & ~(huge - 1), hi = ((uintptr_t)p + n) & ~(huge - 1);
+	if (n >= MEM_HUGE_MIN && lo < hi)
+		(void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE); /* advice: a refusal changes nothing */
+#else
+	(void)p, (void)n;
+#endif
+}
 
 /* True when fault injection says this allocation must fail. */
 static int inject(void)
@@ -190,6 +203,8 @@ static void *alloc_aligned(struct arena *a, size_t n, size_t align)
 		size_t want = a->block ? a->block : 65536, size = n > want ? n : want;
 		a->block = want < ((size_t)1 << 20) ? 2 * want : want;
 		b = mem_alloc(sizeof *b + size);
+		if (size >= MEM_HUGE_MIN)
+			mem_huge(b->data, size);
 		b->size = size;
 		b->used = 0;
 		b->next = a->head;

@@ -847,8 +847,8 @@ static void sample_work(void *ctx, long k, int worker)
 }
 
 /* Step 2: the window, placed where most deposits land (the sample taken
- * on the threads). */
-static void prep_window(struct deposit_job *D, long nchunks)
+ * on the threads). Returns the number of valid splats. */
+static long prep_window(struct deposit_job *D, long nchunks)
 {
 	struct illum_map *m = D->m;
 	long n = 0;
@@ -863,6 +863,7 @@ static void prep_window(struct deposit_job *D, long nchunks)
 	parallel_for(nchunks, D->nb, sample_work, D);
 	win_fit(m, D->ti, D->tj, ns, n);
 	free(D->ti), free(D->tj);
+	return n;
 }
 
 /* band_tile (below) when the tile is not one the window names yet: w is
@@ -1013,14 +1014,21 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
 	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
 	                            .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
+	mem_huge(D->p, sizeof *D->p * (size_t)n);
 	parallel_for(nchunks, nb, prep_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	for (long k = 0; k < nchunks; k++)
 		emax = D[k].emax > emax ? D[k].emax : emax;
 	map_reserve(m, (double)n * emax);
-	prep_window(D, nchunks);
+	long valid = prep_window(D, nchunks);
+	/* each band's tiles in blocks of about what a sparse map of its share
+	 * of the splats needs (~128 bytes a splat; a few KiB at least, 16 MiB
+	 * at most): large ones are backed by huge pages (mem_huge), so a map of
+	 * many tiles takes one page fault per 2 MiB, not one per 4 KiB */
+	double guess = 128.0 * (double)valid / nb;
+	size_t first = guess < 4096 ? 4096 : guess > (double)(16 << 20) ? (size_t)16 << 20 : (size_t)guess;
 	for (int b = 0; b < nb; b++)
-		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
+		arena_init_sized(&D[b].pool, first), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
 		D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
 	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
@@ -2047,7 +2055,7 @@ void illum_total(const struct illum_map *m, double out[3])
 long illum_dropped(const struct illum_map *m) { return m->dropped; }
 size_t illum_memory(const struct illum_map *m)
 {
-	return m->bytes + arena_bytes(&m->pool) + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
+	return m->bytes + m->pool.used + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
 	       m->cap_rows * sizeof *m->rows;
 }
 long illum_tiles(const struct illum_map *m) { return m->ntiles; }
