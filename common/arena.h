@@ -23,6 +23,9 @@ void mem_set_oom(void (*handler)(size_t));
  * advised by the arena. */
 #define MEM_HUGE_MIN ((size_t)4 << 20)
 void mem_huge(void *p, size_t n);
+/* mem_alloc, from MEM_HUGE_MIN bytes on 2 MiB-aligned and advised (mem_huge)
+ * whole: every page of it can be a huge one. free() frees it. */
+void *mem_alloc_huge(size_t n);
 
 /* The memory budget (--max-memory; docs/design.md §8). With a budget set,
  * every allocation of at least MEM_CHECK_BYTES, and every MEM_CHECK_BYTES

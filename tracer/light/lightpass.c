@@ -332,8 +332,7 @@ static void land(struct worker *w, const struct hit *h, const double e[3], uint6
 static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 {
 	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
-	struct rec *r = mem_alloc(sizeof *r * (size_t)cap);
-	mem_huge(r, sizeof *r * (size_t)cap); /* (from 4 MiB: fewer page faults) */
+	struct rec *r = mem_alloc_huge(sizeof *r * (size_t)cap); /* (from 4 MiB: fewer page faults) */
 	if (keep)
 		memcpy(r, rb->r + rb->item0, sizeof *r * (size_t)keep);
 	if (rb->item0 > 0) { /* earlier items' records are in it */
