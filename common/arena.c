@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 struct arena_block {
@@ -125,6 +126,34 @@ static void budget_check(size_t n)
 		budget_over(n);
 }
 
+void mem_huge(void *p, size_t n)
+{
+#ifdef MADV_HUGEPAGE
+	const uintptr_t huge = (uintptr_t)2 << 20;
+	uintptr_t lo = ((uintptr_t)p + huge - 1) & ~(huge - 1), hi = ((uintptr_t)p + n) & ~(huge - 1);
+	if (n >= MEM_HUGE_MIN && lo < hi)
+		(void)madvise((void *)lo, hi - lo, MADV_HUGEPAGE); /* advice: a refusal changes nothing */
+#else
+	(void)p, (void)n;
+#endif
+}
+
+void *mem_alloc_huge(size_t n)
+{
+	const size_t huge = (size_t)2 << 20;
+	if (n < MEM_HUGE_MIN || n > SIZE_MAX - huge)
+		return mem_alloc(n);
+	size_t size = (n + huge - 1) & ~(huge - 1); /* aligned_alloc: a multiple of the alignment */
+	budget_check(size);
+	void *p = inject() ? NULL : aligned_alloc(huge, size);
+	if (!p) {
+		oom_handler(n);
+		abort();
+	}
+	mem_huge(p, size);
+	return p;
+}
+
 void *mem_realloc(void *p, size_t n)
 {
 	budget_check(n);
@@ -189,7 +218,7 @@ static void *alloc_aligned(struct arena *a, size_t n, size_t align)
 	if (!b || at > b->size || b->size - at < n) {
 		size_t want = a->block ? a->block : 65536, size = n > want ? n : want;
 		a->block = want < ((size_t)1 << 20) ? 2 * want : want;
-		b = mem_alloc(sizeof *b + size);
+		b = mem_alloc_huge(sizeof *b + size); /* (huge pages from MEM_HUGE_MIN on) */
 		b->size = size;
 		b->used = 0;
 		b->next = a->head;

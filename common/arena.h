@@ -14,6 +14,18 @@ void *mem_realloc(void *p, size_t n);
 char *mem_strdup(const char *s);
 char *mem_strndup(const char *s, size_t n);
 void mem_set_oom(void (*handler)(size_t));
+/* Asks that the 2 MiB-aligned stretches inside [p, p+n) be backed by huge
+ * pages when first written (Linux's transparent huge pages, madvise
+ * MADV_HUGEPAGE; elsewhere, or when the kernel declines, nothing): one page
+ * fault per 2 MiB instead of one per 4 KiB for a big buffer filled once.
+ * Worth it from MEM_HUGE_MIN bytes (smaller ones have no such stretch, or
+ * would hold a whole huge page for a few KiB). Arena blocks that large are
+ * advised by the arena. */
+#define MEM_HUGE_MIN ((size_t)4 << 20)
+void mem_huge(void *p, size_t n);
+/* mem_alloc, from MEM_HUGE_MIN bytes on 2 MiB-aligned and advised (mem_huge)
+ * whole: every page of it can be a huge one. free() frees it. */
+void *mem_alloc_huge(size_t n);
 
 /* The memory budget (--max-memory; docs/design.md §8). With a budget set,
  * every allocation of at least MEM_CHECK_BYTES, and every MEM_CHECK_BYTES

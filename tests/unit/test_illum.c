@@ -3,7 +3,8 @@
  * conservation on every primitive, the bilinear split, unbiased irradiance
  * for uniform flux (poles, apex, disc centre included), sparse tiles on the
  * unbounded plane, order-independent merges, energies far above 2^32 W,
- * the isolated-sample rule, the ray-density rule and the EXR dump. Random numbers: geo_rand.h, fixed seeds. */
+ * grey (white-light) maps, the isolated-sample rule, the ray-density rule
+ * and the EXR dump. Random numbers: geo_rand.h, fixed seeds. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -501,6 +502,77 @@ static void t_merge(void)
 	illum_free(other);
 }
 
+/* ==== grey maps ============================================================ */
+
+/* A map whose deposits have all been white holds one channel a node; the
+ * first deposit that is not white (here a batch on two threads) makes it a
+ * colour map. Either way the nodes, the isolated rule, the totals and the
+ * lookups are bit for bit those of the same deposits made one by one into
+ * a colour map; merges between grey and colour maps add the same energies. */
+static void t_grey(void)
+{
+	enum { N = 40000, H = N / 2 };
+	static struct illum_splat sp[N];
+	rng_seed(5);
+	struct object o = prim(OBJ_PLANE);
+	for (int k = 0; k < N; k++) {
+		double r = k % 10 ? 0.3 * rnd() : 40 * rnd(), a = rndr(0, 2 * M_PI), x = rnd();
+		sp[k] = (struct illum_splat){r * cos(a), r * sin(a), {x, x, x}};
+		if (k >= H && k % 3 == 0) /* some colour light in the second half */
+			sp[k].e[1] = 0.5 * x;
+	}
+	struct illum_map *one = map_cell(&o, 0.01); /* one by one: colour from the first */
+	for (int k = 0; k < N; k++)
+		illum_deposit(one, sp[k].u, sp[k].v, sp[k].e);
+	struct illum_map *g = illum_new_like(one), *w1 = illum_new_like(one), *w2 = illum_new_like(one);
+	illum_deposit_all(g, sp, H, 2); /* grey */
+	illum_deposit_all(g, sp + H, N - H, 2); /* made colour */
+	for (int k = 0; k < H; k++)
+		illum_deposit(w1, sp[k].u, sp[k].v, sp[k].e);
+	illum_deposit_all(w2, sp, H, 1); /* grey throughout */
+	double r1[3], rg[3], rw1[3], rw2[3], t1[3], tg[3], tw1[3], tw2[3];
+	illum_finish(one, true, r1);
+	illum_finish_mt(g, true, rg, 2);
+	illum_finish(w1, true, rw1);
+	illum_finish_mt(w2, true, rw2, 3);
+	illum_total(one, t1), illum_total(g, tg), illum_total(w1, tw1), illum_total(w2, tw2);
+	struct nodes *s1 = nodes_of(one), *sg = nodes_of(g), *sw1 = nodes_of(w1), *sw2 = nodes_of(w2);
+	CHECK(s1->n > 1000 && s1->n < MAXN && r1[0] > 0 && r1[1] < r1[0]);
+	CHECK(node_diffs(s1, sg) == 0 && memcmp(r1, rg, sizeof r1) == 0 && memcmp(t1, tg, sizeof t1) == 0);
+	CHECK(sw1->n > 500 && rw1[0] > 0 && rw1[1] == rw1[0] && rw1[2] == rw1[0]);
+	CHECK(node_diffs(sw1, sw2) == 0 && memcmp(rw1, rw2, sizeof rw1) == 0 && memcmp(tw1, tw2, sizeof tw1) == 0);
+	int bad = 0;
+	for (int k = 0; k < 2000; k++) {
+		double u = rndr(-0.3, 0.3), v = rndr(-0.3, 0.3), a[3], b[3];
+		illum_lookup(w1, u, v, a), illum_lookup(w2, u, v, b);
+		bad += memcmp(a, b, sizeof a) != 0 || a[1] != a[0];
+		illum_lookup(one, u, v, a), illum_lookup(g, u, v, b);
+		bad += memcmp(a, b, sizeof a) != 0;
+	}
+	CHECK(bad == 0);
+	/* merges: grey into grey, colour into grey, grey into colour */
+	struct illum_map *c2 = illum_new_like(one), *m1 = illum_new_like(one), *m2 = illum_new_like(one);
+	for (int k = H; k < N; k++)
+		illum_deposit(c2, sp[k].u, sp[k].v, sp[k].e);
+	struct illum_map *w3 = illum_new_like(one);
+	illum_deposit_all(w3, sp, H, 2);
+	CHECK(illum_merge(m1, w3) && illum_merge(m1, c2)); /* m1: grey, then colour */
+	CHECK(illum_merge(m2, c2) && illum_merge(m2, w3)); /* m2: colour, then a grey one added */
+	illum_finish(m1, true, NULL), illum_finish(m2, true, NULL);
+	struct nodes *sm1 = nodes_of(m1), *sm2 = nodes_of(m2);
+	int diff = sm1->n != s1->n || sm2->n != s1->n;
+	for (int q = 0; q < s1->n && q < sm1->n && q < sm2->n; q++) {
+		const struct illum_node *a = &s1->a[q], *b = &sm1->a[q], *c = &sm2->a[q];
+		diff += memcmp(a->energy, b->energy, sizeof a->energy) != 0 || memcmp(a->energy, c->energy, sizeof a->energy) != 0;
+		diff += memcmp(a->irr, b->irr, sizeof a->irr) != 0 || memcmp(a->irr, c->irr, sizeof a->irr) != 0;
+		diff += a->count != b->count || a->count != c->count || a->i != c->i || a->j != c->j;
+	}
+	CHECK(diff == 0);
+	free(s1), free(sg), free(sw1), free(sw2), free(sm1), free(sm2);
+	illum_free(one), illum_free(g), illum_free(w1), illum_free(w2), illum_free(w3);
+	illum_free(c2), illum_free(m1), illum_free(m2);
+}
+
 /* ==== range: energies far above 2^32 W ==================================== */
 
 /* A scene at 1e6 scale carries ~1e9 W per ray. The same deposits at 1 W and
@@ -719,6 +791,7 @@ int main(void)
 	RUN(t_threads);
 	RUN(t_runs);
 	RUN(t_merge);
+	RUN(t_grey);
 	RUN(t_range);
 	RUN(t_saturate);
 	RUN(t_isolated);

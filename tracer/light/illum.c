@@ -6,7 +6,9 @@
  * deposits land, win_fit) or, outside it, an open-addressing hash table keyed
  * by tile coordinates. Both serve bounded domains and the unbounded plane, so
  * memory grows with the number of tiles light reached, never with the
- * surface (docs/design.md §4). */
+ * surface (docs/design.md §4). A map of white light only is GREY: its tiles
+ * hold one channel (struct gacc), until a deposit that needs three makes
+ * it colour (ungrey). */
 #include "illum.h"
 
 #include <limits.h>
@@ -99,6 +101,14 @@ struct acc {
 	uint32_t count;  /* deposits with nonzero weight here (saturating) */
 };
 
+/* The accumulator of a GREY map's node: its three channels are the same
+ * numbers (every deposit so far was white light, as most are), held once. */
+struct gacc {
+	struct fx e;
+	float sq;
+	uint32_t count;
+};
+
 /* Irradiance is not stored: illum_finish records each node's area (planes:
  * one area for all, m->flat_area) and the isolated ones, and readers divide
  * energy by area, which gives the same numbers for less memory. */
@@ -106,8 +116,13 @@ struct tile {
 	int32_t ti, tj;    /* tile coordinates (node i = ti·ILLUM_TILE + k) */
 	uint32_t iso;      /* bit q: node q is isolated (illum_finish) */
 	double *area;      /* TN node areas after illum_finish; NULL on planes */
-	struct acc n[TN];  /* accumulators, row-major (j then i inside the tile) */
+	union {            /* accumulators, row-major (j then i inside the tile) */
+		struct acc n[TN]; /* a colour map's */
+		struct gacc g[TN];/* a grey map's: such a tile is allocated only this far (GREY_TILE) */
+	};
 };
+
+#define GREY_TILE (offsetof(struct tile, g) + sizeof(struct gacc) * TN) /* bytes of a grey tile */
 
 struct axis {
 	double lo, hi; /* parameter interval (bounded axes) */
@@ -131,6 +146,9 @@ struct illum_map {
 	long wti, wtj, wnu, wnv;  /* the window's first tile and its size in tiles */
 	long last;                /* tile index of the last deposit (cache), -1 */
 	bool finished;            /* irradiance is current */
+	bool grey;                /* tiles hold one channel (struct gacc): every deposit so far had
+	                             three equal channels; the first that does not (or a polygon or
+	                             single deposit) makes the map colour first (ungrey) */
 	int32_t rti[2], rtj[2];   /* while finished: the least and greatest tile indices held */
 	long dropped;             /* deposits with non-finite (u,v) */
 	size_t bytes;             /* memory held */
@@ -263,6 +281,7 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	m->bytes -= (size_t)(m->wnu * m->wnv) * sizeof *m->win;
 	m->wti = ti0, m->wtj = tj0, m->wnu = (long)nu, m->wnv = (long)nv;
 	m->win = mem_calloc((size_t)(m->wnu * m->wnv), sizeof *m->win);
+	mem_huge(m->win, (size_t)(m->wnu * m->wnv) * sizeof *m->win); /* (a large one: fewer page faults) */
 	m->bytes += (size_t)(m->wnu * m->wnv) * sizeof *m->win;
 	if (m->slots)
 		memset(m->slots, 0, sizeof *m->slots * (size_t)m->nslots);
@@ -344,10 +363,27 @@ static double win_fit(struct illum_map *m, int32_t *ti, int32_t *tj, long ns, lo
 	return -1;
 }
 
+/* A zeroed tile for a map that is grey or not, from arena a. */
+static struct tile *tile_new(struct arena *a, bool grey)
+{
+	return grey ? arena_alloc8(a, GREY_TILE) : ARENA_NEW(a, struct tile);
+}
+
+/* Node q of tile t of m: its deposit count, and its energy in channel c. */
+static inline uint32_t node_count(const struct illum_map *m, const struct tile *t, int q)
+{
+	return m->grey ? t->g[q].count : t->n[q].count;
+}
+
+static inline struct fx node_e(const struct illum_map *m, const struct tile *t, int q, int c)
+{
+	return m->grey ? t->g[q].e : t->n[q].e[c];
+}
+
 /* Appends a zeroed tile (ti,tj); returns its index. */
 static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
 {
-	struct tile *t = ARENA_NEW(&m->pool, struct tile);
+	struct tile *t = tile_new(&m->pool, m->grey);
 	t->ti = ti;
 	t->tj = tj;
 	return tile_insert(m, t);
@@ -366,7 +402,7 @@ static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
 		k = tile_add(m, (int32_t)ti, (int32_t)tj);
 	}
 	m->last = k;
-	return &m->tiles[k]->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
+	return &m->tiles[k]->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)]; /* (colour maps: the callers ungrey) */
 }
 
 /* Read-only lookup of node (i,j): its tile and slot, or NULL. */
@@ -484,6 +520,7 @@ struct illum_map *illum_new(const struct object *o, const struct illum_spec *spe
 	struct illum_map *m = mem_calloc(1, sizeof *m);
 	m->obj = o;
 	m->last = -1;
+	m->grey = true;
 	m->unit = m->inv_unit = 1;
 	arena_init_sized(&m->pool, 4096);
 	m->bytes = sizeof *m;
@@ -530,6 +567,7 @@ struct illum_map *illum_new_like(const struct illum_map *src)
 	m->ax[0] = src->ax[0];
 	m->ax[1] = src->ax[1];
 	m->last = -1;
+	m->grey = src->grey;
 	m->shift = src->shift;
 	m->unit = src->unit;
 	m->inv_unit = src->inv_unit;
@@ -578,9 +616,14 @@ static void map_rescale(struct illum_map *m, int shift)
 {
 	int k = shift - m->shift;
 	for (long t = 0; t < m->ntiles; t++)
-		for (int q = 0; q < TN; q++)
+		for (int q = 0; q < TN; q++) {
+			if (m->grey) {
+				m->tiles[t]->g[q].e = fx_shr(m->tiles[t]->g[q].e, k);
+				continue;
+			}
 			for (int c = 0; c < 3; c++)
 				m->tiles[t]->n[q].e[c] = fx_shr(m->tiles[t]->n[q].e[c], k);
+		}
 	m->shift = shift;
 	m->unit = ldexp(1, shift);
 	m->inv_unit = ldexp(1, -shift);
@@ -604,6 +647,27 @@ static void map_reserve(struct illum_map *m, double more)
 	frexp(b, &e); /* b < 2^e */
 	if (e - 31 > m->shift)
 		map_rescale(m, e - 31);
+}
+
+/* Makes a grey map a colour one: each tile anew with its one channel
+ * copied to the three (the same numbers; the grey tiles stay in the arena
+ * until the map is freed). The window and hash keep their indices. */
+static void ungrey(struct illum_map *m)
+{
+	if (!m->grey)
+		return;
+	for (long k = 0; k < m->ntiles; k++) {
+		const struct tile *g = m->tiles[k];
+		struct tile *t = ARENA_NEW(&m->pool, struct tile);
+		t->ti = g->ti, t->tj = g->tj, t->iso = g->iso, t->area = g->area;
+		for (int q = 0; q < TN; q++) {
+			for (int c = 0; c < 3; c++)
+				t->n[q].e[c] = g->g[q].e, t->n[q].sq[c] = g->g[q].sq;
+			t->n[q].count = g->g[q].count;
+		}
+		m->tiles[k] = t;
+	}
+	m->grey = false;
 }
 
 /* The largest channel of a deposit's energy, as deposit_band counts it. */
@@ -707,21 +771,29 @@ static void deposit_band(struct illum_map *m, double u, double v, const double e
 
 void illum_deposit(struct illum_map *m, double u, double v, const double energy[3])
 {
+	ungrey(m); /* (single deposits: tests and loading a map file) */
 	map_reserve(m, energy_max(energy));
 	deposit_band(m, u, v, energy, 0, 1);
 }
 
 /* Adds tile s's accumulators, shifted right by k bits (its map's unit is
- * 2^k times finer), into tile d. */
-static void tile_accumulate(struct tile *d, const struct tile *s, int k)
+ * 2^k times finer), into tile d: both grey (dgrey), or d colour and s grey
+ * (sgrey) or colour. */
+static void tile_accumulate(struct tile *d, bool dgrey, const struct tile *s, bool sgrey, int k)
 {
 	for (int q = 0; q < TN; q++) {
-		for (int c = 0; c < 3; c++) {
-			fx_add(&d->n[q].e[c], fx_shr(s->n[q].e[c], k));
-			d->n[q].sq[c] += s->n[q].sq[c];
+		uint32_t *dc = dgrey ? &d->g[q].count : &d->n[q].count;
+		uint32_t sc = sgrey ? s->g[q].count : s->n[q].count, sum = *dc + sc;
+		*dc = sum < *dc ? UINT32_MAX : sum;
+		if (dgrey) {
+			fx_add(&d->g[q].e, fx_shr(s->g[q].e, k));
+			d->g[q].sq += s->g[q].sq;
+			continue;
 		}
-		uint32_t c = d->n[q].count + s->n[q].count;
-		d->n[q].count = c < d->n[q].count ? UINT32_MAX : c;
+		for (int c = 0; c < 3; c++) {
+			fx_add(&d->n[q].e[c], fx_shr(sgrey ? s->g[q].e : s->n[q].e[c], k));
+			d->n[q].sq[c] += sgrey ? s->g[q].sq : s->n[q].sq[c];
+		}
 	}
 }
 
@@ -732,8 +804,8 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 	for (long k = 0; k < src->ntiles; k++) {
 		struct tile *t = src->tiles[k];
 		long d = tile_find(dst, t->ti, t->tj);
-		if (d >= 0) {
-			tile_accumulate(dst->tiles[d], t, 0);
+		if (d >= 0) { /* (src is a band's part of dst: as grey as it) */
+			tile_accumulate(dst->tiles[d], dst->grey, t, src->grey, 0);
 		} else {
 			t->area = NULL;
 			t->iso = 0;
@@ -777,6 +849,7 @@ struct deposit_job {
 	int32_t *ti, *tj;   /* the window's sample (step 2) */
 	long stride;        /* of the sample: every stride-th valid splat */
 	double emax;        /* per chunk: the largest energy_max of its splats */
+	bool white;         /* per chunk: its valid splats' three channels are equal */
 	struct arena pool;  /* per band: the tiles it made in the window */
 	struct tile **made; /* per band: those tiles, in order */
 	long *where;        /* per band: their window entries */
@@ -801,6 +874,7 @@ static void prep_work(void *ctx, long k, int worker)
 	J->dropped = 0;
 	J->valid = 0;
 	J->emax = 0;
+	J->white = true;
 	long r0 = 0, r1 = D->nruns; /* the run holding splat lo: off[r0] <= lo < off[r0+1] */
 	while (r1 - r0 > 1) {
 		long mid = (r0 + r1) / 2;
@@ -823,6 +897,7 @@ static void prep_work(void *ctx, long k, int worker)
 		}
 		if (!energy_clean(sp->e, e))
 			continue;
+		J->white = J->white && e[0] == e[1] && e[1] == e[2];
 		long iu[2], iv[2];
 		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &p->fu);
 		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &p->fv);
@@ -847,8 +922,8 @@ static void sample_work(void *ctx, long k, int worker)
 }
 
 /* Step 2: the window, placed where most deposits land (the sample taken
- * on the threads). */
-static void prep_window(struct deposit_job *D, long nchunks)
+ * on the threads). Returns the number of valid splats. */
+static long prep_window(struct deposit_job *D, long nchunks)
 {
 	struct illum_map *m = D->m;
 	long n = 0;
@@ -863,6 +938,7 @@ static void prep_window(struct deposit_job *D, long nchunks)
 	parallel_for(nchunks, D->nb, sample_work, D);
 	win_fit(m, D->ti, D->tj, ns, n);
 	free(D->ti), free(D->tj);
+	return n;
 }
 
 /* band_tile (below) when the tile is not one the window names yet: w is
@@ -876,7 +952,7 @@ static __attribute__((noinline)) struct tile *band_tile_new(struct deposit_job *
 			B->made = mem_realloc(B->made, sizeof *B->made * (size_t)B->cap);
 			B->where = mem_realloc(B->where, sizeof *B->where * (size_t)B->cap);
 		}
-		struct tile *t = ARENA_NEW(&B->pool, struct tile);
+		struct tile *t = tile_new(&B->pool, m->grey);
 		t->ti = (int32_t)ti, t->tj = (int32_t)tj;
 		B->where[B->nmade] = w - m->win;
 		B->made[B->nmade++] = t;
@@ -919,6 +995,7 @@ struct band_pos {
 	struct tile *t;
 	double inv;        /* m->inv_unit */
 	bool finite;       /* no sum can reach 2^128 (map_reserve) */
+	bool grey;         /* m->grey */
 };
 
 /* Adds weight w of energy e (white: e[0] = e[1] = e[2]) to node (i,j). */
@@ -930,6 +1007,17 @@ __attribute__((always_inline)) static inline void band_add(struct band_pos *P, l
 	long ti = floordiv(i), tj = floordiv(j);
 	if (ti != P->ti || tj != P->tj)
 		P->t = band_tile(P->B, P->m, ti, tj), P->ti = ti, P->tj = tj;
+	if (P->grey) { /* acc_add_fast's or acc_add's white light, on the one channel */
+		struct gacc *g = &P->t->g[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
+		double x = w * e[0];
+		if (P->finite)
+			fx_add_fast(&g->e, fx_from(x * P->inv));
+		else
+			fx_add(&g->e, fx_from(x * P->inv));
+		g->sq += (float)(x * x);
+		g->count += g->count < UINT32_MAX;
+		return;
+	}
 	struct acc *n = &P->t->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
 	if (P->finite)
 		acc_add_fast(n, w, e, white, P->inv);
@@ -945,7 +1033,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 	struct deposit_job *D = ctx;
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
-	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit};
+	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit, m->grey};
 	for (long q = 0, r = 0; q < D->n; q++) {
 		while (q >= D->off[r + 1]) /* r: the run of splat q */
 			r++;
@@ -1012,15 +1100,24 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
 	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
-	                            .p = mem_alloc(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
+	                            .p = mem_alloc_huge(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
+	bool white = true;
 	for (long k = 0; k < nchunks; k++)
-		emax = D[k].emax > emax ? D[k].emax : emax;
+		emax = D[k].emax > emax ? D[k].emax : emax, white = white && D[k].white;
+	if (!white)
+		ungrey(m);
 	map_reserve(m, (double)n * emax);
-	prep_window(D, nchunks);
+	long valid = prep_window(D, nchunks);
+	/* each band's tiles in blocks of about what a sparse map of its share
+	 * of the splats needs (~128 bytes a splat; a few KiB at least, 16 MiB
+	 * at most): large ones are backed by huge pages (mem_huge), so a map of
+	 * many tiles takes one page fault per 2 MiB, not one per 4 KiB */
+	double guess = 128.0 * (double)valid / nb;
+	size_t first = guess < 4096 ? 4096 : guess > (double)(16 << 20) ? (size_t)16 << 20 : (size_t)guess;
 	for (int b = 0; b < nb; b++)
-		arena_init_sized(&D[b].pool, 4096), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
+		arena_init_sized(&D[b].pool, first), D[b].nmade = D[b].cap = 0, D[b].made = NULL, D[b].where = NULL,
 		D[b].part = NULL;
 	parallel_for(nb, nb, accumulate_work, D);
 	/* step 4: the bands' tiles join the map (bands hold disjoint tiles), by
@@ -1065,12 +1162,14 @@ bool illum_merge(struct illum_map *dst, const struct illum_map *src)
 	map_reserve(dst, src->bound);
 	if (src->shift > dst->shift)
 		map_rescale(dst, src->shift);
+	if (!src->grey)
+		ungrey(dst);
 	for (long k = 0; k < src->ntiles; k++) {
 		const struct tile *s = src->tiles[k];
 		long di = tile_find(dst, s->ti, s->tj);
 		if (di < 0)
 			di = tile_add(dst, s->ti, s->tj);
-		tile_accumulate(dst->tiles[di], s, dst->shift - src->shift);
+		tile_accumulate(dst->tiles[di], dst->grey, s, src->grey, dst->shift - src->shift);
 	}
 	dst->dropped += src->dropped;
 	dst->finished = false;
@@ -1546,6 +1645,7 @@ static void poly_one(struct illum_map *m, const double (*uv)[2], int n, const do
 
 void illum_deposit_poly(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
 {
+	ungrey(m); /* (footprints write colour maps) */
 	map_reserve(m, energy_max(energy));
 	poly_one(m, uv, n, energy);
 }
@@ -1652,6 +1752,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
 	double more = 0;
+	ungrey(m); /* (footprints write colour maps) */
 	for (long i = 0; i < n; i++)
 		more += energy_max(p[i].e);
 	map_reserve(m, more); /* the unit for them all, before any of them (order-free) */
@@ -1773,7 +1874,7 @@ static bool node_isolated(const struct illum_map *m, const struct near *nb, long
 			int slot = (int)(tile_rem(b) * ILLUM_TILE + tile_rem(a));
 			const struct tile *t = ta >= 0 && ta < 3 && tb >= 0 && tb < 3 ? nb->t[tb][ta]
 			                                                              : node_tile(m, a, b, &slot);
-			if (t && (sum += t->n[slot].count) > 4)
+			if (t && (sum += node_count(m, t, slot)) > 4)
 				return false;
 		}
 	return true;
@@ -1812,11 +1913,11 @@ struct finish_job {
 	struct fx tot[3]; /* energy its tiles hold (exact) */
 };
 
-static uint64_t tile_count(const struct tile *t)
+static uint64_t tile_count(const struct illum_map *m, const struct tile *t)
 {
 	uint64_t c = 0;
 	for (int q = 0; q < TN; q++)
-		c += t->n[q].count;
+		c += node_count(m, t, q);
 	return c;
 }
 
@@ -1834,13 +1935,13 @@ static bool near_closed(const struct illum_map *m, long ti, long tj)
 }
 
 /* The deposit count of the 3×3 tiles nb holds, stopping past 4. */
-static uint64_t near_count(const struct near *nb)
+static uint64_t near_count(const struct illum_map *m, const struct near *nb)
 {
 	uint64_t c = 0;
 	for (int b = 0; b < 3 && c <= 4; b++)
 		for (int a = 0; a < 3; a++)
 			if (nb->t[b][a])
-				c += tile_count(nb->t[b][a]);
+				c += tile_count(m, nb->t[b][a]);
 	return c;
 }
 
@@ -1848,7 +1949,7 @@ static uint64_t near_count(const struct near *nb)
 
 /* The deposit counts of the 3×3 tiles nb holds, as one array of nodes
  * (zero where a tile is absent: most are, around a sparse map's tiles). */
-static void near_counts(const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
+static void near_counts(const struct illum_map *m, const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
 {
 	memset(c, 0, sizeof c[0] * NEAR_N);
 	for (int b = 0; b < 3; b++)
@@ -1857,7 +1958,7 @@ static void near_counts(const struct near *nb, uint32_t c[NEAR_N][NEAR_N])
 			if (t)
 				for (int y = 0; y < ILLUM_TILE; y++)
 					for (int x = 0; x < ILLUM_TILE; x++)
-						c[b * ILLUM_TILE + y][a * ILLUM_TILE + x] = t->n[y * ILLUM_TILE + x].count;
+						c[b * ILLUM_TILE + y][a * ILLUM_TILE + x] = node_count(m, t, y * ILLUM_TILE + x);
 		}
 }
 
@@ -1888,13 +1989,17 @@ static void finish_work(void *ctx, long job, int worker)
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
 		for (int q = 0; q < TN; q++) {
+			if (m->grey) { /* the three sums are this one (wide_fx below) */
+				wide_add(&tot[0], t->g[q].e);
+				continue;
+			}
 			wide_add(&tot[0], t->n[q].e[0]);
 			wide_add(&tot[1], t->n[q].e[1]);
 			wide_add(&tot[2], t->n[q].e[2]);
 		}
 		/* the nodes of a tile are neighbours: more than one ray's splat in
 		 * it and none of them is isolated */
-		bool check = J->discard && tile_count(t) <= 4, all = false, closed = false;
+		bool check = J->discard && tile_count(m, t) <= 4, all = false, closed = false;
 		struct near nb = {.ti = 0};
 		uint32_t cnt[NEAR_N][NEAR_N];
 		if (check) {
@@ -1902,30 +2007,31 @@ static void finish_work(void *ctx, long job, int worker)
 			/* at most one splat in the tiles around: every node with a
 			 * deposit is isolated (its neighbourhood is among them) */
 			closed = near_closed(m, t->ti, t->tj);
-			all = closed && near_count(&nb) <= 4;
+			all = closed && near_count(m, &nb) <= 4;
 			closed = closed && reach2 && !all;
 			if (closed) /* else node_isolated looks the nodes up */
-				near_counts(&nb, cnt);
+				near_counts(m, &nb, cnt);
 		}
 		t->iso = 0;
 		for (int q = 0; q < TN; q++) {
 			if (t->area)
 				t->area[q] = 0;
-			if (!t->n[q].count)
+			uint32_t count = node_count(m, t, q);
+			if (!count)
 				continue;
 			long i = (long)t->ti * ILLUM_TILE + q % ILLUM_TILE;
 			long j = (long)t->tj * ILLUM_TILE + q / ILLUM_TILE;
 			if (t->area)
 				t->area[q] = node_area(m, i, j);
-			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, t->n[q].count)))) {
+			if (check && (all || (closed ? near_isolated(cnt, q) : node_isolated(m, &nb, i, j, count)))) {
 				t->iso |= 1u << q;
-				for (int c = 0; c < 3; c++)
-					wide_add(&rem[c], t->n[q].e[c]);
+				for (int c = 0; c < (m->grey ? 1 : 3); c++)
+					wide_add(&rem[c], node_e(m, t, q, c));
 			}
 		}
 	}
-	for (int c = 0; c < 3; c++) /* (J's sums start at 0) */
-		J->tot[c] = wide_fx(tot[c]), J->rem[c] = wide_fx(rem[c]);
+	for (int c = 0; c < 3; c++) /* (J's sums start at 0; a grey map's are all channel 0's) */
+		J->tot[c] = wide_fx(tot[m->grey ? 0 : c]), J->rem[c] = wide_fx(rem[m->grey ? 0 : c]);
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
@@ -1984,7 +2090,7 @@ static double node_irr(const struct illum_map *m, const struct tile *t, int q, i
 	double a = t->area ? t->area[q] : m->flat_area;
 	if ((t->iso >> q) & 1 || !(a > 0))
 		return 0;
-	return fx_to_double(t->n[q].e[c]) * m->unit / a;
+	return fx_to_double(node_e(m, t, q, c)) * m->unit / a;
 }
 
 /* Adds w × node_irr for the three channels to out, its checks made once
@@ -1994,6 +2100,12 @@ static void add_irr(const struct illum_map *m, const struct tile *t, int q, doub
 	double a = t->area ? t->area[q] : m->flat_area;
 	if ((t->iso >> q) & 1 || !(a > 0))
 		return;
+	if (m->grey) { /* the same irradiance in the three channels */
+		double x = fx_to_double(t->g[q].e) * m->unit / a;
+		for (int c = 0; c < 3; c++)
+			out[c] += w * x;
+		return;
+	}
 	for (int c = 0; c < 3; c++)
 		out[c] += w * (fx_to_double(t->n[q].e[c]) * m->unit / a);
 }
@@ -2039,7 +2151,7 @@ void illum_total(const struct illum_map *m, double out[3])
 	for (long k = 0; k < m->ntiles && !m->finished; k++)
 		for (int q = 0; q < TN; q++)
 			for (int c = 0; c < 3; c++)
-				fx_add(&s[c], m->tiles[k]->n[q].e[c]);
+				fx_add(&s[c], node_e(m, m->tiles[k], q, c));
 	for (int c = 0; c < 3; c++)
 		out[c] = fx_to_double(s[c]) * m->unit;
 }
@@ -2047,7 +2159,7 @@ void illum_total(const struct illum_map *m, double out[3])
 long illum_dropped(const struct illum_map *m) { return m->dropped; }
 size_t illum_memory(const struct illum_map *m)
 {
-	return m->bytes + arena_bytes(&m->pool) + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
+	return m->bytes + m->pool.used + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
 	       m->cap_rows * sizeof *m->rows;
 }
 long illum_tiles(const struct illum_map *m) { return m->ntiles; }
@@ -2076,8 +2188,8 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 	struct tile **s = sorted_tiles(m);
 	for (long k = 0; k < m->ntiles; k++)
 		for (int q = 0; q < TN; q++) {
-			const struct acc *a = &s[k]->n[q];
-			if (!a->count)
+			uint32_t count = node_count(m, s[k], q);
+			if (!count)
 				continue;
 			struct illum_node n;
 			memset(&n, 0, sizeof n);
@@ -2085,10 +2197,10 @@ void illum_each(const struct illum_map *m, void (*fn)(void *ctx, const struct il
 			n.j = (long)s[k]->tj * ILLUM_TILE + q / ILLUM_TILE;
 			illum_node_uv(m, n.i, n.j, &n.u, &n.v);
 			for (int c = 0; c < 3; c++) {
-				n.energy[c] = fx_to_double(a->e[c]) * m->unit;
-				n.sumsq[c] = a->sq[c];
+				n.energy[c] = fx_to_double(node_e(m, s[k], q, c)) * m->unit;
+				n.sumsq[c] = m->grey ? s[k]->g[q].sq : s[k]->n[q].sq[c];
 			}
-			n.count = a->count;
+			n.count = count;
 			if (m->finished) {
 				n.area = s[k]->area ? s[k]->area[q] : m->flat_area;
 				n.isolated = (s[k]->iso >> q) & 1;

@@ -198,7 +198,8 @@ void illum_lookup(const struct illum_map *m, double u, double v, double out[3]);
 void illum_total(const struct illum_map *m, double out[3]);
 /* Deposits dropped because (u,v) was not finite. */
 long illum_dropped(const struct illum_map *m);
-/* Bytes allocated by the map (header, tile table, tiles, polygon scratch). */
+/* Bytes the map holds (header, tile table, the tiles' share of their
+ * arena's blocks, polygon scratch). */
 size_t illum_memory(const struct illum_map *m);
 /* Allocated tiles. */
 long illum_tiles(const struct illum_map *m);

@@ -39,9 +39,16 @@ struct rec {
 	double size;              /* shafts: the spread of the corners around it (m), else 0 */
 };
 
+/* A worker's records: r[item0 .. n) are the current work item's; the
+ * earlier items' records stay where they were written (in r, or in a
+ * block before it, kept in old), since their spans point at them: a full
+ * buffer moves on to one twice its size, copying only the current item's
+ * (realloc would copy them all, into pages faulted in once more). */
 struct recbuf {
 	struct rec *r;
-	long n, cap;
+	long n, cap, item0;
+	struct rec **old; /* the earlier blocks (freed with r) */
+	long nold;
 };
 
 /* What one light aims at one specular object: from a point or spot light,
@@ -96,8 +103,8 @@ struct job {
 
 #define DISTINCT_MAX 4 /* surfaces an item lists (more: the maps step reads its records) */
 
-/* The records of one work item: recs.r[r0 .. r0+nr) and precs.r[p0 ..
- * p0+np) of worker w. Taken in item order, the records are in the same
+/* The records of one work item: r[0 .. nr) (in worker w's recs) and
+ * precs.r[p0 .. p0+np) of worker w. Taken in item order, the records are in the same
  * order for any thread count, and so is every map's sum (even its float
  * Σw²). The distinct surfaces they reach, in order of first appearance,
  * are listed while they are in cache (nd of them; -1: more than
@@ -105,7 +112,8 @@ struct job {
  * per item instead of every record. */
 struct span {
 	int w;
-	long r0, nr, p0, np;
+	const struct rec *r;
+	long nr, p0, np;
 	int nd;
 	const struct object *d[DISTINCT_MAX];
 };
@@ -320,6 +328,29 @@ static unsigned chart(const struct hit *h)
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
 
+/* Moves rb on to a block twice the size (see struct recbuf). */
+static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
+{
+	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
+	struct rec *r = mem_alloc_huge(sizeof *r * (size_t)cap); /* (from 4 MiB: fewer page faults) */
+	if (keep)
+		memcpy(r, rb->r + rb->item0, sizeof *r * (size_t)keep);
+	if (rb->item0 > 0) { /* earlier items' records are in it */
+		rb->old = mem_realloc(rb->old, sizeof *rb->old * (size_t)(rb->nold + 1));
+		rb->old[rb->nold++] = rb->r;
+	} else {
+		free(rb->r);
+	}
+	rb->r = r, rb->cap = cap, rb->n = keep, rb->item0 = 0;
+}
+
+static void recbuf_free(struct recbuf *rb)
+{
+	for (long i = 0; i < rb->nold; i++)
+		free(rb->old[i]);
+	free(rb->old), free(rb->r);
+}
+
 static void record(struct worker *w, struct hit *h, const struct ray *r, const double e[3], uint64_t sig)
 {
 	if (isnan(h->u)) /* traced without its (u,v) (BVH_NO_UV): a deposit needs them */
@@ -329,10 +360,8 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 		return;
 	}
 	struct recbuf *rb = &w->recs;
-	if (rb->n == rb->cap) {
-		rb->cap = rb->cap ? rb->cap * 2 : 4096;
-		rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)rb->cap);
-	}
+	if (rb->n == rb->cap)
+		recbuf_grow(rb);
 	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
 }
 
@@ -788,7 +817,7 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 						}
 				struct recbuf *rb = &w->recs;
 				if (rb->n == rb->cap)
-					rb->r = mem_realloc(rb->r, sizeof *rb->r * (size_t)(rb->cap = rb->cap ? rb->cap * 2 : 4096));
+					recbuf_grow(rb);
 				rb->r[rb->n++] = (struct rec){{L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
 				                              L->obj, L->p, size};
 				continue;
@@ -970,14 +999,16 @@ static void work(void *ctx, long k, int worker)
 {
 	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
-	long r0 = w->recs.n, p0 = w->precs.n;
+	long p0 = w->precs.n;
+	w->recs.item0 = w->recs.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	*sp = (struct span){worker, r0, w->recs.n - r0, p0, w->precs.n - p0, 0, {NULL}};
-	list_distinct(sp, sp->nr ? w->recs.r + r0 : NULL, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
+	long nr = w->recs.n - w->recs.item0;
+	*sp = (struct span){worker, nr ? w->recs.r + w->recs.item0 : NULL, nr, p0, w->precs.n - p0, 0, {NULL}};
+	list_distinct(sp, sp->r, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
 	progress_step(J->o->progress, 1);
 }
 
@@ -1481,7 +1512,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->nr ? bufs[p->w].r + p->r0 : NULL, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np,
+		sg[k] = (struct seg){p->r, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np,
 		                     p->nd, p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
@@ -1503,7 +1534,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		free(bufs[i].r), free(pbufs[i].r);
+		recbuf_free(&bufs[i]), free(pbufs[i].r);
 	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
