@@ -56,8 +56,9 @@ __attribute__((always_inline)) static inline void to_world(const struct object *
 	h->dpdv = x ? xf_vector(x, lh->dpdv) : lh->dpdv;
 }
 
-bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
-                     struct hit *h)
+/* shape_intersect's steps; uv false: shape_intersect_bare's. */
+static inline __attribute__((always_inline)) bool intersect_as(const struct object *o, const struct ray *r,
+                                                               double tmin, double tmax, struct hit *h, bool uv)
 {
 	const struct prim_ops *p = ops(o);
 	if (!p)
@@ -65,25 +66,22 @@ bool shape_intersect(const struct object *o, const struct ray *r, double tmin, d
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	if (!p->intersect(o, lr, tmin, tmax, &lh))
+	if (!(!uv && o->kind == OBJ_TORUS ? to_hit(o, lr, tmin, tmax, &lh) : p->intersect(o, lr, tmin, tmax, &lh)))
 		return false;
-	to_world(o, r, &lh, true, h);
+	to_world(o, r, &lh, uv, h);
 	return true;
+}
+
+bool shape_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
+                     struct hit *h)
+{
+	return intersect_as(o, r, tmin, tmax, h, true);
 }
 
 bool shape_intersect_bare(const struct object *o, const struct ray *r, double tmin, double tmax,
                           struct hit *h)
 {
-	const struct prim_ops *p = ops(o);
-	if (!p)
-		return csg_is_csg(o) && csg_intersect(o, r, tmin, tmax, h);
-	struct ray tmp;
-	const struct ray *lr = local_ray(o, r, &tmp);
-	struct local_hit lh;
-	if (!(o->kind == OBJ_TORUS ? to_hit(o, lr, tmin, tmax, &lh) : p->intersect(o, lr, tmin, tmax, &lh)))
-		return false;
-	to_world(o, r, &lh, false, h);
-	return true;
+	return intersect_as(o, r, tmin, tmax, h, false);
 }
 
 bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, double tmax, double *t)
