@@ -1075,6 +1075,7 @@ void bvh_intersect_packet(const struct bvh *b, int n, const struct ray *r, doubl
                           unsigned skip, struct hit *h, bool *found)
 {
 	struct packet Q;
+	Q.rows = false; /* (hits16 reads them in done, also when no lane went to Embree) */
 	_Alignas(64) struct RTCRayHit16 rh;
 	_Alignas(64) struct RTCRayHit8 rh8[2];
 	_Alignas(64) int valid[BVH_PACKET];
