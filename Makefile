@@ -47,7 +47,10 @@ PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
 VERSION  = 0.1.0
 CPPFLAGS += -D_DEFAULT_SOURCE -DARVO_VERSION='"$(VERSION)"' -MMD -MP
-CFLAGS   += -std=c11 $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
+# -ffp-contract=off: no multiply-add fused, whatever the compiler (GCC's
+# default under -std=c11, not clang's): the AVX-512 lanes and the scalar
+# code they match must round each step alike (docs/design.md)
+CFLAGS   += -std=c11 -ffp-contract=off $(OPT) $(WARN) -pthread $(PKG_CFLAGS)
 CXXFLAGS += -std=c++14 $(OPT) $(CXXWARN) $(PKG_CFLAGS)
 LDLIBS   += $(PKG_LIBS) -lembree3 -lstdc++ -lm -pthread
 

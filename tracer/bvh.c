@@ -388,7 +388,7 @@ __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *
  * t0[i] <= t1[i] (prim_quadratic's), and the lanes lanes16 turns away left
  * out. The same operations on the same doubles in the same order (AVX-512
  * multiplies, adds, divisions and square roots, each rounded as the scalar
- * one: -std=c11 contracts nothing into a fused multiply-add; comparisons
+ * one: -ffp-contract=off (Makefile) fuses no multiply-add; comparisons
  * that treat a NaN as the scalar ones do), so every root has the scalar
  * bits. The scalar test solved each lane that lanes16 let through in turn,
  * its square roots and divisions one after another: 60 % of intersect_cb's

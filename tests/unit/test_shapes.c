@@ -746,6 +746,58 @@ static void t_torus_reference(void)
 	CHECK(hits > total / 4 && spawned_miss > total / 12);
 }
 
+/* quartic_above's bound is in units of R + r, so the skip is the plain
+ * solver's answer at any scale: tori of major radius 1e-4 to 1e6 (ring and
+ * spindle), rays from near and from 1e6 radii away, aimed at the surface,
+ * spawned on it, and grazing it (along a tangent, from either side of the
+ * surface by a few ulps to 1e-6 of its size): the same hit, bit for bit,
+ * and the same shadow answer as ref_torus. */
+static void t_torus_scales(void)
+{
+	rng_seed(21);
+	const double scale[] = {1e-4, 1e-2, 1, 1e3, 1e6};
+	int differ = 0, hits = 0, total = 0, grazing_hits = 0;
+	for (int i = 0; i < 30000; i++) {
+		double k = scale[i % 5];
+		struct object o = mk_obj(OBJ_TORUS);
+		o.g.torus.major = k * rndr(0.5, 2);
+		o.g.torus.minor = o.g.torus.major * (i % 7 == 3 ? rndr(1.05, 1.5) : rndr(0.02, 0.7));
+		double far = i % 4 == 0 ? 1e6 : 4;
+		struct ray r = {v_scale(rnd_vec(-far, far), k), rnd_dir()};
+		struct vec3 p, du, dv;
+		shape_uv_point(&o, rnd(), rnd(), &p, &du, &dv);
+		struct vec3 n = v_norm(v_cross(du, dv));
+		int kind = i % 3;
+		if (kind == 0) { /* aimed at the surface */
+			r.d = v_sub(p, r.o);
+		} else if (kind == 1) { /* grazing: along a tangent through a point beside it */
+			struct vec3 tg = v_norm(v_add(v_scale(v_norm(du), rndr(-1, 1)), v_scale(v_norm(dv), rndr(-1, 1))));
+			double big = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+			double off = (rnd() < 0.5 ? 1e-15 : 1e-7 * rnd()) * big * (rnd() < 0.5 ? 1 : -1);
+			struct vec3 at = v_madd(p, n, off);
+			r.o = v_madd(at, tg, -rndr(0.01, 3) * k);
+			r.d = v_scale(tg, rndr(0.1, 10));
+		} else { /* spawned on it, leaving or not */
+			double big = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+			r.o = v_madd(p, n, (i % 2 ? 1 : -1) * 1e-7 * big);
+		}
+		double tmax = i % 8 < 6 ? INFINITY : rndr(0.1, 6);
+		struct hit h;
+		double t = 0;
+		struct vec3 lp = v3(0, 0, 0);
+		bool want = ref_torus(o.g.torus.major, o.g.torus.minor, &r, 0, tmax, &t, &lp);
+		bool got = shape_intersect(&o, &r, 0, tmax, &h);
+		if (got != want || shape_occluded(&o, &r, 0, tmax) != want ||
+		    (got && (memcmp(&h.t, &t, sizeof t) || memcmp(&h.p, &lp, sizeof lp))))
+			differ++;
+		hits += want, total++;
+		grazing_hits += kind == 1 && want;
+	}
+	printf("# %d hits of %d rays (%d grazing), %d differ\n", hits, total, grazing_hits, differ);
+	CHECK(differ == 0);
+	CHECK(hits > total / 4 && grazing_hits > total / 20);
+}
+
 /* shape_intersect_bare finds what shape_intersect finds, bit for bit, less
  * the (u,v) (NaN) and the partials (zero), for every kind. */
 static void t_bare_as_intersect(void)
@@ -819,6 +871,7 @@ int main(void)
 	RUN(t_torus_far);
 	RUN(t_occluded_as_intersect);
 	RUN(t_torus_reference);
+	RUN(t_torus_scales);
 	RUN(t_bare_as_intersect);
 	RUN(t_cone_alternating);
 	return test_done();
