@@ -342,6 +342,40 @@ static void packet_rows(struct packet *P)
 	P->rows = true;
 }
 
+/* Half h (lanes 8h to 8h + 7) of packet P against sphere o's centre and
+ * radius: f = origin - centre and the ray's direction d by rows, a = d·d,
+ * fd = f·d, ff = f·f, cc = ff - r², and in keep the lanes prim_sphere_t's
+ * first two tests do not turn away (lanes16). */
+struct half16 {
+	__m512d fx, fy, fz, dx, dy, dz, a, fd, ff, cc;
+	__mmask8 keep;
+};
+
+__attribute__((target("avx512f"), always_inline)) static inline void sphere_half(const struct packet *P,
+                                                                                 const struct object *o, int h,
+                                                                                 struct half16 *s)
+{
+	const double r2 = o->g.sphere.r * o->g.sphere.r;
+	const __m512d zero = _mm512_setzero_pd(), eps = _mm512_set1_pd(1e-12);
+	s->fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), _mm512_set1_pd(o->g.sphere.c.x));
+	s->fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), _mm512_set1_pd(o->g.sphere.c.y));
+	s->fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), _mm512_set1_pd(o->g.sphere.c.z));
+	s->dx = _mm512_load_pd(P->dx + 8 * h), s->dy = _mm512_load_pd(P->dy + 8 * h);
+	s->dz = _mm512_load_pd(P->dz + 8 * h), s->a = _mm512_load_pd(P->dd + 8 * h);
+	s->fd = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(s->fx, s->dx), _mm512_mul_pd(s->fy, s->dy)),
+	                      _mm512_mul_pd(s->fz, s->dz));
+	s->ff = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(s->fx, s->fx), _mm512_mul_pd(s->fy, s->fy)),
+	                      _mm512_mul_pd(s->fz, s->fz));
+	s->cc = _mm512_sub_pd(s->ff, _mm512_set1_pd(r2));
+	__m512d lhs = _mm512_sub_pd(_mm512_mul_pd(s->a, s->ff), _mm512_mul_pd(s->fd, s->fd));
+	__m512d rhs = _mm512_mul_pd(s->a, _mm512_add_pd(_mm512_set1_pd(r2 * (1 + 1e-9)), _mm512_mul_pd(s->ff, eps)));
+	__mmask8 away = _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
+	__mmask8 behind = P->tmin >= 0 ? (__mmask8)(_mm512_cmp_pd_mask(s->fd, zero, _CMP_GT_OQ) &
+	                                            _mm512_cmp_pd_mask(s->cc, zero, _CMP_GT_OQ))
+	                               : 0;
+	s->keep = (__mmask8)~(away | behind);
+}
+
 /* The lanes of a native 16-wide packet that sphere o (no transform) may
  * meet, as a bit mask: those prim_sphere_t does not turn away by its first
  * two tests (a clear miss, a sphere behind a ray from tmin >= 0), the same
@@ -354,30 +388,11 @@ static void packet_rows(struct packet *P)
  * packets, which is where the CPU has AVX-512. */
 __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *P, const struct object *o)
 {
-	const __m512d cx = _mm512_set1_pd(o->g.sphere.c.x), cy = _mm512_set1_pd(o->g.sphere.c.y);
-	const __m512d cz = _mm512_set1_pd(o->g.sphere.c.z);
-	const double r2 = o->g.sphere.r * o->g.sphere.r, r2m = r2 * (1 + 1e-9);
-	const __m512d rr = _mm512_set1_pd(r2), rrm = _mm512_set1_pd(r2m), eps = _mm512_set1_pd(1e-12);
-	const __m512d zero = _mm512_setzero_pd();
-	bool ahead = P->tmin >= 0;
 	unsigned m = 0;
 	for (int h = 0; h < 2; h++) {
-		__m512d fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), cx);
-		__m512d fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), cy);
-		__m512d fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), cz);
-		__m512d dx = _mm512_load_pd(P->dx + 8 * h), dy = _mm512_load_pd(P->dy + 8 * h);
-		__m512d dz = _mm512_load_pd(P->dz + 8 * h), a = _mm512_load_pd(P->dd + 8 * h);
-		__m512d fd = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, dx), _mm512_mul_pd(fy, dy)),
-		                           _mm512_mul_pd(fz, dz));
-		__m512d ff = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, fx), _mm512_mul_pd(fy, fy)),
-		                           _mm512_mul_pd(fz, fz));
-		__m512d lhs = _mm512_sub_pd(_mm512_mul_pd(a, ff), _mm512_mul_pd(fd, fd));
-		__m512d rhs = _mm512_mul_pd(a, _mm512_add_pd(rrm, _mm512_mul_pd(ff, eps)));
-		__mmask8 away = _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
-		__mmask8 behind = ahead ? (__mmask8)(_mm512_cmp_pd_mask(fd, zero, _CMP_GT_OQ) &
-		                                     _mm512_cmp_pd_mask(_mm512_sub_pd(ff, rr), zero, _CMP_GT_OQ))
-		                        : 0;
-		m |= (unsigned)(uint8_t)~(away | behind) << (8 * h);
+		struct half16 s;
+		sphere_half(P, o, h, &s);
+		m |= (unsigned)s.keep << (8 * h);
 	}
 	return m;
 }
@@ -396,35 +411,17 @@ __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *
 __attribute__((target("avx512f"))) static unsigned roots16(const struct packet *P, const struct object *o,
                                                           double *t0, double *t1)
 {
-	const double rad = o->g.sphere.r, r2 = rad * rad;
-	const __m512d cx = _mm512_set1_pd(o->g.sphere.c.x), cy = _mm512_set1_pd(o->g.sphere.c.y);
-	const __m512d cz = _mm512_set1_pd(o->g.sphere.c.z);
-	const __m512d rr = _mm512_set1_pd(r2), rrm = _mm512_set1_pd(r2 * (1 + 1e-9)), eps = _mm512_set1_pd(1e-12);
+	const double rad = o->g.sphere.r;
 	const __m512d zero = _mm512_setzero_pd(), two = _mm512_set1_pd(2), four = _mm512_set1_pd(4);
 	const __m512d half = _mm512_set1_pd(-0.5), vrad = _mm512_set1_pd(rad);
 	const __m512i sign = _mm512_set1_epi64((long long)0x8000000000000000ull);
-	bool ahead = P->tmin >= 0;
 	unsigned m = 0;
 	for (int h = 0; h < 2; h++) {
-		__m512d fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), cx);
-		__m512d fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), cy);
-		__m512d fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), cz);
-		__m512d dx = _mm512_load_pd(P->dx + 8 * h), dy = _mm512_load_pd(P->dy + 8 * h);
-		__m512d dz = _mm512_load_pd(P->dz + 8 * h), a = _mm512_load_pd(P->dd + 8 * h);
-		__m512d fd = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, dx), _mm512_mul_pd(fy, dy)),
-		                           _mm512_mul_pd(fz, dz));
-		__m512d ff = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(fx, fx), _mm512_mul_pd(fy, fy)),
-		                           _mm512_mul_pd(fz, fz));
-		/* lanes16's two rejections */
-		__m512d lhs = _mm512_sub_pd(_mm512_mul_pd(a, ff), _mm512_mul_pd(fd, fd));
-		__m512d rhs = _mm512_mul_pd(a, _mm512_add_pd(rrm, _mm512_mul_pd(ff, eps)));
-		__m512d cc = _mm512_sub_pd(ff, rr);
-		__mmask8 away = _mm512_cmp_pd_mask(lhs, rhs, _CMP_GT_OQ);
-		__mmask8 behind = ahead ? (__mmask8)(_mm512_cmp_pd_mask(fd, zero, _CMP_GT_OQ) &
-		                                     _mm512_cmp_pd_mask(cc, zero, _CMP_GT_OQ))
-		                        : 0;
+		struct half16 s;
+		sphere_half(P, o, h, &s); /* lanes16's two rejections */
+		__m512d fx = s.fx, fy = s.fy, fz = s.fz, dx = s.dx, dy = s.dy, dz = s.dz, a = s.a, fd = s.fd, cc = s.cc;
 		/* !(a > 0), then prim_quadratic's disc < 0 || a == 0 */
-		__mmask8 go = (__mmask8)(~(away | behind) & _mm512_cmp_pd_mask(a, zero, _CMP_GT_OQ));
+		__mmask8 go = (__mmask8)(s.keep & _mm512_cmp_pd_mask(a, zero, _CMP_GT_OQ));
 		if (!go)
 			continue;
 		__m512d b = _mm512_mul_pd(two, fd);
