@@ -690,11 +690,18 @@ static void put3(float *dst, struct vec3 v, double k)
 /* Starts sample i of pixel (x, y): its path (random numbers drawn so far)
  * and its camera ray, stratified over an m×m grid of the pixel (m =
  * ⌊√spp⌋, remaining samples uniform). */
-static void camera_sample_to(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa, struct ray *r)
+/* Sample i of pixel (x, y)'s path as it starts: its random numbers, and
+ * nothing traced yet. */
+static inline struct path path_start(const struct eye_ctx *ctx, int x, int y, uint32_t i)
 {
 	uint64_t pixel = ((uint64_t)y * (uint64_t)ctx->w + (uint64_t)x) ^ ctx->seed_key;
+	return (struct path){.ctx = ctx, .rng = smp_start(pixel, i), .band = BAND_ALL};
+}
+
+static void camera_sample_to(const struct eye_ctx *ctx, int x, int y, int i, struct path *pa, struct ray *r)
+{
 	bool jitter = ctx->spp > 1;
-	*pa = (struct path){ctx, smp_start(pixel, (uint32_t)i), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL, NULL};
+	*pa = path_start(ctx, x, y, (uint32_t)i);
 	double jx = 0.5, jy = 0.5;
 	if (jitter) {
 		int m = (int)sqrt((double)ctx->spp); /* m×m strata, the rest at random */
@@ -932,8 +939,7 @@ __attribute__((target("avx512f"))) static void camera16(const struct eye_ctx *ct
 		xi[i] = x[i < n ? i : 0], yi[i] = y[i < n ? i : 0];
 		if (i >= n)
 			continue;
-		uint64_t pixel = ((uint64_t)y[i] * (uint64_t)ctx->w + (uint64_t)x[i]) ^ ctx->seed_key;
-		pa[i] = (struct path){ctx, smp_start(pixel, 0), 0, BAND_ALL, NULL, 0, NULL, NULL, NULL, NULL};
+		pa[i] = path_start(ctx, x[i], y[i], 0);
 		pa[i].rng.dim += 2; /* no lens sample: the numbers after it stay the same */
 	}
 	const struct cam *c = &ctx->cam;
