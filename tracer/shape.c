@@ -30,14 +30,15 @@ static inline const struct ray *local_ray(const struct object *o, const struct r
 	return tmp;
 }
 
-/* Fills a world hit from a local one; without uv, (u,v) are NaN and the
- * partials zero. Inline in each caller: as a call it cost the light pass of
+/* Fills a world hit from a local one whose world normal, normalised, is
+ * n (to_world's); without uv, (u,v) are NaN and the partials zero. Inline
+ * in each caller: as a call it cost the light pass of
  * tests/accuracy/sphere.scn (1M rays) 44 M of its 1,946 M instructions. */
-__attribute__((always_inline)) static inline void to_world(const struct object *o, const struct ray *r,
-                                                           const struct local_hit *lh, bool uv, struct hit *h)
+__attribute__((always_inline)) static inline void to_world_n(const struct object *o, const struct ray *r,
+                                                             const struct local_hit *lh, bool uv, struct hit *h,
+                                                             struct vec3 n)
 {
 	const struct xform *x = o->xf;
-	struct vec3 n = v_norm(x ? xf_normal(x, lh->n) : lh->n);
 	if (o->flags & OF_INVERSE)
 		n = v_neg(n);
 	h->t = lh->t;
@@ -54,6 +55,12 @@ __attribute__((always_inline)) static inline void to_world(const struct object *
 	h->v = lh->v;
 	h->dpdu = x ? xf_vector(x, lh->dpdu) : lh->dpdu;
 	h->dpdv = x ? xf_vector(x, lh->dpdv) : lh->dpdv;
+}
+
+__attribute__((always_inline)) static inline void to_world(const struct object *o, const struct ray *r,
+                                                           const struct local_hit *lh, bool uv, struct hit *h)
+{
+	to_world_n(o, r, lh, uv, h, v_norm(o->xf ? xf_normal(o->xf, lh->n) : lh->n));
 }
 
 /* shape_intersect's steps; uv false: shape_intersect_bare's. */
@@ -126,8 +133,8 @@ void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const s
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	pl_prep_hit(p, lr, t, &lh);
-	to_world(o, r, &lh, uv, h);
+	pl_prep_hit(p, lr, t, &lh); /* (lh.n is p->n: without a transform, its v_norm is p->nw) */
+	to_world_n(o, r, &lh, uv, h, o->xf ? v_norm(xf_normal(o->xf, lh.n)) : p->nw);
 }
 
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)

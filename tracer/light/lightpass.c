@@ -176,6 +176,7 @@ struct worker {
 		bool quiet;                /* no pass_through, no fade (inert) */
 		bool still;                /* dull and quiet: inert before any bounce */
 		bool convex;               /* shape_convex(o) */
+		bool fades;                /* its interior absorbs light (opt_fade) */
 	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
@@ -407,8 +408,8 @@ static const struct finish *dull(const struct object *o)
 static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
 {
 	const struct photon_spec *ph = obj_photons(o);
-	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0), false,
-	                    shape_convex(o)};
+	bool fades = mat_interior(o)->fade_distance > 0;
+	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !fades, false, shape_convex(o), fades};
 	x->still = x->dull && x->quiet;
 }
 
@@ -484,7 +485,8 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			depth++, from = NULL;
 			continue;
 		}
-		if (!h.entering) { /* leaving a medium: its absorption over the path inside */
+		if (!h.entering && hx->fades) { /* leaving a medium: its absorption over the path inside
+		                                   (none, k = 1, unless it fades) */
 			struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
 			double ea[3] = {en[0] * k.x, en[1] * k.y, en[2] * k.z};
 			for (int c = 0; c < 3; c++)

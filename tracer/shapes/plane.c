@@ -103,6 +103,7 @@ void pl_prep(const struct object *o, struct pl_prep *p)
 	struct pframe f = {.d = 0};
 	p->ok = pl_frame(o, &f);
 	p->n = f.n, p->e1 = f.e1, p->e2 = f.e2, p->d = f.d;
+	p->nw = v_norm(f.n);
 }
 
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t)

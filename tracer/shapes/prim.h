@@ -65,6 +65,8 @@ bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double t
  * hits). */
 struct pl_prep {
 	struct vec3 n, e1, e2;
+	struct vec3 nw; /* v_norm(n): the world normal of a plane without a
+	                   transform, as to_world finds it (shape_plane_hit_at) */
 	double d;
 	bool ok;
 };
