@@ -23,6 +23,7 @@
 #include "../optics.h"
 #include "../output/tmpfile.h"
 #include "../sampler.h"
+#include "../scatter.h"
 #include "../shape.h"
 #include "../spectrum.h"
 #include "../surface.h"
@@ -177,6 +178,10 @@ struct worker {
 		bool still;                /* dull and quiet: inert before any bounce */
 		bool convex;               /* shape_convex(o) */
 		bool fades;                /* its interior absorbs light (opt_fade) */
+		bool plain;                /* surf_prepare_obj filled si: */
+		struct surf_in si;         /* surf_prepare's fields that depend on o alone */
+		bool fixed;                /* plain, and its reflection is constant: */
+		struct sc_weights rt;      /* surf_weights, the same for any hit */
 	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
@@ -405,19 +410,24 @@ static const struct finish *dull(const struct object *o)
 /* dull(o) and whether o lets nothing pass (photons { pass_through }) and
  * fades nothing, from the worker's small cache of them (a ray meets the
  * same few surfaces over and over). */
-static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
+static __attribute__((noinline)) void oinfo_fill(const struct worker *w, struct oinfo *x, const struct object *o)
 {
 	const struct photon_spec *ph = obj_photons(o);
 	bool fades = mat_interior(o)->fade_distance > 0;
-	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !fades, false, shape_convex(o), fades};
+	*x = (struct oinfo){.o = o, .dull = dull(o), .quiet = !(ph && ph->pass_through) && !fades,
+	                    .convex = shape_convex(o), .fades = fades};
 	x->still = x->dull && x->quiet;
+	x->plain = surf_prepare_obj(w->job->s, o, &x->si);
+	x->fixed = x->plain && sc_refl_fixed(x->si.f);
+	if (x->fixed) /* (neither the angle nor the indices matter: any will do) */
+		x->rt = surf_weights(&x->si, 1, 1, 1);
 }
 
-static inline const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
+static inline struct oinfo *oinfo_of(struct worker *w, const struct object *o)
 {
 	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7];
 	if (x->o != o)
-		oinfo_fill(x, o);
+		oinfo_fill(w, x, o);
 	return x;
 }
 
@@ -467,7 +477,7 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			add3(w->escaped, e);
 			return;
 		}
-		const struct oinfo *hx = oinfo_of(w, h.obj);
+		struct oinfo *hx = oinfo_of(w, h.obj);
 		if (inert(&nd, hx)) { /* h holds only obj and t */
 			add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
 			return;
@@ -502,17 +512,28 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			}
 			return;
 		}
-		struct surf_in si;
+		struct surf_in own, *si = &own;
 		struct surf_out so;
-		surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-		surf_scatter(&si, w->band, &so);
-		double opacity = 1 - si.pc.f - si.pc.t;
+		if (hx->plain) { /* the object's part made once (oinfo_fill), the hit's in place */
+			si = &hx->si;
+			surf_prepare_hit(&h, v_norm(r.d), si);
+		} else {
+			surf_prepare(J->s, J->mc, &h, v_norm(r.d), si);
+		}
+		if (hx->fixed) {
+			double n1, n2;
+			sc_sides(si, w->band, &n1, &n2);
+			surf_scatter_rt(si, n1, n2, hx->rt, &so);
+		} else {
+			surf_scatter(si, w->band, &so);
+		}
+		double opacity = 1 - si->pc.f - si->pc.t;
 		/* what neither reflects nor transmits stays at the surface: a diffuse
 		 * surface reached after a specular bounce keeps it in its map */
 		double rest[3];
 		for (int c = 0; c < 3; c++)
 			rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
-		bool diffuse = si.f->diffuse > 0 && opacity > 0;
+		bool diffuse = si->f->diffuse > 0 && opacity > 0;
 		if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 			record(w, &h, &r, e, sig);
 			add3(w->deposited, rest);
@@ -531,7 +552,7 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 		 * reflected one) or of -si.nf (the transmitted one): the outside of a
 		 * convex object when that is the side of its outward normal */
 		const struct object *out = hx->convex ? h.obj : NULL;
-		bool outside = v_dot(si.nf, h.n) > 0; /* the incoming ray came from outside */
+		bool outside = v_dot(si->nf, h.n) > 0; /* the incoming ray came from outside */
 		double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
 		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
 		bool goT = tmax > 0 && refract && max3(te[0], te[1], te[2]) > cutoff;
@@ -541,11 +562,11 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 		if (tmax > 0 && !goT)
 			add3(w->cut, te);
 		if (goT && rmax > 0) { /* both: the transmitted ray first, by a call */
-			trace(w, so.trans, te, cutoff, depth, si.straight ? nspec : nspec + 1, sig_mix(sig0, h.obj, 1),
+			trace(w, so.trans, te, cutoff, depth, si->straight ? nspec : nspec + 1, sig_mix(sig0, h.obj, 1),
 			      outside ? NULL : out);
 		} else if (goT) { /* the transmitted ray alone: on in this loop */
 			r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
-			nspec = si.straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1), from = outside ? NULL : out;
+			nspec = si->straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1), from = outside ? NULL : out;
 			continue;
 		}
 		if (!(rmax > 0))
