@@ -818,14 +818,14 @@ HOT bool unbounded(struct query *q, bool any)
 
 /* The hit of a sphere that won with its t alone: the same test over the
  * same interval, in full. */
-static void finish_hit(struct query *q);
+HOT void finish_hit(struct query *q);
 static inline void finish(struct query *q)
 {
 	if (q->deferred || (q->best < 0 && q->ubest >= 0))
 		finish_hit(q);
 }
 
-static void finish_hit(struct query *q)
+HOT void finish_hit(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);

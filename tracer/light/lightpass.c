@@ -546,32 +546,33 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 		if (!(tmax > 0) && !(rmax > 0))
 			return;
 		bool more = depth < J->o->max_depth;
-		bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
-		bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
 		/* the spawned rays start off the surface on the side of si.nf (the
 		 * reflected one) or of -si.nf (the transmitted one): the outside of a
 		 * convex object when that is the side of its outward normal */
 		const struct object *out = hx->convex ? h.obj : NULL;
 		bool outside = v_dot(si->nf, h.n) > 0; /* the incoming ray came from outside */
-		double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
-		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
-		bool goT = tmax > 0 && refract && max3(te[0], te[1], te[2]) > cutoff;
-		bool goR = rmax > 0 && reflect && max3(re[0], re[1], re[2]) > cutoff;
 		uint64_t sig0 = sig;
 		depth++;
-		if (tmax > 0 && !goT)
-			add3(w->cut, te);
-		if (goT && rmax > 0) { /* both: the transmitted ray first, by a call */
-			trace(w, so.trans, te, cutoff, depth, si->straight ? nspec : nspec + 1, sig_mix(sig0, h.obj, 1),
-			      outside ? NULL : out);
-		} else if (goT) { /* the transmitted ray alone: on in this loop */
-			r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
-			nspec = si->straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1), from = outside ? NULL : out;
-			continue;
+		if (tmax > 0) {
+			bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
+			double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
+			if (!(refract && max3(te[0], te[1], te[2]) > cutoff)) {
+				add3(w->cut, te);
+			} else if (rmax > 0) { /* both: the transmitted ray first, by a call */
+				trace(w, so.trans, te, cutoff, depth, si->straight ? nspec : nspec + 1,
+				      sig_mix(sig0, h.obj, 1), outside ? NULL : out);
+			} else { /* the transmitted ray alone: on in this loop */
+				r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
+				nspec = si->straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1);
+				from = outside ? NULL : out;
+				continue;
+			}
 		}
 		if (!(rmax > 0))
 			return;
-		if (!goR) {
+		bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
+		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
+		if (!(reflect && max3(re[0], re[1], re[2]) > cutoff)) {
 			add3(w->cut, re);
 			return;
 		}
