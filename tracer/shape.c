@@ -105,17 +105,32 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
 	return true;
 }
 
-bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
-                  bool uv, struct hit *h)
+/* shape_hit_at for sphere o: through its frame, or with its (u,v). */
+static __attribute__((noinline)) bool sphere_hit_at(const struct object *o, const struct ray *r, double t, bool uv,
+                                                    struct hit *h)
 {
-	if (o->kind != OBJ_SPHERE)
-		return shape_intersect(o, r, tmin, tmax, h);
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
 	if (!(uv ? sph_hit_at(o, lr, t, true, &lh) : prim_sphere_at(o->g.sphere.c, o->g.sphere.r, lr, t, &lh)))
 		return false; /* (without uv, the same point and normal inline) */
 	to_world(o, r, &lh, uv, h);
+	return true;
+}
+
+bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
+                  bool uv, struct hit *h)
+{
+	if (o->kind != OBJ_SPHERE)
+		return shape_intersect(o, r, tmin, tmax, h);
+	if (o->xf || uv)
+		return sphere_hit_at(o, r, t, uv, h);
+	/* the common case without a frame or (u,v) (a light ray's, an eye
+	 * ray's without a map): its small frame kept apart from the other's */
+	struct local_hit lh;
+	if (!prim_sphere_at(o->g.sphere.c, o->g.sphere.r, r, t, &lh))
+		return false;
+	to_world(o, r, &lh, false, h);
 	return true;
 }
 
@@ -127,14 +142,27 @@ bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const st
 	return pl_prep_hit_t(p, lr, tmin, tmax, t);
 }
 
-void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
-                        struct hit *h)
+/* shape_plane_hit_at for plane o with a transform. */
+static __attribute__((noinline)) void plane_hit_xf(const struct object *o, const struct pl_prep *p,
+                                                   const struct ray *r, double t, bool uv, struct hit *h)
 {
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
-	pl_prep_hit(p, lr, t, &lh); /* (lh.n is p->n: without a transform, its v_norm is p->nw) */
-	to_world_n(o, r, &lh, uv, h, o->xf ? v_norm(xf_normal(o->xf, lh.n)) : p->nw);
+	pl_prep_hit(p, lr, t, &lh);
+	to_world(o, r, &lh, uv, h);
+}
+
+void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
+                        struct hit *h)
+{
+	if (o->xf) {
+		plane_hit_xf(o, p, r, t, uv, h);
+		return;
+	}
+	struct local_hit lh; /* without a transform (its small frame kept apart from the other's) */
+	pl_prep_hit(p, r, t, &lh); /* (lh.n is p->n, whose v_norm is p->nw) */
+	to_world_n(o, r, &lh, uv, h, p->nw);
 }
 
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)
