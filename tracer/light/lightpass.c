@@ -448,10 +448,17 @@ static bool inert(const struct need *n, const struct oinfo *x)
 
 /* (Asked only before the first bounce, where n->direct holds: after it,
  * every hit is needed whole and trace passes no callback.) */
+static __attribute__((noinline)) bool full_fill(struct worker *w, struct oinfo *x, const struct object *o)
+{
+	oinfo_fill(w, x, o);
+	return !x->still;
+}
+
 static bool full_hit(const void *ctx, const struct object *o)
 {
-	const struct need *n = ctx;
-	return !oinfo_of(n->w, o)->still;
+	struct worker *w = ((const struct need *)ctx)->w;
+	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7]; /* oinfo_of, its fill a tail call */
+	return x->o == o ? !x->still : full_fill(w, x, o);
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
@@ -958,21 +965,29 @@ static void run_item(struct worker *w, const struct item *it)
 	w->reflect = l->photons_reflection;
 	w->band = J->band; /* a spectral pass sets each ray's wavelength */
 	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
-	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
+	/* what every ray of the item reads, in locals: trace writes memory the
+	 * compiler cannot tell apart from these, and would read them again */
+	const struct target T = *t;
+	const struct vec3 pos = l->pos;
+	const double side = (double)T.side;
+	const bool spot = l->kind == LIGHT_SPOT, spectral = J->o->spectral;
+	const long end = it->first + it->count;
+	double em[3] = {w->emitted[0], w->emitted[1], w->emitted[2]}; /* the same sums in the same order */
+	for (long i = it->first; i < end; i++, col = col + 1 == T.side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
 		struct smp_stream ss = smp_start(key, (uint32_t)i); /* smp_get's dimensions 0 and 1, one key */
-		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
-		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
+		double sx = ((double)col + smp_next(&ss)) / side;
+		double sy = ((double)row + smp_next(&ss)) / side;
 		double ph = 2 * M_PI * sy;
-		struct vec3 o = l->pos, d;
+		struct vec3 o = pos, d;
 		if (beam) {
-			d = t->axis;
-			double rr = t->radius * sqrt(sx);
-			o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
+			d = T.axis;
+			double rr = T.radius * sqrt(sx);
+			o = v_add(T.origin, v_add(v_scale(T.t1, rr * cos(ph)), v_scale(T.t2, rr * sin(ph))));
 		} else {
-			double ct = 1 - sx * (1 - t->cosmax), s2 = 1 - ct * ct;
+			double ct = 1 - sx * (1 - T.cosmax), s2 = 1 - ct * ct;
 			double st = sqrt(s2 > 0 ? s2 : 0); /* fmax(0, s2), inline (s2 is never -0) */
-			d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+			d = v_add(v_scale(T.axis, ct), v_add(v_scale(T.t1, st * cos(ph)), v_scale(T.t2, st * sin(ph))));
 		}
 		bool covered = false;
 		for (int k = 0; k < it->target && !covered; k++)
@@ -980,18 +995,20 @@ static void run_item(struct worker *w, const struct item *it)
 		if (covered)
 			continue;
 		double e[3] = {e0[0], e0[1], e0[2]};
-		if (l->kind == LIGHT_SPOT) {
+		if (spot) {
 			double k = opt_spot(l, d);
 			if (k <= 0)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
-		if (J->o->spectral)
-			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
+		if (spectral)
+			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)T.side, e);
 		for (int c = 0; c < 3; c++)
-			w->emitted[c] += e[c];
+			em[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0, NULL);
 	}
+	for (int c = 0; c < 3; c++)
+		w->emitted[c] = em[c];
 }
 
 /* The distinct surfaces of records r[0..nr) and footprints p[0..np) (see
