@@ -29,26 +29,35 @@
 
 #define CHUNK 4096 /* rays per work item */
 
-/* A diffuse landing, kept until the maps exist. */
+/* A diffuse landing, kept until the maps exist: 48 bytes. */
 struct rec {
 	struct illum_splat s;     /* where on the primitive (u,v) and the energy per
 	                             channel (W): first, so the maps read it in place
 	                             (illum_deposit_runs) */
 	const struct object *obj; /* primitive hit */
-	struct vec3 p;            /* world point (for the automatic cell size) */
+};
+
+/* What a record needs besides, only where it is read (rec_has_x): for the
+ * automatic cell size (a surface without illum_map { cell } or {
+ * resolution }) and for shafts. Kept apart, so that a surface with its own
+ * grid (the usual caustic receiver) writes 48 bytes a record, not 80. */
+struct recx {
+	struct vec3 p;            /* world point */
 	double size;              /* shafts: the spread of the corners around it (m), else 0 */
 };
 
-/* A worker's records: r[item0 .. n) are the current work item's; the
- * earlier items' records stay where they were written (in r, or in a
- * block before it, kept in old), since their spans point at them: a full
- * buffer moves on to one twice its size, copying only the current item's
- * (realloc would copy them all, into pages faulted in once more). */
+/* A worker's records (or their recx): r[item0 .. n) are the current work
+ * item's; the earlier items' records stay where they were written (in r,
+ * or in a block before it, kept in old), since their spans point at them:
+ * a full buffer moves on to one twice its size, copying only the current
+ * item's (realloc would copy them all, into pages faulted in once more).
+ * Elements of sz bytes. */
 struct recbuf {
-	struct rec *r;
+	char *r;
 	long n, cap, item0;
-	struct rec **old; /* the earlier blocks (freed with r) */
+	char **old; /* the earlier blocks (freed with r) */
 	long nold;
+	size_t sz;
 };
 
 /* What one light aims at one specular object: from a point or spot light,
@@ -114,6 +123,7 @@ struct span {
 	int w;
 	const struct rec *r;
 	long nr, p0, np;
+	const struct recx *x;       /* the recx of those records that have one (rec_has_x) */
 	int nd;
 	const struct object *d[DISTINCT_MAX];
 };
@@ -122,6 +132,7 @@ struct span {
 struct seg {
 	const struct rec *r;
 	long nr;
+	const struct recx *x;
 	const struct prec *p;
 	long np;
 	int nd;
@@ -162,7 +173,10 @@ struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
 	struct band band;           /* the light the current ray carries */
-	struct recbuf recs;
+	struct recbuf recs;         /* struct rec */
+	struct recbuf recx;         /* struct recx, of the records that have one */
+	const struct object *xo;    /* rec_has_x for xo is xneed (a cache) */
+	bool xneed;
 	bool corners;               /* tracing shaft corners: landings go to lands */
 	struct landbuf lands;
 	struct precbuf precs;
@@ -332,9 +346,9 @@ static void land(struct worker *w, const struct hit *h, const double e[3], uint6
 static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 {
 	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
-	struct rec *r = mem_alloc_huge(sizeof *r * (size_t)cap); /* (from 4 MiB: fewer page faults) */
+	char *r = mem_alloc_huge(rb->sz * (size_t)cap); /* (from 4 MiB: fewer page faults) */
 	if (keep)
-		memcpy(r, rb->r + rb->item0, sizeof *r * (size_t)keep);
+		memcpy(r, rb->r + rb->sz * (size_t)rb->item0, rb->sz * (size_t)keep);
 	if (rb->item0 > 0) { /* earlier items' records are in it */
 		rb->old = mem_realloc(rb->old, sizeof *rb->old * (size_t)(rb->nold + 1));
 		rb->old[rb->nold++] = rb->r;
@@ -344,11 +358,46 @@ static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 	rb->r = r, rb->cap = cap, rb->n = keep, rb->item0 = 0;
 }
 
+/* The next element of rb, to fill. */
+static inline void *recbuf_push(struct recbuf *rb)
+{
+	if (rb->n == rb->cap)
+		recbuf_grow(rb);
+	return rb->r + rb->sz * (size_t)rb->n++;
+}
+
+/* The current item's elements (NULL when there are none). */
+static void *recbuf_item(const struct recbuf *rb)
+{
+	return rb->n > rb->item0 ? rb->r + rb->sz * (size_t)rb->item0 : NULL;
+}
+
 static void recbuf_free(struct recbuf *rb)
 {
 	for (long i = 0; i < rb->nold; i++)
 		free(rb->old[i]);
 	free(rb->old), free(rb->r);
+}
+
+/* Whether a record on ob keeps its struct recx: with shafts (sizes, and
+ * shaft_spec's points), and on a surface whose grid is chosen from where
+ * the records landed (no illum_map { cell } or { resolution }, as
+ * choose_spec asks). */
+static bool rec_has_x(const struct lp_opts *o, const struct object *ob)
+{
+	struct illum_spec own = obj_illum(ob);
+	return o->shafts || !(own.resolution > 0 || own.cell > 0);
+}
+
+/* Appends a record (and its recx where it keeps one). */
+static inline void push_rec(struct worker *w, const struct illum_splat *s, const struct object *ob, struct vec3 p,
+                            double size)
+{
+	*(struct rec *)recbuf_push(&w->recs) = (struct rec){*s, ob};
+	if (ob != w->xo)
+		w->xo = ob, w->xneed = rec_has_x(w->job->o, ob);
+	if (w->xneed)
+		*(struct recx *)recbuf_push(&w->recx) = (struct recx){p, size};
 }
 
 static void record(struct worker *w, struct hit *h, const struct ray *r, const double e[3], uint64_t sig)
@@ -359,10 +408,7 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 		land(w, h, e, sig_mix(sig, h->obj, 16 + chart(h)));
 		return;
 	}
-	struct recbuf *rb = &w->recs;
-	if (rb->n == rb->cap)
-		recbuf_grow(rb);
-	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
+	push_rec(w, &(struct illum_splat){h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0);
 }
 
 /* acc += e (written out: GCC does not unroll the loop at -O2, and every
@@ -815,11 +861,8 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 							double x = v_len(v_sub(w->lands.l[m].p, L->p));
 							size = x > size ? x : size; /* fmax: size is never NaN */
 						}
-				struct recbuf *rb = &w->recs;
-				if (rb->n == rb->cap)
-					recbuf_grow(rb);
-				rb->r[rb->n++] = (struct rec){{L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
-				                              L->obj, L->p, size};
+				push_rec(w, &(struct illum_splat){L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
+				         L->obj, L->p, size);
 				continue;
 			}
 			if (k > 0)
@@ -1001,13 +1044,14 @@ static void work(void *ctx, long k, int worker)
 	struct job *J = w->job;
 	long p0 = w->precs.n;
 	w->recs.item0 = w->recs.n;
+	w->recx.item0 = w->recx.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	long nr = w->recs.n - w->recs.item0;
-	*sp = (struct span){worker, nr ? w->recs.r + w->recs.item0 : NULL, nr, p0, w->precs.n - p0, 0, {NULL}};
+	*sp = (struct span){worker, recbuf_item(&w->recs), w->recs.n - w->recs.item0, p0, w->precs.n - p0,
+	                    recbuf_item(&w->recx), 0, {NULL}};
 	list_distinct(sp, sp->r, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
 	progress_step(J->o->progress, 1);
 }
@@ -1234,7 +1278,9 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 }
 
 /* One surface's records gathered for its map: segment g's records go to
- * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item). */
+ * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item).
+ * pts and psz are filled from the records' recx (all of one surface's
+ * records have one, or none do: rec_has_x). */
 struct gather {
 	const struct seg *sg;
 	const long *off;
@@ -1247,14 +1293,14 @@ static void gather_work(void *ctx, long g, int worker)
 {
 	(void)worker;
 	const struct gather *G = ctx;
+	const struct recx *x = G->sg[g].x;
 	for (long i = 0, at = G->off[g]; i < G->sg[g].nr; i++, at++) {
-		const struct rec *rc = &G->sg[g].r[i];
 		if (G->pts)
-			G->pts[at] = rc->p;
+			G->pts[at] = x[i].p;
 		if (G->psz)
-			G->psz[at] = rc->size;
+			G->psz[at] = x[i].size;
 		if (G->sp)
-			G->sp[at] = rc->s;
+			G->sp[at] = G->sg[g].r[i].s;
 	}
 }
 
@@ -1327,23 +1373,37 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 		for (long g = 0; g < nseg; g++)
 			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r};
 	}
+	/* which surfaces' records have their recx (rec_has_x): pts and psz are
+	 * read only for those (choose_spec and shaft_spec return a surface's own
+	 * grid at once; sizes are read only with shafts, where all have one) */
+	bool *hasx = mem_alloc(sizeof *hasx * (size_t)(n ? n : 1));
+	for (int k = 0; k < n; k++)
+		hasx[k] = rec_has_x(o, objs[k]);
 	if (!ki && (pts || sp)) { /* one surface: the segments' records in order, on the threads */
 		long *off = mem_alloc(sizeof *off * (size_t)(nseg + 1));
 		off[0] = 0;
 		for (long g = 0; g < nseg; g++)
 			off[g + 1] = off[g] + sg[g].nr;
-		parallel_for(nseg, o->threads, gather_work, &(struct gather){sg, off, pts, psz, sp});
+		bool x = n && hasx[0];
+		parallel_for(nseg, o->threads, gather_work, &(struct gather){sg, off, x ? pts : NULL, x ? psz : NULL, sp});
+		if (!x && psz)
+			memset(psz, 0, sizeof *psz * (size_t)total);
 		free(off);
 	}
-	for (long g = 0; g < nseg && ki; g++)
+	for (long g = 0; g < nseg && ki; g++) {
+		const struct recx *x = sg[g].x;
 		for (long i = 0; i < sg[g].nr; i++, t++) {
 			const struct rec *rc = &sg[g].r[i];
 			int k = ki[t];
 			long at = start[k] + fill[k]++;
-			pts[at] = rc->p;
-			psz[at] = rc->size;
+			if (hasx[k])
+				pts[at] = x->p, psz[at] = x->size, x++;
+			else
+				pts[at] = v3(0, 0, 0), psz[at] = 0;
 			sp[at] = rc->s;
 		}
+	}
+	free(hasx);
 	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < sg[g].np; i++) {
@@ -1487,15 +1547,15 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	for (int i = 0; i < nt; i++)
-		ws[i].job = &J;
+		ws[i].job = &J, ws[i].recs.sz = sizeof(struct rec), ws[i].recx.sz = sizeof(struct recx);
 	parallel_for(J.nitems, nt, work, ws);
 	progress_end(o->progress);
-	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
+	struct recbuf *bufs = mem_calloc(2 * (size_t)nt, sizeof *bufs); /* recs, then recx */
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nt; i++) {
-		bufs[i] = ws[i].recs;
+		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].recx;
 		pbufs[i] = ws[i].precs;
 		free(ws[i].lands.l);
 		acc.segments += ws[i].segments;
@@ -1512,8 +1572,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->r, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np,
-		                     p->nd, p->d};
+		sg[k] = (struct seg){p->r, p->nr, p->x, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np, p->nd, p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
 	free(sg), free(J.spans);
@@ -1534,7 +1593,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		recbuf_free(&bufs[i]), free(pbufs[i].r);
+		recbuf_free(&bufs[i]), recbuf_free(&bufs[nt + i]), free(pbufs[i].r);
 	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
