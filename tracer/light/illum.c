@@ -835,12 +835,20 @@ struct prep {
 	double fu, fv;      /* the weights of the upper ones */
 };
 
+/* Where splat q's prep lives: in D->p, or (runs with scratch: D->p NULL) in
+ * the splat itself, fu and fv over its u and v and (i,j) in its scratch
+ * bytes. */
+struct prep_at {
+	char *ij;           /* int32_t i, j (memcpy: the caller's memory) */
+	double *f;          /* fu, fv */
+};
+
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_run *runs;
 	const long *off;    /* run k's splats are [off[k], off[k+1]) */
 	long nruns;
-	struct prep *p;
+	struct prep *p;     /* step 1's results; NULL: in the splats (struct prep_at) */
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
@@ -864,6 +872,31 @@ static const struct illum_splat *run_at(const struct illum_run *r, long i)
 	return (const struct illum_splat *)(const void *)((const char *)r->s + (size_t)i * r->stride);
 }
 
+/* Splat sp's (number q, of run r) prep. */
+__attribute__((always_inline)) static inline struct prep_at prep_of(const struct deposit_job *D, long q,
+                                                                    const struct illum_run *r,
+                                                                    const struct illum_splat *sp)
+{
+	if (D->p)
+		return (struct prep_at){(char *)&D->p[q].i, &D->p[q].fu};
+	char *e = (char *)(uintptr_t)sp; /* (the caller gave these bytes: illum_run.scratch) */
+	return (struct prep_at){e + r->scratch, (double *)(void *)e};
+}
+
+/* The run holding splat lo (off[r] <= lo < off[r+1]). */
+static long run_of(const struct deposit_job *D, long lo)
+{
+	long r0 = 0, r1 = D->nruns;
+	while (r1 - r0 > 1) {
+		long mid = (r0 + r1) / 2;
+		if (D->off[mid] <= lo)
+			r0 = mid;
+		else
+			r1 = mid;
+	}
+	return r0;
+}
+
 /* Step 1 for chunk k of the splats (a parallel_for item). */
 static void prep_work(void *ctx, long k, int worker)
 {
@@ -875,35 +908,40 @@ static void prep_work(void *ctx, long k, int worker)
 	J->valid = 0;
 	J->emax = 0;
 	J->white = true;
-	long r0 = 0, r1 = D->nruns; /* the run holding splat lo: off[r0] <= lo < off[r0+1] */
-	while (r1 - r0 > 1) {
-		long mid = (r0 + r1) / 2;
-		if (D->off[mid] <= lo)
-			r0 = mid;
-		else
-			r1 = mid;
-	}
+	long r0 = run_of(D, lo);
 	for (long q = lo; q < hi; q++) {
 		while (q >= D->off[r0 + 1])
 			r0++;
 		const struct illum_splat *sp = run_at(&D->runs[r0], q - D->off[r0]);
-		struct prep *p = &D->p[q];
-		double e[3], x = energy_max(sp->e);
+		struct prep_at p = prep_of(D, q, &D->runs[r0], sp);
+		double e[3], x = energy_max(sp->e), u = sp->u, v = sp->v, fu, fv;
 		J->emax = x > J->emax ? x : J->emax;
-		p->i = INT32_MIN;
-		if (!isfinite(sp->u) || !isfinite(sp->v)) {
+		int32_t ij[2] = {INT32_MIN, 0};
+		if (!isfinite(u) || !isfinite(v)) {
 			J->dropped++;
-			continue;
+		} else if (energy_clean(sp->e, e)) {
+			J->white = J->white && e[0] == e[1] && e[1] == e[2];
+			long iu[2], iv[2];
+			axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
+			axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
+			ij[0] = (int32_t)iu[0], ij[1] = (int32_t)iv[0];
+			p.f[0] = fu, p.f[1] = fv;
+			J->valid++;
 		}
-		if (!energy_clean(sp->e, e))
-			continue;
-		J->white = J->white && e[0] == e[1] && e[1] == e[2];
-		long iu[2], iv[2];
-		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &p->fu);
-		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &p->fv);
-		p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
-		J->valid++;
+		memcpy(p.ij, ij, sizeof ij);
 	}
+}
+
+/* Splat q's prep (i, j, fu, fv). */
+__attribute__((always_inline)) static inline struct prep prep_get(struct prep_at p)
+{
+	struct prep x;
+	int32_t ij[2];
+	memcpy(ij, p.ij, sizeof ij);
+	x.i = ij[0], x.j = ij[1];
+	if (x.i != INT32_MIN)
+		x.fu = p.f[0], x.fv = p.f[1];
+	return x;
 }
 
 /* Step 2's sample from chunk k (a parallel_for item): the tiles of valid
@@ -914,11 +952,28 @@ static void sample_work(void *ctx, long k, int worker)
 	(void)worker;
 	const struct deposit_job *J = (const struct deposit_job *)ctx + k, *D = ctx;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n, c = J->c0;
-	for (long q = lo; q < hi; q++)
-		if (D->p[q].i != INT32_MIN && c++ % D->stride == 0) {
-			D->ti[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].i);
-			D->tj[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].j);
+	if (J->valid == hi - lo) { /* every splat valid (the usual case): straight to the sampled ones */
+		long q = lo + (D->stride - c % D->stride) % D->stride, r = run_of(D, q);
+		for (; q < hi; q += D->stride) {
+			while (q >= D->off[r + 1])
+				r++;
+			int32_t ij[2];
+			memcpy(ij, prep_of(D, q, &D->runs[r], run_at(&D->runs[r], q - D->off[r])).ij, sizeof ij);
+			D->ti[(c + q - lo) / D->stride] = (int32_t)floordiv(ij[0]);
+			D->tj[(c + q - lo) / D->stride] = (int32_t)floordiv(ij[1]);
 		}
+		return;
+	}
+	for (long q = lo, r = run_of(D, lo); q < hi; q++) {
+		while (q >= D->off[r + 1])
+			r++;
+		int32_t ij[2];
+		memcpy(ij, prep_of(D, q, &D->runs[r], run_at(&D->runs[r], q - D->off[r])).ij, sizeof ij);
+		if (ij[0] != INT32_MIN && c++ % D->stride == 0) {
+			D->ti[(c - 1) / D->stride] = (int32_t)floordiv(ij[0]);
+			D->tj[(c - 1) / D->stride] = (int32_t)floordiv(ij[1]);
+		}
+	}
 }
 
 /* Step 2: the window, placed where most deposits land (the sample taken
@@ -1037,7 +1092,8 @@ static void accumulate_work(void *ctx, long k, int worker)
 	for (long q = 0, r = 0; q < D->n; q++) {
 		while (q >= D->off[r + 1]) /* r: the run of splat q */
 			r++;
-		const struct prep *p = &D->p[q];
+		const struct illum_splat *sp = run_at(&D->runs[r], q - D->off[r]);
+		struct prep pq = prep_get(prep_of(D, q, &D->runs[r], sp)), *p = &pq;
 		if (p->i == INT32_MIN)
 			continue;
 		long j0 = p->j, j1 = ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1;
@@ -1050,7 +1106,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 		}
 		long i0 = p->i, i1 = ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1;
 		double e[3];
-		energy_clean(run_at(&D->runs[r], q - D->off[r])->e, e);
+		energy_clean(sp->e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
 		double u0 = 1 - p->fu, v0 = 1 - p->fv;
 		if (mine0) {
@@ -1081,7 +1137,7 @@ static void join_work(void *ctx, long k, int worker)
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
-	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s}, 1, threads);
+	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s, 0}, 1, threads);
 }
 
 void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long nruns, int threads)
@@ -1099,8 +1155,12 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 		nb = 1;
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
+	bool inplace = true; /* every run has its scratch: no prep array */
+	for (long r = 0; r < nruns; r++)
+		inplace = inplace && (runs[r].scratch || runs[r].n <= 0);
 	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
-	                            .p = mem_alloc_huge(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
+	                            .p = inplace ? NULL : mem_alloc_huge(sizeof *D->p * (size_t)n), .n = n,
+	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, prep_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	bool white = true;

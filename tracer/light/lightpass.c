@@ -346,7 +346,11 @@ static void land(struct worker *w, const struct hit *h, const double e[3], uint6
 static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 {
 	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
-	char *r = mem_alloc_huge(rb->sz * (size_t)cap); /* (from 4 MiB: fewer page faults) */
+	if (rb->cap && (size_t)cap * rb->sz < MEM_HUGE_MIN) /* past the first block, MEM_HUGE_MIN at
+	                                                        least (huge pages: fewer page faults;
+	                                                        only the pages written are zeroed) */
+		cap = (long)((MEM_HUGE_MIN + rb->sz - 1) / rb->sz);
+	char *r = mem_alloc_huge(rb->sz * (size_t)cap);
 	if (keep)
 		memcpy(r, rb->r + rb->sz * (size_t)rb->item0, rb->sz * (size_t)keep);
 	if (rb->item0 > 0) { /* earlier items' records are in it */
@@ -1346,7 +1350,8 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
 	long *pstart = mem_calloc((size_t)n + 1, sizeof *pstart);
 	/* one surface and point deposits only (the usual case): its map reads
-	 * the records where they are, and their points are copied only when
+	 * the records where they are (and keeps its working values in them:
+	 * their obj is not read again), and their points are copied only when
 	 * they choose its cell */
 	bool inplace = n == 1 && ptotal == 0;
 	struct illum_spec own = n ? obj_illum(objs[0]) : (struct illum_spec){0, 0};
@@ -1371,7 +1376,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	if (inplace) {
 		runs = mem_alloc(sizeof *runs * (size_t)nseg);
 		for (long g = 0; g < nseg; g++)
-			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r};
+			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, offsetof(struct rec, obj)};
 	}
 	/* which surfaces' records have their recx (rec_has_x): pts and psz are
 	 * read only for those (choose_spec and shaft_spec return a surface's own
