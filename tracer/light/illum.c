@@ -1080,6 +1080,43 @@ __attribute__((always_inline)) static inline void band_add(struct band_pos *P, l
 		acc_add(n, w, e, P->inv);
 }
 
+/* fx_from(d) for d·2^96 in [0, 2^128) (a deposit into a map whose sums
+ * cannot saturate): the same rounding below 2^52, and above it, where a
+ * double is an integer, its bits shifted into place instead of two
+ * conversions to unsigned (each a compare and a fix-up on x86-64). */
+static inline struct fx fx_from_fast(double d)
+{
+	double m = d * 0x1p96;
+	if (m < 0x1p63) {
+		if (m < 0x1p52) /* rint, as fx_from */
+			m = (m + 0x1p52) - 0x1p52;
+		return (struct fx){m > 0 ? (uint64_t)(int64_t)m : 0, 0};
+	}
+	uint64_t b;
+	memcpy(&b, &m, sizeof b);
+	int e = (int)(b >> 52) - 1075; /* m = mant·2^e, e in [11, 75] */
+	uint64_t mant = (b & 0xfffffffffffffull) | 0x10000000000000ull;
+	if (e < 64)
+		return (struct fx){mant << e, mant >> (64 - e)};
+	return (struct fx){0, mant << (e - 64)};
+}
+
+/* band_add on a grey map whose sums cannot saturate (P->grey, P->finite),
+ * e the splat's one channel. */
+__attribute__((always_inline)) static inline void grey_add(struct band_pos *P, long i, long j, double w, double e)
+{
+	if (!(w > 0))
+		return;
+	long ti = floordiv(i), tj = floordiv(j);
+	if (ti != P->ti || tj != P->tj)
+		P->t = band_tile(P->B, P->m, ti, tj), P->ti = ti, P->tj = tj;
+	struct gacc *g = &P->t->g[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
+	double x = w * e;
+	fx_add_fast(&g->e, fx_from_fast(x * P->inv));
+	g->sq += (float)(x * x);
+	g->count += g->count < UINT32_MAX;
+}
+
 /* Step 3 for band k of nb (a parallel_for item): its tiles are made and
  * its nodes accumulated, deposits in order. */
 static void accumulate_work(void *ctx, long k, int worker)
@@ -1105,6 +1142,34 @@ static void accumulate_work(void *ctx, long k, int worker)
 				continue;
 		}
 		long i0 = p->i, i1 = ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1;
+		if (P.grey && P.finite && i1 != i0 && j1 != j0) {
+			/* the usual case: a grey map (so every splat is white, and
+			 * valid ones have e[0] > 0) whose sums cannot saturate. The
+			 * four nodes are distinct, each takes one addition, so they
+			 * may be visited tile by tile: down the columns when the
+			 * splat spans two tile columns, else along the rows */
+			double e0 = sp->e[0], u0 = 1 - p->fu, v0 = 1 - p->fv;
+			if (floordiv(i0) != floordiv(i1)) {
+				if (mine0)
+					grey_add(&P, i0, j0, u0 * v0, e0);
+				if (mine1) {
+					grey_add(&P, i0, j1, u0 * p->fv, e0);
+					grey_add(&P, i1, j1, p->fu * p->fv, e0);
+				}
+				if (mine0)
+					grey_add(&P, i1, j0, p->fu * v0, e0);
+			} else {
+				if (mine0) {
+					grey_add(&P, i0, j0, u0 * v0, e0);
+					grey_add(&P, i1, j0, p->fu * v0, e0);
+				}
+				if (mine1) {
+					grey_add(&P, i1, j1, p->fu * p->fv, e0);
+					grey_add(&P, i0, j1, u0 * p->fv, e0);
+				}
+			}
+			continue;
+		}
 		double e[3];
 		energy_clean(sp->e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
