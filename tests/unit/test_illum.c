@@ -431,7 +431,7 @@ static void t_runs(void)
 	struct illum_run runs[R];
 	long at = 0, next = 0;
 	for (int k = 0; k < R; k++) {
-		runs[k] = (struct illum_run){rec + at, len[k], sizeof *rec, 0};
+		runs[k] = (struct illum_run){rec + at, len[k], sizeof *rec, false};
 		for (long i = 0; i < len[k]; i++)
 			rec[at++] = (struct rec_like){sp[next++], &o, {(double)i, -1, 0, 0}};
 		for (int i = 0; i < 2; i++) /* not splats of the map: they must not count */
@@ -450,28 +450,37 @@ static void t_runs(void)
 		illum_deposit_runs(m, runs, R, threads[t]);
 		check_same_map(one, s1, rem1, m, threads[t]);
 	}
-	/* with scratch (each record's obj): the same map, the records' (u,v)
-	 * and obj overwritten, their energies and the records between the runs
-	 * untouched */
-	static struct rec_like cp[N + 2 * R];
-	struct illum_run sruns[R];
-	for (int k = 0; k < R; k++)
-		sruns[k] = runs[k], sruns[k].s = cp + ((const struct rec_like *)runs[k].s - rec),
-		sruns[k].scratch = offsetof(struct rec_like, obj);
-	for (int t = 0; t < 3; t++) {
-		memcpy(cp, rec, sizeof cp);
-		struct illum_map *m = illum_new_like(one);
-		illum_deposit_runs(m, sruns, R, threads[t]);
-		check_same_map(one, s1, rem1, m, threads[t]);
-		long moved = 0, same = 0;
-		for (long i = 0; i < N + 2 * R; i++) {
-			moved += cp[i].obj != rec[i].obj;
-			same += memcmp(cp[i].s.e, rec[i].s.e, sizeof cp[i].s.e) == 0 && cp[i].pad[0] == rec[i].pad[0];
-			if (!rec[i].obj) /* between the runs: as it was */
-				CHECK(memcmp(&cp[i], &rec[i], sizeof cp[i]) == 0);
-		}
-		CHECK(moved == N && same == N + 2 * R);
+	/* grey runs (struct illum_gsplat first in each record): the map of the
+	 * same splats given white as illum_splats, on 1, 2, 3 threads */
+	static struct gsrec {
+		struct illum_gsplat s;
+		const void *obj;
+	} gr[N + 2 * R];
+	static struct illum_splat ws[N];
+	struct illum_run gruns[R];
+	for (int k = 0; k < N; k++)
+		ws[k] = (struct illum_splat){sp[k].u, sp[k].v, {sp[k].e[0], sp[k].e[0], sp[k].e[0]}};
+	at = next = 0;
+	for (int k = 0; k < R; k++) {
+		gruns[k] = (struct illum_run){gr + at, len[k], sizeof *gr, true};
+		for (long i = 0; i < len[k]; i++, next++)
+			gr[at++] = (struct gsrec){{ws[next].u, ws[next].v, ws[next].e[0]}, &o};
+		for (int i = 0; i < 2; i++)
+			gr[at++] = (struct gsrec){{0.5, 0.5, 1e3}, NULL};
 	}
+	struct illum_map *white = illum_new_like(one);
+	illum_deposit_all(white, ws, N, 1);
+	double remw[3];
+	illum_finish(white, true, remw);
+	struct nodes *sw = nodes_of(white);
+	CHECK(sw->n > 1000 && sw->n < MAXN && remw[0] > 0 && remw[1] == remw[0]);
+	for (int t = 0; t < 3; t++) {
+		struct illum_map *m = illum_new_like(one);
+		illum_deposit_runs(m, gruns, R, threads[t]);
+		check_same_map(white, sw, remw, m, threads[t]);
+	}
+	free(sw);
+	illum_free(white);
 	/* no splats at all: nothing happens */
 	struct illum_map *m = illum_new_like(one);
 	illum_deposit_runs(m, runs, 1, 2);

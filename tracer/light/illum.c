@@ -820,35 +820,24 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 
 /* ---- batched point deposits (illum_deposit_all) ----
  * Four steps, none of which hashes per deposit once the window holds the
- * deposits' tiles:
- *   1. every splat is split onto its nodes (axis_split) once, in parallel
- *      chunks: a `prep` each;
- *   2. one thread places the window over a sample of the preps' tiles;
+ * deposits' tiles, and none of which writes anything per splat (a splat's
+ * nodes are worked out where they are needed: an array of them would be
+ * memory the kernel zeroes, written and read back):
+ *   1. the splats are scanned in parallel chunks: the valid ones counted,
+ *      the largest energy and whether all are white;
+ *   2. one thread places the window over a sample of their tiles (every
+ *      stride-th valid splat, split onto its nodes by axis_split);
  *   3. the accumulators are added band by band, one thread per band of
  *      tile rows (band_of), each band's deposits in splat order, making the
  *      tiles it needs from its own arena: a node receives the same
  *      additions in the same order for any thread count, so even its float
  *      Σw² is bit-identical;
  *   4. the bands' new tiles join the map's list (pointers only). */
-struct prep {
-	int32_t i, j;       /* the lower nodes of the split (axis_split's i0), INT32_MIN: no deposit */
-	double fu, fv;      /* the weights of the upper ones */
-};
-
-/* Where splat q's prep lives: in D->p, or (runs with scratch: D->p NULL) in
- * the splat itself, fu and fv over its u and v and (i,j) in its scratch
- * bytes. */
-struct prep_at {
-	char *ij;           /* int32_t i, j (memcpy: the caller's memory) */
-	double *f;          /* fu, fv */
-};
-
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_run *runs;
 	const long *off;    /* run k's splats are [off[k], off[k+1]) */
 	long nruns;
-	struct prep *p;     /* step 1's results; NULL: in the splats (struct prep_at) */
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
@@ -866,21 +855,21 @@ struct deposit_job {
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
 
-/* Splat i of run r. */
-static const struct illum_splat *run_at(const struct illum_run *r, long i)
-{
-	return (const struct illum_splat *)(const void *)((const char *)r->s + (size_t)i * r->stride);
-}
+/* A splat as the steps read it. */
+struct uve {
+	double u, v, e[3];
+};
 
-/* Splat sp's (number q, of run r) prep. */
-__attribute__((always_inline)) static inline struct prep_at prep_of(const struct deposit_job *D, long q,
-                                                                    const struct illum_run *r,
-                                                                    const struct illum_splat *sp)
+/* Splat i of run r (an illum_splat, or an illum_gsplat in a grey run). */
+__attribute__((always_inline)) static inline struct uve run_at(const struct illum_run *r, long i)
 {
-	if (D->p)
-		return (struct prep_at){(char *)&D->p[q].i, &D->p[q].fu};
-	char *e = (char *)(uintptr_t)sp; /* (the caller gave these bytes: illum_run.scratch) */
-	return (struct prep_at){e + r->scratch, (double *)(void *)e};
+	const void *p = (const char *)r->s + (size_t)i * r->stride;
+	if (r->grey) {
+		const struct illum_gsplat *g = p;
+		return (struct uve){g->u, g->v, {g->e, g->e, g->e}};
+	}
+	const struct illum_splat *sp = p;
+	return (struct uve){sp->u, sp->v, {sp->e[0], sp->e[1], sp->e[2]}};
 }
 
 /* The run holding splat lo (off[r] <= lo < off[r+1]). */
@@ -897,12 +886,17 @@ static long run_of(const struct deposit_job *D, long lo)
 	return r0;
 }
 
+/* Does splat s deposit? (Finite (u,v), some energy; e its energy cleaned.) */
+__attribute__((always_inline)) static inline bool splat_valid(const struct uve *s, double e[3])
+{
+	return isfinite(s->u) && isfinite(s->v) && energy_clean(s->e, e);
+}
+
 /* Step 1 for chunk k of the splats (a parallel_for item). */
-static void prep_work(void *ctx, long k, int worker)
+static void scan_work(void *ctx, long k, int worker)
 {
 	(void)worker;
 	struct deposit_job *J = (struct deposit_job *)ctx + k, *D = (struct deposit_job *)ctx;
-	const struct illum_map *m = D->m;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
 	J->valid = 0;
@@ -912,36 +906,27 @@ static void prep_work(void *ctx, long k, int worker)
 	for (long q = lo; q < hi; q++) {
 		while (q >= D->off[r0 + 1])
 			r0++;
-		const struct illum_splat *sp = run_at(&D->runs[r0], q - D->off[r0]);
-		struct prep_at p = prep_of(D, q, &D->runs[r0], sp);
-		double e[3], x = energy_max(sp->e), u = sp->u, v = sp->v, fu, fv;
+		struct uve sp = run_at(&D->runs[r0], q - D->off[r0]);
+		double e[3], x = energy_max(sp.e);
 		J->emax = x > J->emax ? x : J->emax;
-		int32_t ij[2] = {INT32_MIN, 0};
-		if (!isfinite(u) || !isfinite(v)) {
+		if (!isfinite(sp.u) || !isfinite(sp.v)) {
 			J->dropped++;
-		} else if (energy_clean(sp->e, e)) {
+		} else if (energy_clean(sp.e, e)) {
 			J->white = J->white && e[0] == e[1] && e[1] == e[2];
-			long iu[2], iv[2];
-			axis_split(&m->ax[0], u, &iu[0], &iu[1], &fu);
-			axis_split(&m->ax[1], v, &iv[0], &iv[1], &fv);
-			ij[0] = (int32_t)iu[0], ij[1] = (int32_t)iv[0];
-			p.f[0] = fu, p.f[1] = fv;
 			J->valid++;
 		}
-		memcpy(p.ij, ij, sizeof ij);
 	}
 }
 
-/* Splat q's prep (i, j, fu, fv). */
-__attribute__((always_inline)) static inline struct prep prep_get(struct prep_at p)
+/* Sample entry c / stride: the tile of splat s. */
+static void sample_put(const struct deposit_job *D, long c, const struct uve *s)
 {
-	struct prep x;
-	int32_t ij[2];
-	memcpy(ij, p.ij, sizeof ij);
-	x.i = ij[0], x.j = ij[1];
-	if (x.i != INT32_MIN)
-		x.fu = p.f[0], x.fv = p.f[1];
-	return x;
+	long i0, i1, j0, j1;
+	double f;
+	axis_split(&D->m->ax[0], s->u, &i0, &i1, &f);
+	axis_split(&D->m->ax[1], s->v, &j0, &j1, &f);
+	D->ti[c / D->stride] = (int32_t)floordiv(i0);
+	D->tj[c / D->stride] = (int32_t)floordiv(j0);
 }
 
 /* Step 2's sample from chunk k (a parallel_for item): the tiles of valid
@@ -957,22 +942,18 @@ static void sample_work(void *ctx, long k, int worker)
 		for (; q < hi; q += D->stride) {
 			while (q >= D->off[r + 1])
 				r++;
-			int32_t ij[2];
-			memcpy(ij, prep_of(D, q, &D->runs[r], run_at(&D->runs[r], q - D->off[r])).ij, sizeof ij);
-			D->ti[(c + q - lo) / D->stride] = (int32_t)floordiv(ij[0]);
-			D->tj[(c + q - lo) / D->stride] = (int32_t)floordiv(ij[1]);
+			struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+			sample_put(D, c + q - lo, &sp);
 		}
 		return;
 	}
 	for (long q = lo, r = run_of(D, lo); q < hi; q++) {
 		while (q >= D->off[r + 1])
 			r++;
-		int32_t ij[2];
-		memcpy(ij, prep_of(D, q, &D->runs[r], run_at(&D->runs[r], q - D->off[r])).ij, sizeof ij);
-		if (ij[0] != INT32_MIN && c++ % D->stride == 0) {
-			D->ti[(c - 1) / D->stride] = (int32_t)floordiv(ij[0]);
-			D->tj[(c - 1) / D->stride] = (int32_t)floordiv(ij[1]);
-		}
+		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		double e[3];
+		if (splat_valid(&sp, e) && c++ % D->stride == 0)
+			sample_put(D, c - 1, &sp);
 	}
 }
 
@@ -1129,11 +1110,15 @@ static void accumulate_work(void *ctx, long k, int worker)
 	for (long q = 0, r = 0; q < D->n; q++) {
 		while (q >= D->off[r + 1]) /* r: the run of splat q */
 			r++;
-		const struct illum_splat *sp = run_at(&D->runs[r], q - D->off[r]);
-		struct prep pq = prep_get(prep_of(D, q, &D->runs[r], sp)), *p = &pq;
-		if (p->i == INT32_MIN)
+		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		double e[3];
+		/* a grey map's splats are white: the valid ones have e[0] > 0 */
+		bool fast = P.grey && P.finite;
+		if (fast ? !(isfinite(sp.u) && isfinite(sp.v) && sp.e[0] > 0) : !splat_valid(&sp, e))
 			continue;
-		long j0 = p->j, j1 = ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1;
+		long j0, j1, i0, i1;
+		double fu, fv;
+		axis_split(ay, sp.v, &j0, &j1, &fv);
 		bool mine0 = true, mine1 = true;
 		if (D->nb > 1) {
 			mine0 = band_of(j0, D->nb) == (int)k;
@@ -1141,46 +1126,46 @@ static void accumulate_work(void *ctx, long k, int worker)
 			if (!mine0 && !mine1)
 				continue;
 		}
-		long i0 = p->i, i1 = ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1;
-		if (P.grey && P.finite && i1 != i0 && j1 != j0) {
+		axis_split(ax, sp.u, &i0, &i1, &fu);
+		if (fast && i1 != i0 && j1 != j0) {
 			/* the usual case: a grey map (so every splat is white, and
 			 * valid ones have e[0] > 0) whose sums cannot saturate. The
 			 * four nodes are distinct, each takes one addition, so they
 			 * may be visited tile by tile: down the columns when the
 			 * splat spans two tile columns, else along the rows */
-			double e0 = sp->e[0], u0 = 1 - p->fu, v0 = 1 - p->fv;
+			double e0 = sp.e[0], u0 = 1 - fu, v0 = 1 - fv;
 			if (floordiv(i0) != floordiv(i1)) {
 				if (mine0)
 					grey_add(&P, i0, j0, u0 * v0, e0);
 				if (mine1) {
-					grey_add(&P, i0, j1, u0 * p->fv, e0);
-					grey_add(&P, i1, j1, p->fu * p->fv, e0);
+					grey_add(&P, i0, j1, u0 * fv, e0);
+					grey_add(&P, i1, j1, fu * fv, e0);
 				}
 				if (mine0)
-					grey_add(&P, i1, j0, p->fu * v0, e0);
+					grey_add(&P, i1, j0, fu * v0, e0);
 			} else {
 				if (mine0) {
 					grey_add(&P, i0, j0, u0 * v0, e0);
-					grey_add(&P, i1, j0, p->fu * v0, e0);
+					grey_add(&P, i1, j0, fu * v0, e0);
 				}
 				if (mine1) {
-					grey_add(&P, i1, j1, p->fu * p->fv, e0);
-					grey_add(&P, i0, j1, u0 * p->fv, e0);
+					grey_add(&P, i1, j1, fu * fv, e0);
+					grey_add(&P, i0, j1, u0 * fv, e0);
 				}
 			}
 			continue;
 		}
-		double e[3];
-		energy_clean(sp->e, e);
+		if (fast) /* (a node twice a splat, on an axis of one node) */
+			energy_clean(sp.e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
-		double u0 = 1 - p->fu, v0 = 1 - p->fv;
+		double u0 = 1 - fu, v0 = 1 - fv;
 		if (mine0) {
 			band_add(&P, i0, j0, u0 * v0, e, white);
-			band_add(&P, i1, j0, p->fu * v0, e, white);
+			band_add(&P, i1, j0, fu * v0, e, white);
 		}
 		if (mine1) {
-			band_add(&P, i0, j1, u0 * p->fv, e, white);
-			band_add(&P, i1, j1, p->fu * p->fv, e, white);
+			band_add(&P, i0, j1, u0 * fv, e, white);
+			band_add(&P, i1, j1, fu * fv, e, white);
 		}
 	}
 }
@@ -1202,7 +1187,7 @@ static void join_work(void *ctx, long k, int worker)
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
-	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s, 0}, 1, threads);
+	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s, false}, 1, threads);
 }
 
 void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long nruns, int threads)
@@ -1220,13 +1205,9 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 		nb = 1;
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
-	bool inplace = true; /* every run has its scratch: no prep array */
-	for (long r = 0; r < nruns; r++)
-		inplace = inplace && (runs[r].scratch || runs[r].n <= 0);
-	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
-	                            .p = inplace ? NULL : mem_alloc_huge(sizeof *D->p * (size_t)n), .n = n,
-	                            .chunk = PREP_CHUNK, .nb = nb};
-	parallel_for(nchunks, nb, prep_work, D);
+	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns, .n = n, .chunk = PREP_CHUNK,
+	                            .nb = nb};
+	parallel_for(nchunks, nb, scan_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	bool white = true;
 	for (long k = 0; k < nchunks; k++)
@@ -1270,7 +1251,7 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 			adopt(m, D[b].part);
 	}
 	m->finished = false;
-	free(D->p), free(D), free(off);
+	free(D), free(off);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)

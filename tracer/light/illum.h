@@ -99,25 +99,24 @@ struct illum_splat {
  * them one by one, for any thread count. */
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads);
 
+/* A white splat (the same energy e in the three channels) in 24 bytes. */
+struct illum_gsplat {
+	double u, v;
+	double e;
+};
+
 /* Splats s, s + stride, …, n of them, somewhere in the caller's memory (a
- * struct whose first member is the illum_splat, say). */
+ * struct whose first member is the illum_splat, say; or the illum_gsplat
+ * when grey). */
 struct illum_run {
 	const void *s;
 	long n;
-	size_t stride;  /* bytes from one splat to the next */
-	size_t scratch; /* 0; or, when the caller is done with the splats, the
-	                   offset from each splat of 8 bytes of its element
-	                   (not the splat's) that the deposit may overwrite:
-	                   it then keeps its working values in them and in the
-	                   splat's (u,v) (see illum_deposit_runs) */
+	size_t stride; /* bytes from one splat to the next */
+	bool grey;     /* the splats are struct illum_gsplat */
 };
 
 /* illum_deposit_all over the runs r[0..nr) in order, as if they were one
- * array: the same result, without copying them into one. When every run
- * has its scratch, the splats' (u,v) and their scratch bytes are
- * overwritten (with each splat's nodes and weights: no array of them is
- * allocated, nor its pages zeroed) and the splats must not be read
- * afterwards (their energies are left as they were). */
+ * array: the same result, without copying them into one. */
 void illum_deposit_runs(struct illum_map *m, const struct illum_run *r, long nr, int threads);
 
 /* Spreads energy (per channel, W; negative or NaN components count as 0)

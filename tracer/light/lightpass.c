@@ -1350,8 +1350,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	long *start = mem_calloc((size_t)n + 1, sizeof *start), *fill = mem_calloc((size_t)n + 1, sizeof *fill);
 	long *pstart = mem_calloc((size_t)n + 1, sizeof *pstart);
 	/* one surface and point deposits only (the usual case): its map reads
-	 * the records where they are (and keeps its working values in them:
-	 * their obj is not read again), and their points are copied only when
+	 * the records where they are, and their points are copied only when
 	 * they choose its cell */
 	bool inplace = n == 1 && ptotal == 0;
 	struct illum_spec own = n ? obj_illum(objs[0]) : (struct illum_spec){0, 0};
@@ -1376,7 +1375,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	if (inplace) {
 		runs = mem_alloc(sizeof *runs * (size_t)nseg);
 		for (long g = 0; g < nseg; g++)
-			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, offsetof(struct rec, obj)};
+			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, false};
 	}
 	/* which surfaces' records have their recx (rec_has_x): pts and psz are
 	 * read only for those (choose_spec and shaft_spec return a surface's own
