@@ -29,7 +29,8 @@
 
 #define CHUNK 4096 /* rays per work item */
 
-/* A diffuse landing, kept until the maps exist: 48 bytes. */
+/* A diffuse landing, kept until the maps exist: 48 bytes (24 in a grey
+ * item: see work). */
 struct rec {
 	struct illum_splat s;     /* where on the primitive (u,v) and the energy per
 	                             channel (W): first, so the maps read it in place
@@ -121,7 +122,9 @@ struct job {
  * per item instead of every record. */
 struct span {
 	int w;
-	const struct rec *r;
+	const struct rec *r;        /* NULL when grey */
+	const struct illum_gsplat *g; /* a grey item's records: one surface, white light */
+	const struct object *obj;   /* and their surface */
 	long nr, p0, np;
 	const struct recx *x;       /* the recx of those records that have one (rec_has_x) */
 	int nd;
@@ -131,6 +134,8 @@ struct span {
 /* The same, resolved to memory once the workers are done. */
 struct seg {
 	const struct rec *r;
+	const struct illum_gsplat *g;
+	const struct object *obj;
 	long nr;
 	const struct recx *x;
 	const struct prec *p;
@@ -173,7 +178,9 @@ struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
 	struct band band;           /* the light the current ray carries */
-	struct recbuf recs;         /* struct rec */
+	struct recbuf stage;        /* struct rec: the current item's, until it ends (work) */
+	struct recbuf recs;         /* struct rec: earlier items' */
+	struct recbuf grecs;        /* struct illum_gsplat: earlier grey items' */
 	struct recbuf recx;         /* struct recx, of the records that have one */
 	const struct object *xo;    /* rec_has_x for xo is xneed (a cache) */
 	bool xneed;
@@ -342,10 +349,13 @@ static unsigned chart(const struct hit *h)
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
 
-/* Moves rb on to a block twice the size (see struct recbuf). */
-static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
+/* Moves rb on to a block twice the size (see struct recbuf), or room for
+ * `more` elements after the current item's. */
+static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb, long more)
 {
 	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
+	if (cap < keep + more)
+		cap = keep + more;
 	if (rb->cap && (size_t)cap * rb->sz < MEM_HUGE_MIN) /* past the first block, MEM_HUGE_MIN at
 	                                                        least (huge pages: fewer page faults;
 	                                                        only the pages written are zeroed) */
@@ -366,8 +376,18 @@ static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 static inline void *recbuf_push(struct recbuf *rb)
 {
 	if (rb->n == rb->cap)
-		recbuf_grow(rb);
+		recbuf_grow(rb, 1);
 	return rb->r + rb->sz * (size_t)rb->n++;
+}
+
+/* Room for n elements, the current item's from now on (rb->n grows by n). */
+static void *recbuf_take(struct recbuf *rb, long n)
+{
+	rb->item0 = rb->n;
+	if (rb->cap - rb->n < n)
+		recbuf_grow(rb, n);
+	rb->n += n;
+	return rb->r + rb->sz * (size_t)rb->item0;
 }
 
 /* The current item's elements (NULL when there are none). */
@@ -397,7 +417,7 @@ static bool rec_has_x(const struct lp_opts *o, const struct object *ob)
 static inline void push_rec(struct worker *w, const struct illum_splat *s, const struct object *ob, struct vec3 p,
                             double size)
 {
-	*(struct rec *)recbuf_push(&w->recs) = (struct rec){*s, ob};
+	*(struct rec *)recbuf_push(&w->stage) = (struct rec){*s, ob};
 	if (ob != w->xo)
 		w->xo = ob, w->xneed = rec_has_x(w->job->o, ob);
 	if (w->xneed)
@@ -1040,6 +1060,31 @@ static void list_distinct(struct span *sp, const struct rec *r, long nr, const s
 	}
 }
 
+/* Moves the current item's records from the stage to where they are
+ * kept: when they all landed on one surface in white light (the usual
+ * case) as 24-byte illum_gsplats, the surface once in the span, else
+ * whole. The stage is written while tracing and read back here while in
+ * cache; only what is kept reaches fresh memory (the kernel zeroes every
+ * page of it first). */
+static void keep_item(struct worker *w, struct span *sp)
+{
+	const struct rec *r = (const struct rec *)(const void *)w->stage.r;
+	long n = w->stage.n;
+	bool grey = n > 0;
+	for (long i = 0; i < n && grey; i++)
+		grey = r[i].obj == r[0].obj && r[i].s.e[0] == r[i].s.e[1] && r[i].s.e[1] == r[i].s.e[2];
+	if (grey) {
+		struct illum_gsplat *g = recbuf_take(&w->grecs, n);
+		for (long i = 0; i < n; i++)
+			g[i] = (struct illum_gsplat){r[i].s.u, r[i].s.v, r[i].s.e[0]};
+		sp->g = g, sp->obj = r[0].obj;
+	} else if (n > 0) {
+		sp->r = memcpy(recbuf_take(&w->recs, n), r, sizeof *r * (size_t)n);
+	}
+	sp->nr = n;
+	w->stage.n = 0;
+}
+
 /* Work item k on the worker's own buffers (a parallel_for item; ctx is the
  * workers' array). */
 static void work(void *ctx, long k, int worker)
@@ -1047,16 +1092,17 @@ static void work(void *ctx, long k, int worker)
 	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
 	long p0 = w->precs.n;
-	w->recs.item0 = w->recs.n;
+	w->stage.n = w->stage.item0 = 0;
 	w->recx.item0 = w->recx.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	*sp = (struct span){worker, recbuf_item(&w->recs), w->recs.n - w->recs.item0, p0, w->precs.n - p0,
-	                    recbuf_item(&w->recx), 0, {NULL}};
-	list_distinct(sp, sp->r, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
+	*sp = (struct span){worker, NULL, NULL, NULL, 0, p0, w->precs.n - p0, recbuf_item(&w->recx), 0, {NULL}};
+	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->np ? w->precs.r + p0 : NULL,
+	              sp->np);
+	keep_item(w, sp);
 	progress_step(J->o->progress, 1);
 }
 
@@ -1281,6 +1327,19 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 	free(pp), free(ps), free(lp);
 }
 
+/* Record i of segment s: its surface, and its splat. */
+static const struct object *seg_obj(const struct seg *s, long i)
+{
+	return s->g ? s->obj : s->r[i].obj;
+}
+
+static struct illum_splat seg_splat(const struct seg *s, long i)
+{
+	if (s->g)
+		return (struct illum_splat){s->g[i].u, s->g[i].v, {s->g[i].e, s->g[i].e, s->g[i].e}};
+	return s->r[i].s;
+}
+
 /* One surface's records gathered for its map: segment g's records go to
  * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item).
  * pts and psz are filled from the records' recx (all of one surface's
@@ -1304,7 +1363,7 @@ static void gather_work(void *ctx, long g, int worker)
 		if (G->psz)
 			G->psz[at] = x[i].size;
 		if (G->sp)
-			G->sp[at] = G->sg[g].r[i].s;
+			G->sp[at] = seg_splat(&G->sg[g], i);
 	}
 }
 
@@ -1326,7 +1385,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < (sg[g].nd >= 0 ? sg[g].nd : sg[g].nr + sg[g].np); i++) {
 			const struct object *ob = sg[g].nd >= 0 ? sg[g].d[i]
-			                        : i < sg[g].nr ? sg[g].r[i].obj : sg[g].p[i - sg[g].nr].obj;
+			                        : i < sg[g].nr ? seg_obj(&sg[g], i) : sg[g].p[i - sg[g].nr].obj;
 			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
 			if (seen)
@@ -1362,7 +1421,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	t = 0;
 	for (long g = 0; g < nseg && ki; g++)
 		for (long i = 0; i < sg[g].nr; i++, t++)
-			start[(ki[t] = find_map(r, sg[g].r[i].obj)) + 1]++;
+			start[(ki[t] = find_map(r, seg_obj(&sg[g], i))) + 1]++;
 	if (!ki && n)
 		start[1] = total;
 	for (long g = 0; g < nseg; g++)
@@ -1375,7 +1434,8 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	if (inplace) {
 		runs = mem_alloc(sizeof *runs * (size_t)nseg);
 		for (long g = 0; g < nseg; g++)
-			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, false};
+			runs[g] = sg[g].g ? (struct illum_run){sg[g].g, sg[g].nr, sizeof *sg[g].g, true}
+			                  : (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, false};
 	}
 	/* which surfaces' records have their recx (rec_has_x): pts and psz are
 	 * read only for those (choose_spec and shaft_spec return a surface's own
@@ -1397,14 +1457,13 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	for (long g = 0; g < nseg && ki; g++) {
 		const struct recx *x = sg[g].x;
 		for (long i = 0; i < sg[g].nr; i++, t++) {
-			const struct rec *rc = &sg[g].r[i];
 			int k = ki[t];
 			long at = start[k] + fill[k]++;
 			if (hasx[k])
 				pts[at] = x->p, psz[at] = x->size, x++;
 			else
 				pts[at] = v3(0, 0, 0), psz[at] = 0;
-			sp[at] = rc->s;
+			sp[at] = seg_splat(&sg[g], i);
 		}
 	}
 	free(hasx);
@@ -1551,15 +1610,17 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	for (int i = 0; i < nt; i++)
-		ws[i].job = &J, ws[i].recs.sz = sizeof(struct rec), ws[i].recx.sz = sizeof(struct recx);
+		ws[i].job = &J, ws[i].stage.sz = ws[i].recs.sz = sizeof(struct rec), ws[i].recx.sz = sizeof(struct recx),
+		ws[i].grecs.sz = sizeof(struct illum_gsplat);
 	parallel_for(J.nitems, nt, work, ws);
 	progress_end(o->progress);
-	struct recbuf *bufs = mem_calloc(2 * (size_t)nt, sizeof *bufs); /* recs, then recx */
+	struct recbuf *bufs = mem_calloc(3 * (size_t)nt, sizeof *bufs); /* recs, grecs, recx */
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nt; i++) {
-		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].recx;
+		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].grecs, bufs[2 * nt + i] = ws[i].recx;
+		recbuf_free(&ws[i].stage);
 		pbufs[i] = ws[i].precs;
 		free(ws[i].lands.l);
 		acc.segments += ws[i].segments;
@@ -1576,7 +1637,8 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->r, p->nr, p->x, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np, p->nd, p->d};
+		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np, p->nd,
+		                     p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
 	free(sg), free(J.spans);
@@ -1597,7 +1659,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		recbuf_free(&bufs[i]), recbuf_free(&bufs[nt + i]), free(pbufs[i].r);
+		recbuf_free(&bufs[i]), recbuf_free(&bufs[nt + i]), recbuf_free(&bufs[2 * nt + i]), free(pbufs[i].r);
 	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
