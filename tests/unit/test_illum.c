@@ -374,7 +374,7 @@ static void t_lookup_edges(void)
  * far-flung splats (so the isolated rule bites) and on a wrapping torus. */
 static void t_threads(void)
 {
-	enum { N = 60000 };
+	enum { N = 100000 }; /* more than PREP_MAX: split where they are added (illum.c) */
 	static struct illum_splat sp[N];
 	for (int shape = 0; shape < 2; shape++) {
 		rng_seed(5 + shape);
@@ -542,7 +542,7 @@ static void t_merge(void)
  * a colour map; merges between grey and colour maps add the same energies. */
 static void t_grey(void)
 {
-	enum { N = 40000, H = N / 2 };
+	enum { N = 160000, H = N / 2 }; /* halves of more than PREP_MAX (illum.c) */
 	static struct illum_splat sp[N];
 	rng_seed(5);
 	struct object o = prim(OBJ_PLANE);

@@ -820,24 +820,34 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 
 /* ---- batched point deposits (illum_deposit_all) ----
  * Four steps, none of which hashes per deposit once the window holds the
- * deposits' tiles, and none of which writes anything per splat (a splat's
- * nodes are worked out where they are needed: an array of them would be
- * memory the kernel zeroes, written and read back):
+ * deposits' tiles, and none of which writes anything per splat when there
+ * are many (a splat's nodes are worked out where they are needed: an array
+ * of them would be memory the kernel zeroes, written and read back):
  *   1. the splats are scanned in parallel chunks: the valid ones counted,
- *      the largest energy and whether all are white;
+ *      the largest energy and whether all are white; up to PREP_MAX splats,
+ *      which the sample would nearly all split again, are split here onto
+ *      their nodes (axis_split) once, into a `prep` each;
  *   2. one thread places the window over a sample of their tiles (every
- *      stride-th valid splat, split onto its nodes by axis_split);
+ *      stride-th valid splat);
  *   3. the accumulators are added band by band, one thread per band of
  *      tile rows (band_of), each band's deposits in splat order, making the
  *      tiles it needs from its own arena: a node receives the same
  *      additions in the same order for any thread count, so even its float
  *      Σw² is bit-identical;
  *   4. the bands' new tiles join the map's list (pointers only). */
+#define PREP_MAX 65536 /* splats split once in step 1 (the sample takes every first or second) */
+
+struct prep {
+	int32_t i, j;       /* the lower nodes of the split (axis_split's i0), INT32_MIN: no deposit */
+	double fu, fv;      /* the weights of the upper ones */
+};
+
 struct deposit_job {
 	struct illum_map *m;
 	const struct illum_run *runs;
 	const long *off;    /* run k's splats are [off[k], off[k+1]) */
 	long nruns;
+	struct prep *p;     /* step 1's splits (up to PREP_MAX splats), else NULL */
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
@@ -892,11 +902,10 @@ __attribute__((always_inline)) static inline bool splat_valid(const struct uve *
 	return isfinite(s->u) && isfinite(s->v) && energy_clean(s->e, e);
 }
 
-/* Step 1 for chunk k of the splats (a parallel_for item). */
-static void scan_work(void *ctx, long k, int worker)
+/* Step 1 for chunk k of the splats, splitting them when prep (D->p). */
+__attribute__((always_inline)) static inline void scan_chunk(struct deposit_job *D, long k, bool prep)
 {
-	(void)worker;
-	struct deposit_job *J = (struct deposit_job *)ctx + k, *D = (struct deposit_job *)ctx;
+	struct deposit_job *J = D + k;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
 	J->dropped = 0;
 	J->valid = 0;
@@ -909,22 +918,45 @@ static void scan_work(void *ctx, long k, int worker)
 		struct uve sp = run_at(&D->runs[r0], q - D->off[r0]);
 		double e[3], x = energy_max(sp.e);
 		J->emax = x > J->emax ? x : J->emax;
+		if (prep)
+			D->p[q].i = INT32_MIN;
 		if (!isfinite(sp.u) || !isfinite(sp.v)) {
 			J->dropped++;
 		} else if (energy_clean(sp.e, e)) {
 			J->white = J->white && e[0] == e[1] && e[1] == e[2];
 			J->valid++;
+			if (prep) {
+				struct prep *p = &D->p[q];
+				long iu[2], iv[2];
+				axis_split(&D->m->ax[0], sp.u, &iu[0], &iu[1], &p->fu);
+				axis_split(&D->m->ax[1], sp.v, &iv[0], &iv[1], &p->fv);
+				p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
+			}
 		}
 	}
 }
 
-/* Sample entry c / stride: the tile of splat s. */
-static void sample_put(const struct deposit_job *D, long c, const struct uve *s)
+/* Step 1 for chunk k (a parallel_for item). */
+static void scan_work(void *ctx, long k, int worker)
 {
-	long i0, i1, j0, j1;
+	(void)worker;
+	struct deposit_job *D = ctx;
+	if (D->p)
+		scan_chunk(D, k, true);
+	else
+		scan_chunk(D, k, false);
+}
+
+/* Sample entry c / stride: the tile of splat q, s. */
+__attribute__((always_inline)) static inline void sample_put(const struct deposit_job *D, long c, long q,
+                                                             const struct uve *s)
+{
+	long i0 = D->p ? D->p[q].i : 0, i1, j0 = D->p ? D->p[q].j : 0, j1;
 	double f;
-	axis_split(&D->m->ax[0], s->u, &i0, &i1, &f);
-	axis_split(&D->m->ax[1], s->v, &j0, &j1, &f);
+	if (!D->p) {
+		axis_split(&D->m->ax[0], s->u, &i0, &i1, &f);
+		axis_split(&D->m->ax[1], s->v, &j0, &j1, &f);
+	}
 	D->ti[c / D->stride] = (int32_t)floordiv(i0);
 	D->tj[c / D->stride] = (int32_t)floordiv(j0);
 }
@@ -943,7 +975,7 @@ static void sample_work(void *ctx, long k, int worker)
 			while (q >= D->off[r + 1])
 				r++;
 			struct uve sp = run_at(&D->runs[r], q - D->off[r]);
-			sample_put(D, c + q - lo, &sp);
+			sample_put(D, c + q - lo, q, &sp);
 		}
 		return;
 	}
@@ -952,8 +984,8 @@ static void sample_work(void *ctx, long k, int worker)
 			r++;
 		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
 		double e[3];
-		if (splat_valid(&sp, e) && c++ % D->stride == 0)
-			sample_put(D, c - 1, &sp);
+		if ((D->p ? D->p[q].i != INT32_MIN : splat_valid(&sp, e)) && c++ % D->stride == 0)
+			sample_put(D, c - 1, q, &sp);
 	}
 }
 
@@ -1098,12 +1130,10 @@ __attribute__((always_inline)) static inline void grey_add(struct band_pos *P, l
 	g->count += g->count < UINT32_MAX;
 }
 
-/* Step 3 for band k of nb (a parallel_for item): its tiles are made and
- * its nodes accumulated, deposits in order. */
-static void accumulate_work(void *ctx, long k, int worker)
+/* Step 3 for band k of nb: its tiles are made and its nodes accumulated,
+ * deposits in order; prep: D->p holds their splits. */
+__attribute__((always_inline)) static inline void accumulate_band(struct deposit_job *D, long k, bool prep)
 {
-	(void)worker;
-	struct deposit_job *D = ctx;
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
 	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit, m->grey};
@@ -1114,11 +1144,15 @@ static void accumulate_work(void *ctx, long k, int worker)
 		double e[3];
 		/* a grey map's splats are white: the valid ones have e[0] > 0 */
 		bool fast = P.grey && P.finite;
-		if (fast ? !(isfinite(sp.u) && isfinite(sp.v) && sp.e[0] > 0) : !splat_valid(&sp, e))
+		if (prep ? D->p[q].i == INT32_MIN
+		         : fast ? !(isfinite(sp.u) && isfinite(sp.v) && sp.e[0] > 0) : !splat_valid(&sp, e))
 			continue;
 		long j0, j1, i0, i1;
 		double fu, fv;
-		axis_split(ay, sp.v, &j0, &j1, &fv);
+		if (prep) /* split in step 1 */
+			j0 = D->p[q].j, j1 = ay->wraps && j0 + 1 == ay->n ? 0 : j0 + 1, fv = D->p[q].fv;
+		else
+			axis_split(ay, sp.v, &j0, &j1, &fv);
 		bool mine0 = true, mine1 = true;
 		if (D->nb > 1) {
 			mine0 = band_of(j0, D->nb) == (int)k;
@@ -1126,7 +1160,10 @@ static void accumulate_work(void *ctx, long k, int worker)
 			if (!mine0 && !mine1)
 				continue;
 		}
-		axis_split(ax, sp.u, &i0, &i1, &fu);
+		if (prep)
+			i0 = D->p[q].i, i1 = ax->wraps && i0 + 1 == ax->n ? 0 : i0 + 1, fu = D->p[q].fu;
+		else
+			axis_split(ax, sp.u, &i0, &i1, &fu);
 		if (fast && i1 != i0 && j1 != j0) {
 			/* the usual case: a grey map (so every splat is white, and
 			 * valid ones have e[0] > 0) whose sums cannot saturate. The
@@ -1155,7 +1192,7 @@ static void accumulate_work(void *ctx, long k, int worker)
 			}
 			continue;
 		}
-		if (fast) /* (a node twice a splat, on an axis of one node) */
+		if (fast || prep) /* (else splat_valid cleaned it) */
 			energy_clean(sp.e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
 		double u0 = 1 - fu, v0 = 1 - fv;
@@ -1168,6 +1205,17 @@ static void accumulate_work(void *ctx, long k, int worker)
 			band_add(&P, i1, j1, fu * fv, e, white);
 		}
 	}
+}
+
+/* Step 3 for band k of nb (a parallel_for item). */
+static void accumulate_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	struct deposit_job *D = ctx;
+	if (D->p)
+		accumulate_band(D, k, true);
+	else
+		accumulate_band(D, k, false);
 }
 
 /* Step 4 for band k (a parallel_for item): its window tiles join the map's
@@ -1205,8 +1253,9 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 		nb = 1;
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
-	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns, .n = n, .chunk = PREP_CHUNK,
-	                            .nb = nb};
+	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
+	                            .p = n <= PREP_MAX ? mem_alloc(sizeof *D->p * (size_t)n) : NULL, .n = n,
+	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, scan_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	bool white = true;
@@ -1251,7 +1300,7 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 			adopt(m, D[b].part);
 	}
 	m->finished = false;
-	free(D), free(off);
+	free(D->p), free(D), free(off);
 }
 
 static bool same_axis(const struct axis *a, const struct axis *b)

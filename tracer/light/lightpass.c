@@ -1419,9 +1419,17 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	double *psz = inplace ? NULL : mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
 	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
 	t = 0;
-	for (long g = 0; g < nseg && ki; g++)
+	for (long g = 0; g < nseg && ki; g++) {
+		if (sg[g].g) { /* one surface */
+			int k = sg[g].nr ? find_map(r, sg[g].obj) : 0;
+			for (long i = 0; i < sg[g].nr; i++)
+				ki[t++] = k;
+			start[k + 1] += sg[g].nr;
+			continue;
+		}
 		for (long i = 0; i < sg[g].nr; i++, t++)
-			start[(ki[t] = find_map(r, seg_obj(&sg[g], i))) + 1]++;
+			start[(ki[t] = find_map(r, sg[g].r[i].obj)) + 1]++;
+	}
 	if (!ki && n)
 		start[1] = total;
 	for (long g = 0; g < nseg; g++)
@@ -1463,7 +1471,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 				pts[at] = x->p, psz[at] = x->size, x++;
 			else
 				pts[at] = v3(0, 0, 0), psz[at] = 0;
-			sp[at] = seg_splat(&sg[g], i);
+			sp[at] = sg[g].g ? seg_splat(&sg[g], i) : sg[g].r[i].s;
 		}
 	}
 	free(hasx);
