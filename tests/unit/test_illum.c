@@ -374,7 +374,7 @@ static void t_lookup_edges(void)
  * far-flung splats (so the isolated rule bites) and on a wrapping torus. */
 static void t_threads(void)
 {
-	enum { N = 60000 };
+	enum { N = 100000 }; /* more than PREP_MAX: split where they are added (illum.c) */
 	static struct illum_splat sp[N];
 	for (int shape = 0; shape < 2; shape++) {
 		rng_seed(5 + shape);
@@ -431,7 +431,7 @@ static void t_runs(void)
 	struct illum_run runs[R];
 	long at = 0, next = 0;
 	for (int k = 0; k < R; k++) {
-		runs[k] = (struct illum_run){rec + at, len[k], sizeof *rec};
+		runs[k] = (struct illum_run){rec + at, len[k], sizeof *rec, false};
 		for (long i = 0; i < len[k]; i++)
 			rec[at++] = (struct rec_like){sp[next++], &o, {(double)i, -1, 0, 0}};
 		for (int i = 0; i < 2; i++) /* not splats of the map: they must not count */
@@ -450,6 +450,37 @@ static void t_runs(void)
 		illum_deposit_runs(m, runs, R, threads[t]);
 		check_same_map(one, s1, rem1, m, threads[t]);
 	}
+	/* grey runs (struct illum_gsplat first in each record): the map of the
+	 * same splats given white as illum_splats, on 1, 2, 3 threads */
+	static struct gsrec {
+		struct illum_gsplat s;
+		const void *obj;
+	} gr[N + 2 * R];
+	static struct illum_splat ws[N];
+	struct illum_run gruns[R];
+	for (int k = 0; k < N; k++)
+		ws[k] = (struct illum_splat){sp[k].u, sp[k].v, {sp[k].e[0], sp[k].e[0], sp[k].e[0]}};
+	at = next = 0;
+	for (int k = 0; k < R; k++) {
+		gruns[k] = (struct illum_run){gr + at, len[k], sizeof *gr, true};
+		for (long i = 0; i < len[k]; i++, next++)
+			gr[at++] = (struct gsrec){{ws[next].u, ws[next].v, ws[next].e[0]}, &o};
+		for (int i = 0; i < 2; i++)
+			gr[at++] = (struct gsrec){{0.5, 0.5, 1e3}, NULL};
+	}
+	struct illum_map *white = illum_new_like(one);
+	illum_deposit_all(white, ws, N, 1);
+	double remw[3];
+	illum_finish(white, true, remw);
+	struct nodes *sw = nodes_of(white);
+	CHECK(sw->n > 1000 && sw->n < MAXN && remw[0] > 0 && remw[1] == remw[0]);
+	for (int t = 0; t < 3; t++) {
+		struct illum_map *m = illum_new_like(one);
+		illum_deposit_runs(m, gruns, R, threads[t]);
+		check_same_map(white, sw, remw, m, threads[t]);
+	}
+	free(sw);
+	illum_free(white);
 	/* no splats at all: nothing happens */
 	struct illum_map *m = illum_new_like(one);
 	illum_deposit_runs(m, runs, 1, 2);
@@ -511,7 +542,7 @@ static void t_merge(void)
  * a colour map; merges between grey and colour maps add the same energies. */
 static void t_grey(void)
 {
-	enum { N = 40000, H = N / 2 };
+	enum { N = 160000, H = N / 2 }; /* halves of more than PREP_MAX (illum.c) */
 	static struct illum_splat sp[N];
 	rng_seed(5);
 	struct object o = prim(OBJ_PLANE);

@@ -820,16 +820,23 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
 
 /* ---- batched point deposits (illum_deposit_all) ----
  * Four steps, none of which hashes per deposit once the window holds the
- * deposits' tiles:
- *   1. every splat is split onto its nodes (axis_split) once, in parallel
- *      chunks: a `prep` each;
- *   2. one thread places the window over a sample of the preps' tiles;
+ * deposits' tiles, and none of which writes anything per splat when there
+ * are many (a splat's nodes are worked out where they are needed: an array
+ * of them would be memory the kernel zeroes, written and read back):
+ *   1. the splats are scanned in parallel chunks: the valid ones counted,
+ *      the largest energy and whether all are white; up to PREP_MAX splats,
+ *      which the sample would nearly all split again, are split here onto
+ *      their nodes (axis_split) once, into a `prep` each;
+ *   2. one thread places the window over a sample of their tiles (every
+ *      stride-th valid splat);
  *   3. the accumulators are added band by band, one thread per band of
  *      tile rows (band_of), each band's deposits in splat order, making the
  *      tiles it needs from its own arena: a node receives the same
  *      additions in the same order for any thread count, so even its float
  *      Σw² is bit-identical;
  *   4. the bands' new tiles join the map's list (pointers only). */
+#define PREP_MAX 65536 /* splats split once in step 1 (the sample takes every first or second) */
+
 struct prep {
 	int32_t i, j;       /* the lower nodes of the split (axis_split's i0), INT32_MIN: no deposit */
 	double fu, fv;      /* the weights of the upper ones */
@@ -840,7 +847,7 @@ struct deposit_job {
 	const struct illum_run *runs;
 	const long *off;    /* run k's splats are [off[k], off[k+1]) */
 	long nruns;
-	struct prep *p;
+	struct prep *p;     /* step 1's splits (up to PREP_MAX splats), else NULL */
 	long n, chunk;
 	int nb;
 	long dropped;       /* per chunk: non-finite (u,v) */
@@ -858,24 +865,27 @@ struct deposit_job {
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
 
-/* Splat i of run r. */
-static const struct illum_splat *run_at(const struct illum_run *r, long i)
+/* A splat as the steps read it. */
+struct uve {
+	double u, v, e[3];
+};
+
+/* Splat i of run r (an illum_splat, or an illum_gsplat in a grey run). */
+__attribute__((always_inline)) static inline struct uve run_at(const struct illum_run *r, long i)
 {
-	return (const struct illum_splat *)(const void *)((const char *)r->s + (size_t)i * r->stride);
+	const void *p = (const char *)r->s + (size_t)i * r->stride;
+	if (r->grey) {
+		const struct illum_gsplat *g = p;
+		return (struct uve){g->u, g->v, {g->e, g->e, g->e}};
+	}
+	const struct illum_splat *sp = p;
+	return (struct uve){sp->u, sp->v, {sp->e[0], sp->e[1], sp->e[2]}};
 }
 
-/* Step 1 for chunk k of the splats (a parallel_for item). */
-static void prep_work(void *ctx, long k, int worker)
+/* The run holding splat lo (off[r] <= lo < off[r+1]). */
+static long run_of(const struct deposit_job *D, long lo)
 {
-	(void)worker;
-	struct deposit_job *J = (struct deposit_job *)ctx + k, *D = (struct deposit_job *)ctx;
-	const struct illum_map *m = D->m;
-	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
-	J->dropped = 0;
-	J->valid = 0;
-	J->emax = 0;
-	J->white = true;
-	long r0 = 0, r1 = D->nruns; /* the run holding splat lo: off[r0] <= lo < off[r0+1] */
+	long r0 = 0, r1 = D->nruns;
 	while (r1 - r0 > 1) {
 		long mid = (r0 + r1) / 2;
 		if (D->off[mid] <= lo)
@@ -883,27 +893,72 @@ static void prep_work(void *ctx, long k, int worker)
 		else
 			r1 = mid;
 	}
+	return r0;
+}
+
+/* Does splat s deposit? (Finite (u,v), some energy; e its energy cleaned.) */
+__attribute__((always_inline)) static inline bool splat_valid(const struct uve *s, double e[3])
+{
+	return isfinite(s->u) && isfinite(s->v) && energy_clean(s->e, e);
+}
+
+/* Step 1 for chunk k of the splats, splitting them when prep (D->p). */
+__attribute__((always_inline)) static inline void scan_chunk(struct deposit_job *D, long k, bool prep)
+{
+	struct deposit_job *J = D + k;
+	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n;
+	J->dropped = 0;
+	J->valid = 0;
+	J->emax = 0;
+	J->white = true;
+	long r0 = run_of(D, lo);
 	for (long q = lo; q < hi; q++) {
 		while (q >= D->off[r0 + 1])
 			r0++;
-		const struct illum_splat *sp = run_at(&D->runs[r0], q - D->off[r0]);
-		struct prep *p = &D->p[q];
-		double e[3], x = energy_max(sp->e);
+		struct uve sp = run_at(&D->runs[r0], q - D->off[r0]);
+		double e[3], x = energy_max(sp.e);
 		J->emax = x > J->emax ? x : J->emax;
-		p->i = INT32_MIN;
-		if (!isfinite(sp->u) || !isfinite(sp->v)) {
+		if (prep)
+			D->p[q].i = INT32_MIN;
+		if (!isfinite(sp.u) || !isfinite(sp.v)) {
 			J->dropped++;
-			continue;
+		} else if (energy_clean(sp.e, e)) {
+			J->white = J->white && e[0] == e[1] && e[1] == e[2];
+			J->valid++;
+			if (prep) {
+				struct prep *p = &D->p[q];
+				long iu[2], iv[2];
+				axis_split(&D->m->ax[0], sp.u, &iu[0], &iu[1], &p->fu);
+				axis_split(&D->m->ax[1], sp.v, &iv[0], &iv[1], &p->fv);
+				p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
+			}
 		}
-		if (!energy_clean(sp->e, e))
-			continue;
-		J->white = J->white && e[0] == e[1] && e[1] == e[2];
-		long iu[2], iv[2];
-		axis_split(&m->ax[0], sp->u, &iu[0], &iu[1], &p->fu);
-		axis_split(&m->ax[1], sp->v, &iv[0], &iv[1], &p->fv);
-		p->i = (int32_t)iu[0], p->j = (int32_t)iv[0];
-		J->valid++;
 	}
+}
+
+/* Step 1 for chunk k (a parallel_for item). */
+static void scan_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	struct deposit_job *D = ctx;
+	if (D->p)
+		scan_chunk(D, k, true);
+	else
+		scan_chunk(D, k, false);
+}
+
+/* Sample entry c / stride: the tile of splat q, s. */
+__attribute__((always_inline)) static inline void sample_put(const struct deposit_job *D, long c, long q,
+                                                             const struct uve *s)
+{
+	long i0 = D->p ? D->p[q].i : 0, i1, j0 = D->p ? D->p[q].j : 0, j1;
+	double f;
+	if (!D->p) {
+		axis_split(&D->m->ax[0], s->u, &i0, &i1, &f);
+		axis_split(&D->m->ax[1], s->v, &j0, &j1, &f);
+	}
+	D->ti[c / D->stride] = (int32_t)floordiv(i0);
+	D->tj[c / D->stride] = (int32_t)floordiv(j0);
 }
 
 /* Step 2's sample from chunk k (a parallel_for item): the tiles of valid
@@ -914,11 +969,24 @@ static void sample_work(void *ctx, long k, int worker)
 	(void)worker;
 	const struct deposit_job *J = (const struct deposit_job *)ctx + k, *D = ctx;
 	long lo = k * D->chunk, hi = lo + D->chunk < D->n ? lo + D->chunk : D->n, c = J->c0;
-	for (long q = lo; q < hi; q++)
-		if (D->p[q].i != INT32_MIN && c++ % D->stride == 0) {
-			D->ti[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].i);
-			D->tj[(c - 1) / D->stride] = (int32_t)floordiv(D->p[q].j);
+	if (J->valid == hi - lo) { /* every splat valid (the usual case): straight to the sampled ones */
+		long q = lo + (D->stride - c % D->stride) % D->stride, r = run_of(D, q);
+		for (; q < hi; q += D->stride) {
+			while (q >= D->off[r + 1])
+				r++;
+			struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+			sample_put(D, c + q - lo, q, &sp);
 		}
+		return;
+	}
+	for (long q = lo, r = run_of(D, lo); q < hi; q++) {
+		while (q >= D->off[r + 1])
+			r++;
+		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		double e[3];
+		if ((D->p ? D->p[q].i != INT32_MIN : splat_valid(&sp, e)) && c++ % D->stride == 0)
+			sample_put(D, c - 1, q, &sp);
+	}
 }
 
 /* Step 2: the window, placed where most deposits land (the sample taken
@@ -1025,22 +1093,66 @@ __attribute__((always_inline)) static inline void band_add(struct band_pos *P, l
 		acc_add(n, w, e, P->inv);
 }
 
-/* Step 3 for band k of nb (a parallel_for item): its tiles are made and
- * its nodes accumulated, deposits in order. */
-static void accumulate_work(void *ctx, long k, int worker)
+/* fx_from(d) for d·2^96 in [0, 2^128) (a deposit into a map whose sums
+ * cannot saturate): the same rounding below 2^52, and above it, where a
+ * double is an integer, its bits shifted into place instead of two
+ * conversions to unsigned (each a compare and a fix-up on x86-64). */
+static inline struct fx fx_from_fast(double d)
 {
-	(void)worker;
-	struct deposit_job *D = ctx;
+	double m = d * 0x1p96;
+	if (m < 0x1p63) {
+		if (m < 0x1p52) /* rint, as fx_from */
+			m = (m + 0x1p52) - 0x1p52;
+		return (struct fx){m > 0 ? (uint64_t)(int64_t)m : 0, 0};
+	}
+	uint64_t b;
+	memcpy(&b, &m, sizeof b);
+	int e = (int)(b >> 52) - 1075; /* m = mant·2^e, e in [11, 75] */
+	uint64_t mant = (b & 0xfffffffffffffull) | 0x10000000000000ull;
+	if (e < 64)
+		return (struct fx){mant << e, mant >> (64 - e)};
+	return (struct fx){0, mant << (e - 64)};
+}
+
+/* band_add on a grey map whose sums cannot saturate (P->grey, P->finite),
+ * e the splat's one channel. */
+__attribute__((always_inline)) static inline void grey_add(struct band_pos *P, long i, long j, double w, double e)
+{
+	if (!(w > 0))
+		return;
+	long ti = floordiv(i), tj = floordiv(j);
+	if (ti != P->ti || tj != P->tj)
+		P->t = band_tile(P->B, P->m, ti, tj), P->ti = ti, P->tj = tj;
+	struct gacc *g = &P->t->g[tile_rem(j) * ILLUM_TILE + tile_rem(i)];
+	double x = w * e;
+	fx_add_fast(&g->e, fx_from_fast(x * P->inv));
+	g->sq += (float)(x * x);
+	g->count += g->count < UINT32_MAX;
+}
+
+/* Step 3 for band k of nb: its tiles are made and its nodes accumulated,
+ * deposits in order; prep: D->p holds their splits. */
+__attribute__((always_inline)) static inline void accumulate_band(struct deposit_job *D, long k, bool prep)
+{
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
 	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit, m->grey};
 	for (long q = 0, r = 0; q < D->n; q++) {
 		while (q >= D->off[r + 1]) /* r: the run of splat q */
 			r++;
-		const struct prep *p = &D->p[q];
-		if (p->i == INT32_MIN)
+		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		double e[3];
+		/* a grey map's splats are white: the valid ones have e[0] > 0 */
+		bool fast = P.grey && P.finite;
+		if (prep ? D->p[q].i == INT32_MIN
+		         : fast ? !(isfinite(sp.u) && isfinite(sp.v) && sp.e[0] > 0) : !splat_valid(&sp, e))
 			continue;
-		long j0 = p->j, j1 = ay->wraps && p->j + 1 == ay->n ? 0 : p->j + 1;
+		long j0, j1, i0, i1;
+		double fu, fv;
+		if (prep) /* split in step 1 */
+			j0 = D->p[q].j, j1 = ay->wraps && j0 + 1 == ay->n ? 0 : j0 + 1, fv = D->p[q].fv;
+		else
+			axis_split(ay, sp.v, &j0, &j1, &fv);
 		bool mine0 = true, mine1 = true;
 		if (D->nb > 1) {
 			mine0 = band_of(j0, D->nb) == (int)k;
@@ -1048,20 +1160,62 @@ static void accumulate_work(void *ctx, long k, int worker)
 			if (!mine0 && !mine1)
 				continue;
 		}
-		long i0 = p->i, i1 = ax->wraps && p->i + 1 == ax->n ? 0 : p->i + 1;
-		double e[3];
-		energy_clean(run_at(&D->runs[r], q - D->off[r])->e, e);
+		if (prep)
+			i0 = D->p[q].i, i1 = ax->wraps && i0 + 1 == ax->n ? 0 : i0 + 1, fu = D->p[q].fu;
+		else
+			axis_split(ax, sp.u, &i0, &i1, &fu);
+		if (fast && i1 != i0 && j1 != j0) {
+			/* the usual case: a grey map (so every splat is white, and
+			 * valid ones have e[0] > 0) whose sums cannot saturate. The
+			 * four nodes are distinct, each takes one addition, so they
+			 * may be visited tile by tile: down the columns when the
+			 * splat spans two tile columns, else along the rows */
+			double e0 = sp.e[0], u0 = 1 - fu, v0 = 1 - fv;
+			if (floordiv(i0) != floordiv(i1)) {
+				if (mine0)
+					grey_add(&P, i0, j0, u0 * v0, e0);
+				if (mine1) {
+					grey_add(&P, i0, j1, u0 * fv, e0);
+					grey_add(&P, i1, j1, fu * fv, e0);
+				}
+				if (mine0)
+					grey_add(&P, i1, j0, fu * v0, e0);
+			} else {
+				if (mine0) {
+					grey_add(&P, i0, j0, u0 * v0, e0);
+					grey_add(&P, i1, j0, fu * v0, e0);
+				}
+				if (mine1) {
+					grey_add(&P, i1, j1, fu * fv, e0);
+					grey_add(&P, i0, j1, u0 * fv, e0);
+				}
+			}
+			continue;
+		}
+		if (fast || prep) /* (else splat_valid cleaned it) */
+			energy_clean(sp.e, e);
 		bool white = e[0] == e[1] && e[1] == e[2];
-		double u0 = 1 - p->fu, v0 = 1 - p->fv;
+		double u0 = 1 - fu, v0 = 1 - fv;
 		if (mine0) {
 			band_add(&P, i0, j0, u0 * v0, e, white);
-			band_add(&P, i1, j0, p->fu * v0, e, white);
+			band_add(&P, i1, j0, fu * v0, e, white);
 		}
 		if (mine1) {
-			band_add(&P, i0, j1, u0 * p->fv, e, white);
-			band_add(&P, i1, j1, p->fu * p->fv, e, white);
+			band_add(&P, i0, j1, u0 * fv, e, white);
+			band_add(&P, i1, j1, fu * fv, e, white);
 		}
 	}
+}
+
+/* Step 3 for band k of nb (a parallel_for item). */
+static void accumulate_work(void *ctx, long k, int worker)
+{
+	(void)worker;
+	struct deposit_job *D = ctx;
+	if (D->p)
+		accumulate_band(D, k, true);
+	else
+		accumulate_band(D, k, false);
 }
 
 /* Step 4 for band k (a parallel_for item): its window tiles join the map's
@@ -1081,7 +1235,7 @@ static void join_work(void *ctx, long k, int worker)
 
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads)
 {
-	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s}, 1, threads);
+	illum_deposit_runs(m, &(struct illum_run){s, n, sizeof *s, false}, 1, threads);
 }
 
 void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long nruns, int threads)
@@ -1100,8 +1254,9 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
 	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
-	                            .p = mem_alloc_huge(sizeof *D->p * (size_t)n), .n = n, .chunk = PREP_CHUNK, .nb = nb};
-	parallel_for(nchunks, nb, prep_work, D);
+	                            .p = n <= PREP_MAX ? mem_alloc(sizeof *D->p * (size_t)n) : NULL, .n = n,
+	                            .chunk = PREP_CHUNK, .nb = nb};
+	parallel_for(nchunks, nb, scan_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
 	bool white = true;
 	for (long k = 0; k < nchunks; k++)

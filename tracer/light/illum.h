@@ -99,12 +99,20 @@ struct illum_splat {
  * them one by one, for any thread count. */
 void illum_deposit_all(struct illum_map *m, const struct illum_splat *s, long n, int threads);
 
+/* A white splat (the same energy e in the three channels) in 24 bytes. */
+struct illum_gsplat {
+	double u, v;
+	double e;
+};
+
 /* Splats s, s + stride, …, n of them, somewhere in the caller's memory (a
- * struct whose first member is the illum_splat, say). */
+ * struct whose first member is the illum_splat, say; or the illum_gsplat
+ * when grey). */
 struct illum_run {
 	const void *s;
 	long n;
 	size_t stride; /* bytes from one splat to the next */
+	bool grey;     /* the splats are struct illum_gsplat */
 };
 
 /* illum_deposit_all over the runs r[0..nr) in order, as if they were one

@@ -30,26 +30,36 @@
 
 #define CHUNK 4096 /* rays per work item */
 
-/* A diffuse landing, kept until the maps exist. */
+/* A diffuse landing, kept until the maps exist: 48 bytes (24 in a grey
+ * item: see work). */
 struct rec {
 	struct illum_splat s;     /* where on the primitive (u,v) and the energy per
 	                             channel (W): first, so the maps read it in place
 	                             (illum_deposit_runs) */
 	const struct object *obj; /* primitive hit */
-	struct vec3 p;            /* world point (for the automatic cell size) */
+};
+
+/* What a record needs besides, only where it is read (rec_has_x): for the
+ * automatic cell size (a surface without illum_map { cell } or {
+ * resolution }) and for shafts. Kept apart, so that a surface with its own
+ * grid (the usual caustic receiver) writes 48 bytes a record, not 80. */
+struct recx {
+	struct vec3 p;            /* world point */
 	double size;              /* shafts: the spread of the corners around it (m), else 0 */
 };
 
-/* A worker's records: r[item0 .. n) are the current work item's; the
- * earlier items' records stay where they were written (in r, or in a
- * block before it, kept in old), since their spans point at them: a full
- * buffer moves on to one twice its size, copying only the current item's
- * (realloc would copy them all, into pages faulted in once more). */
+/* A worker's records (or their recx): r[item0 .. n) are the current work
+ * item's; the earlier items' records stay where they were written (in r,
+ * or in a block before it, kept in old), since their spans point at them:
+ * a full buffer moves on to one twice its size, copying only the current
+ * item's (realloc would copy them all, into pages faulted in once more).
+ * Elements of sz bytes. */
 struct recbuf {
-	struct rec *r;
+	char *r;
 	long n, cap, item0;
-	struct rec **old; /* the earlier blocks (freed with r) */
+	char **old; /* the earlier blocks (freed with r) */
 	long nold;
+	size_t sz;
 };
 
 /* What one light aims at one specular object: from a point or spot light,
@@ -113,8 +123,11 @@ struct job {
  * per item instead of every record. */
 struct span {
 	int w;
-	const struct rec *r;
+	const struct rec *r;        /* NULL when grey */
+	const struct illum_gsplat *g; /* a grey item's records: one surface, white light */
+	const struct object *obj;   /* and their surface */
 	long nr, p0, np;
+	const struct recx *x;       /* the recx of those records that have one (rec_has_x) */
 	int nd;
 	const struct object *d[DISTINCT_MAX];
 };
@@ -122,7 +135,10 @@ struct span {
 /* The same, resolved to memory once the workers are done. */
 struct seg {
 	const struct rec *r;
+	const struct illum_gsplat *g;
+	const struct object *obj;
 	long nr;
+	const struct recx *x;
 	const struct prec *p;
 	long np;
 	int nd;
@@ -163,7 +179,12 @@ struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
 	struct band band;           /* the light the current ray carries */
-	struct recbuf recs;
+	struct recbuf stage;        /* struct rec: the current item's, until it ends (work) */
+	struct recbuf recs;         /* struct rec: earlier items' */
+	struct recbuf grecs;        /* struct illum_gsplat: earlier grey items' */
+	struct recbuf recx;         /* struct recx, of the records that have one */
+	const struct object *xo;    /* rec_has_x for xo is xneed (a cache) */
+	bool xneed;
 	bool corners;               /* tracing shaft corners: landings go to lands */
 	struct landbuf lands;
 	struct precbuf precs;
@@ -334,13 +355,20 @@ static unsigned chart(const struct hit *h)
 
 static void land(struct worker *w, const struct hit *h, const double e[3], uint64_t sig);
 
-/* Moves rb on to a block twice the size (see struct recbuf). */
-static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
+/* Moves rb on to a block twice the size (see struct recbuf), or room for
+ * `more` elements after the current item's. */
+static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb, long more)
 {
 	long cap = rb->cap ? rb->cap * 2 : 4096, keep = rb->n - rb->item0;
-	struct rec *r = mem_alloc_huge(sizeof *r * (size_t)cap); /* (from 4 MiB: fewer page faults) */
+	if (cap < keep + more)
+		cap = keep + more;
+	if (rb->cap && (size_t)cap * rb->sz < MEM_HUGE_MIN) /* past the first block, MEM_HUGE_MIN at
+	                                                        least (huge pages: fewer page faults;
+	                                                        only the pages written are zeroed) */
+		cap = (long)((MEM_HUGE_MIN + rb->sz - 1) / rb->sz);
+	char *r = mem_alloc_huge(rb->sz * (size_t)cap);
 	if (keep)
-		memcpy(r, rb->r + rb->item0, sizeof *r * (size_t)keep);
+		memcpy(r, rb->r + rb->sz * (size_t)rb->item0, rb->sz * (size_t)keep);
 	if (rb->item0 > 0) { /* earlier items' records are in it */
 		rb->old = mem_realloc(rb->old, sizeof *rb->old * (size_t)(rb->nold + 1));
 		rb->old[rb->nold++] = rb->r;
@@ -350,11 +378,56 @@ static __attribute__((noinline)) void recbuf_grow(struct recbuf *rb)
 	rb->r = r, rb->cap = cap, rb->n = keep, rb->item0 = 0;
 }
 
+/* The next element of rb, to fill. */
+static inline void *recbuf_push(struct recbuf *rb)
+{
+	if (rb->n == rb->cap)
+		recbuf_grow(rb, 1);
+	return rb->r + rb->sz * (size_t)rb->n++;
+}
+
+/* Room for n elements, the current item's from now on (rb->n grows by n). */
+static void *recbuf_take(struct recbuf *rb, long n)
+{
+	rb->item0 = rb->n;
+	if (rb->cap - rb->n < n)
+		recbuf_grow(rb, n);
+	rb->n += n;
+	return rb->r + rb->sz * (size_t)rb->item0;
+}
+
+/* The current item's elements (NULL when there are none). */
+static void *recbuf_item(const struct recbuf *rb)
+{
+	return rb->n > rb->item0 ? rb->r + rb->sz * (size_t)rb->item0 : NULL;
+}
+
 static void recbuf_free(struct recbuf *rb)
 {
 	for (long i = 0; i < rb->nold; i++)
 		free(rb->old[i]);
 	free(rb->old), free(rb->r);
+}
+
+/* Whether a record on ob keeps its struct recx: with shafts (sizes, and
+ * shaft_spec's points), and on a surface whose grid is chosen from where
+ * the records landed (no illum_map { cell } or { resolution }, as
+ * choose_spec asks). */
+static bool rec_has_x(const struct lp_opts *o, const struct object *ob)
+{
+	struct illum_spec own = obj_illum(ob);
+	return o->shafts || !(own.resolution > 0 || own.cell > 0);
+}
+
+/* Appends a record (and its recx where it keeps one). */
+static inline void push_rec(struct worker *w, const struct illum_splat *s, const struct object *ob, struct vec3 p,
+                            double size)
+{
+	*(struct rec *)recbuf_push(&w->stage) = (struct rec){*s, ob};
+	if (ob != w->xo)
+		w->xo = ob, w->xneed = rec_has_x(w->job->o, ob);
+	if (w->xneed)
+		*(struct recx *)recbuf_push(&w->recx) = (struct recx){p, size};
 }
 
 static void record(struct worker *w, struct hit *h, const struct ray *r, const double e[3], uint64_t sig)
@@ -365,10 +438,7 @@ static void record(struct worker *w, struct hit *h, const struct ray *r, const d
 		land(w, h, e, sig_mix(sig, h->obj, 16 + chart(h)));
 		return;
 	}
-	struct recbuf *rb = &w->recs;
-	if (rb->n == rb->cap)
-		recbuf_grow(rb);
-	rb->r[rb->n++] = (struct rec){{h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0};
+	push_rec(w, &(struct illum_splat){h->u, h->v, {e[0], e[1], e[2]}}, h->obj, h->p, 0);
 }
 
 /* acc += e (written out: GCC does not unroll the loop at -O2, and every
@@ -846,11 +916,8 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 							double x = v_len(v_sub(w->lands.l[m].p, L->p));
 							size = x > size ? x : size; /* fmax: size is never NaN */
 						}
-				struct recbuf *rb = &w->recs;
-				if (rb->n == rb->cap)
-					recbuf_grow(rb);
-				rb->r[rb->n++] = (struct rec){{L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
-				                              L->obj, L->p, size};
+				push_rec(w, &(struct illum_splat){L->u, L->v, {L->e[0] * share, L->e[1] * share, L->e[2] * share}},
+				         L->obj, L->p, size);
 				continue;
 			}
 			if (k > 0)
@@ -1034,6 +1101,31 @@ static void list_distinct(struct span *sp, const struct rec *r, long nr, const s
 	}
 }
 
+/* Moves the current item's records from the stage to where they are
+ * kept: when they all landed on one surface in white light (the usual
+ * case) as 24-byte illum_gsplats, the surface once in the span, else
+ * whole. The stage is written while tracing and read back here while in
+ * cache; only what is kept reaches fresh memory (the kernel zeroes every
+ * page of it first). */
+static void keep_item(struct worker *w, struct span *sp)
+{
+	const struct rec *r = (const struct rec *)(const void *)w->stage.r;
+	long n = w->stage.n;
+	bool grey = n > 0;
+	for (long i = 0; i < n && grey; i++)
+		grey = r[i].obj == r[0].obj && r[i].s.e[0] == r[i].s.e[1] && r[i].s.e[1] == r[i].s.e[2];
+	if (grey) {
+		struct illum_gsplat *g = recbuf_take(&w->grecs, n);
+		for (long i = 0; i < n; i++)
+			g[i] = (struct illum_gsplat){r[i].s.u, r[i].s.v, r[i].s.e[0]};
+		sp->g = g, sp->obj = r[0].obj;
+	} else if (n > 0) {
+		sp->r = memcpy(recbuf_take(&w->recs, n), r, sizeof *r * (size_t)n);
+	}
+	sp->nr = n;
+	w->stage.n = 0;
+}
+
 /* Work item k on the worker's own buffers (a parallel_for item; ctx is the
  * workers' array). */
 static void work(void *ctx, long k, int worker)
@@ -1041,15 +1133,17 @@ static void work(void *ctx, long k, int worker)
 	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
 	long p0 = w->precs.n;
-	w->recs.item0 = w->recs.n;
+	w->stage.n = w->stage.item0 = 0;
+	w->recx.item0 = w->recx.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	long nr = w->recs.n - w->recs.item0;
-	*sp = (struct span){worker, nr ? w->recs.r + w->recs.item0 : NULL, nr, p0, w->precs.n - p0, 0, {NULL}};
-	list_distinct(sp, sp->r, sp->nr, sp->np ? w->precs.r + p0 : NULL, sp->np);
+	*sp = (struct span){worker, NULL, NULL, NULL, 0, p0, w->precs.n - p0, recbuf_item(&w->recx), 0, {NULL}};
+	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->np ? w->precs.r + p0 : NULL,
+	              sp->np);
+	keep_item(w, sp);
 	progress_step(J->o->progress, 1);
 }
 
@@ -1274,8 +1368,23 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 	free(pp), free(ps), free(lp);
 }
 
+/* Record i of segment s: its surface, and its splat. */
+static const struct object *seg_obj(const struct seg *s, long i)
+{
+	return s->g ? s->obj : s->r[i].obj;
+}
+
+static struct illum_splat seg_splat(const struct seg *s, long i)
+{
+	if (s->g)
+		return (struct illum_splat){s->g[i].u, s->g[i].v, {s->g[i].e, s->g[i].e, s->g[i].e}};
+	return s->r[i].s;
+}
+
 /* One surface's records gathered for its map: segment g's records go to
- * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item). */
+ * [off[g], off[g+1]) of the arrays that are not NULL (a parallel_for item).
+ * pts and psz are filled from the records' recx (all of one surface's
+ * records have one, or none do: rec_has_x). */
 struct gather {
 	const struct seg *sg;
 	const long *off;
@@ -1288,14 +1397,14 @@ static void gather_work(void *ctx, long g, int worker)
 {
 	(void)worker;
 	const struct gather *G = ctx;
+	const struct recx *x = G->sg[g].x;
 	for (long i = 0, at = G->off[g]; i < G->sg[g].nr; i++, at++) {
-		const struct rec *rc = &G->sg[g].r[i];
 		if (G->pts)
-			G->pts[at] = rc->p;
+			G->pts[at] = x[i].p;
 		if (G->psz)
-			G->psz[at] = rc->size;
+			G->psz[at] = x[i].size;
 		if (G->sp)
-			G->sp[at] = rc->s;
+			G->sp[at] = seg_splat(&G->sg[g], i);
 	}
 }
 
@@ -1317,7 +1426,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < (sg[g].nd >= 0 ? sg[g].nd : sg[g].nr + sg[g].np); i++) {
 			const struct object *ob = sg[g].nd >= 0 ? sg[g].d[i]
-			                        : i < sg[g].nr ? sg[g].r[i].obj : sg[g].p[i - sg[g].nr].obj;
+			                        : i < sg[g].nr ? seg_obj(&sg[g], i) : sg[g].p[i - sg[g].nr].obj;
 			bool seen = ob == prev || find_map(r, ob) >= 0;
 			prev = ob;
 			if (seen)
@@ -1351,9 +1460,17 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	double *psz = inplace ? NULL : mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
 	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
 	t = 0;
-	for (long g = 0; g < nseg && ki; g++)
+	for (long g = 0; g < nseg && ki; g++) {
+		if (sg[g].g) { /* one surface */
+			int k = sg[g].nr ? find_map(r, sg[g].obj) : 0;
+			for (long i = 0; i < sg[g].nr; i++)
+				ki[t++] = k;
+			start[k + 1] += sg[g].nr;
+			continue;
+		}
 		for (long i = 0; i < sg[g].nr; i++, t++)
 			start[(ki[t] = find_map(r, sg[g].r[i].obj)) + 1]++;
+	}
 	if (!ki && n)
 		start[1] = total;
 	for (long g = 0; g < nseg; g++)
@@ -1366,25 +1483,39 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	if (inplace) {
 		runs = mem_alloc(sizeof *runs * (size_t)nseg);
 		for (long g = 0; g < nseg; g++)
-			runs[g] = (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r};
+			runs[g] = sg[g].g ? (struct illum_run){sg[g].g, sg[g].nr, sizeof *sg[g].g, true}
+			                  : (struct illum_run){sg[g].r, sg[g].nr, sizeof *sg[g].r, false};
 	}
+	/* which surfaces' records have their recx (rec_has_x): pts and psz are
+	 * read only for those (choose_spec and shaft_spec return a surface's own
+	 * grid at once; sizes are read only with shafts, where all have one) */
+	bool *hasx = mem_alloc(sizeof *hasx * (size_t)(n ? n : 1));
+	for (int k = 0; k < n; k++)
+		hasx[k] = rec_has_x(o, objs[k]);
 	if (!ki && (pts || sp)) { /* one surface: the segments' records in order, on the threads */
 		long *off = mem_alloc(sizeof *off * (size_t)(nseg + 1));
 		off[0] = 0;
 		for (long g = 0; g < nseg; g++)
 			off[g + 1] = off[g] + sg[g].nr;
-		parallel_for(nseg, o->threads, gather_work, &(struct gather){sg, off, pts, psz, sp});
+		bool x = n && hasx[0];
+		parallel_for(nseg, o->threads, gather_work, &(struct gather){sg, off, x ? pts : NULL, x ? psz : NULL, sp});
+		if (!x && psz)
+			memset(psz, 0, sizeof *psz * (size_t)total);
 		free(off);
 	}
-	for (long g = 0; g < nseg && ki; g++)
+	for (long g = 0; g < nseg && ki; g++) {
+		const struct recx *x = sg[g].x;
 		for (long i = 0; i < sg[g].nr; i++, t++) {
-			const struct rec *rc = &sg[g].r[i];
 			int k = ki[t];
 			long at = start[k] + fill[k]++;
-			pts[at] = rc->p;
-			psz[at] = rc->size;
-			sp[at] = rc->s;
+			if (hasx[k])
+				pts[at] = x->p, psz[at] = x->size, x++;
+			else
+				pts[at] = v3(0, 0, 0), psz[at] = 0;
+			sp[at] = sg[g].g ? seg_splat(&sg[g], i) : sg[g].r[i].s;
 		}
+	}
+	free(hasx);
 	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < sg[g].np; i++) {
@@ -1528,15 +1659,17 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	int nt = o->threads > 0 ? o->threads : 1;
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	for (int i = 0; i < nt; i++)
-		ws[i].job = &J;
+		ws[i].job = &J, ws[i].stage.sz = ws[i].recs.sz = sizeof(struct rec), ws[i].recx.sz = sizeof(struct recx),
+		ws[i].grecs.sz = sizeof(struct illum_gsplat);
 	parallel_for(J.nitems, nt, work, ws);
 	progress_end(o->progress);
-	struct recbuf *bufs = mem_calloc((size_t)nt, sizeof *bufs);
+	struct recbuf *bufs = mem_calloc(3 * (size_t)nt, sizeof *bufs); /* recs, grecs, recx */
 	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
 	struct lp_stats acc;
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nt; i++) {
-		bufs[i] = ws[i].recs;
+		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].grecs, bufs[2 * nt + i] = ws[i].recx;
+		recbuf_free(&ws[i].stage);
 		pbufs[i] = ws[i].precs;
 		free(ws[i].lands.l);
 		acc.segments += ws[i].segments;
@@ -1553,8 +1686,8 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->r, p->nr, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np,
-		                     p->nd, p->d};
+		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np, p->nd,
+		                     p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
 	free(sg), free(J.spans);
@@ -1575,7 +1708,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		recbuf_free(&bufs[i]), free(pbufs[i].r);
+		recbuf_free(&bufs[i]), recbuf_free(&bufs[nt + i]), recbuf_free(&bufs[2 * nt + i]), free(pbufs[i].r);
 	free(pbufs);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
