@@ -4,7 +4,8 @@
 #   - POV-Ray 3.7's own renders of pov_legacy.scn and pov_glass.scn
 #     (#version 3.7: lights, highlights, mirror, refraction, filter,
 #     transmit, absorption) against arvo's, same tolerance;
-#   - determinism: the EXR is bit-identical for --threads 1, 2, 7 and reruns;
+#   - determinism: the EXR is bit-identical for --threads 1, 2, 7 and reruns
+#     (lp_mixed.scn: the light pass's cases, for 1, 3, 7);
 #     a PNG alone (R G B only stored) is the PNG written beside an EXR;
 #   - the OCIO path: a linear 0.18 through each view of the shipped config
 #     matches ocioconvert's answer to within one 8-bit step;
@@ -110,6 +111,18 @@ cmp "$tmp/cau1.exr" "$tmp/cau2.exr" >> "$tmp/log" 2>&1 || st=1
 cmp "$tmp/cau1.exr" "$tmp/cau7.exr" >> "$tmp/log" 2>&1 || st=1
 oiiotool "$tmp/cau1.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000' && st=1
 check "light pass: caustic layer non-zero and bit-identical for --threads 1, 2, 7" $st
+st=0
+for m in point shaft; do
+	for t in 1 3 7; do
+		"$ARVO" -q --threads $t --rays 3000 --method $m --width 33 --height 21 -o "$tmp/mix$t.exr" "$T/lp_mixed.scn" >> "$tmp/log" 2>&1 || st=1
+	done
+	cmp "$tmp/mix1.exr" "$tmp/mix3.exr" >> "$tmp/log" 2>&1 || st=1
+	cmp "$tmp/mix1.exr" "$tmp/mix7.exr" >> "$tmp/log" 2>&1 || st=1
+	for c in R G B; do
+		oiiotool "$tmp/mix1.exr" --ch caustic.$c --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000' && st=1
+	done
+done
+check "light pass, white and coloured lights, own and automatic grids (lp_mixed.scn): bit-identical for --threads 1, 3, 7, points and shafts" $st
 "$ARVO" -q --rays 0 --width 33 --height 21 -o "$tmp/nolp.exr" "$T/g_glass.scn" > "$tmp/log" 2>&1
 oiiotool "$tmp/nolp.exr" --ch caustic.G --printstats 2>/dev/null | grep -q 'Stats Max: 0.000000 (float)'
 check "--rays 0 turns the light pass off (caustic layer all zero)" $?
