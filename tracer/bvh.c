@@ -278,11 +278,12 @@ HOT double upper_end(const struct query *q, int id)
 	return q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax;
 }
 
-HOT bool consider_obj(struct query *q, int id, const struct object *o)
+/* consider_obj over (q->tmin, hi). */
+HOT bool consider_to(struct query *q, int id, const struct object *o, double hi)
 {
 	if ((o->flags & q->skip) || o == q->from)
 		return false;
-	double hi = upper_end(q, id), t;
+	double t;
 	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return false;
@@ -303,9 +304,21 @@ HOT bool consider_obj(struct query *q, int id, const struct object *o)
 	return true;
 }
 
+HOT bool consider_obj(struct query *q, int id, const struct object *o)
+{
+	return consider_to(q, id, o, upper_end(q, id));
+}
+
 HOT bool consider(struct query *q, int id)
 {
 	return consider_obj(q, id, q->b->prims[id]);
+}
+
+/* consider, for leaves tested in index order from the first (brute's
+ * loop): no leaf comes before the best so far, so upper_end is tmax. */
+HOT bool consider_next(struct query *q, int id)
+{
+	return consider_to(q, id, q->b->prims[id], q->tmax);
 }
 
 /* Tests primitive id against lane i of a ray packet of N rays (N = 1: a
@@ -780,7 +793,7 @@ HOT void brute(struct query *q, bool any)
 	}
 	for (int i = 0; i < q->b->nprims && !(any && q->found); i++) {
 		if (!any) {
-			consider(q, i);
+			consider_next(q, i);
 			continue;
 		}
 		const struct object *o = q->b->prims[i];
@@ -818,14 +831,14 @@ HOT bool unbounded(struct query *q, bool any)
 
 /* The hit of a sphere that won with its t alone: the same test over the
  * same interval, in full. */
-static void finish_hit(struct query *q);
+HOT void finish_hit(struct query *q);
 static inline void finish(struct query *q)
 {
 	if (q->deferred || (q->best < 0 && q->ubest >= 0))
 		finish_hit(q);
 }
 
-static void finish_hit(struct query *q)
+HOT void finish_hit(struct query *q)
 {
 	if (q->deferred)
 		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);

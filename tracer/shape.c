@@ -30,14 +30,15 @@ static inline const struct ray *local_ray(const struct object *o, const struct r
 	return tmp;
 }
 
-/* Fills a world hit from a local one; without uv, (u,v) are NaN and the
- * partials zero. Inline in each caller: as a call it cost the light pass of
+/* Fills a world hit from a local one whose world normal, normalised, is
+ * n (to_world's); without uv, (u,v) are NaN and the partials zero. Inline
+ * in each caller: as a call it cost the light pass of
  * tests/accuracy/sphere.scn (1M rays) 44 M of its 1,946 M instructions. */
-__attribute__((always_inline)) static inline void to_world(const struct object *o, const struct ray *r,
-                                                           const struct local_hit *lh, bool uv, struct hit *h)
+__attribute__((always_inline)) static inline void to_world_n(const struct object *o, const struct ray *r,
+                                                             const struct local_hit *lh, bool uv, struct hit *h,
+                                                             struct vec3 n)
 {
 	const struct xform *x = o->xf;
-	struct vec3 n = v_norm(x ? xf_normal(x, lh->n) : lh->n);
 	if (o->flags & OF_INVERSE)
 		n = v_neg(n);
 	h->t = lh->t;
@@ -54,6 +55,12 @@ __attribute__((always_inline)) static inline void to_world(const struct object *
 	h->v = lh->v;
 	h->dpdu = x ? xf_vector(x, lh->dpdu) : lh->dpdu;
 	h->dpdv = x ? xf_vector(x, lh->dpdv) : lh->dpdv;
+}
+
+__attribute__((always_inline)) static inline void to_world(const struct object *o, const struct ray *r,
+                                                           const struct local_hit *lh, bool uv, struct hit *h)
+{
+	to_world_n(o, r, lh, uv, h, v_norm(o->xf ? xf_normal(o->xf, lh->n) : lh->n));
 }
 
 /* shape_intersect's steps; uv false: shape_intersect_bare's. */
@@ -98,17 +105,32 @@ bool shape_hit_t(const struct object *o, const struct ray *r, double tmin, doubl
 	return true;
 }
 
-bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
-                  bool uv, struct hit *h)
+/* shape_hit_at for sphere o: through its frame, or with its (u,v). */
+static __attribute__((noinline)) bool sphere_hit_at(const struct object *o, const struct ray *r, double t, bool uv,
+                                                    struct hit *h)
 {
-	if (o->kind != OBJ_SPHERE)
-		return shape_intersect(o, r, tmin, tmax, h);
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
 	if (!(uv ? sph_hit_at(o, lr, t, true, &lh) : prim_sphere_at(o->g.sphere.c, o->g.sphere.r, lr, t, &lh)))
 		return false; /* (without uv, the same point and normal inline) */
 	to_world(o, r, &lh, uv, h);
+	return true;
+}
+
+bool shape_hit_at(const struct object *o, const struct ray *r, double tmin, double tmax, double t,
+                  bool uv, struct hit *h)
+{
+	if (o->kind != OBJ_SPHERE)
+		return shape_intersect(o, r, tmin, tmax, h);
+	if (o->xf || uv)
+		return sphere_hit_at(o, r, t, uv, h);
+	/* the common case without a frame or (u,v) (a light ray's, an eye
+	 * ray's without a map): its small frame kept apart from the other's */
+	struct local_hit lh;
+	if (!prim_sphere_at(o->g.sphere.c, o->g.sphere.r, r, t, &lh))
+		return false;
+	to_world(o, r, &lh, false, h);
 	return true;
 }
 
@@ -120,14 +142,27 @@ bool shape_plane_hit_t(const struct object *o, const struct pl_prep *p, const st
 	return pl_prep_hit_t(p, lr, tmin, tmax, t);
 }
 
-void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
-                        struct hit *h)
+/* shape_plane_hit_at for plane o with a transform. */
+static __attribute__((noinline)) void plane_hit_xf(const struct object *o, const struct pl_prep *p,
+                                                   const struct ray *r, double t, bool uv, struct hit *h)
 {
 	struct ray tmp;
 	const struct ray *lr = local_ray(o, r, &tmp);
 	struct local_hit lh;
 	pl_prep_hit(p, lr, t, &lh);
 	to_world(o, r, &lh, uv, h);
+}
+
+void shape_plane_hit_at(const struct object *o, const struct pl_prep *p, const struct ray *r, double t, bool uv,
+                        struct hit *h)
+{
+	if (o->xf) {
+		plane_hit_xf(o, p, r, t, uv, h);
+		return;
+	}
+	struct local_hit lh; /* without a transform (its small frame kept apart from the other's) */
+	pl_prep_hit(p, r, t, &lh); /* (lh.n is p->n, whose v_norm is p->nw) */
+	to_world_n(o, r, &lh, uv, h, p->nw);
 }
 
 bool shape_occluded(const struct object *o, const struct ray *r, double tmin, double tmax)

@@ -43,14 +43,23 @@ void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struc
 	const struct texture *t = mat_texture(h->obj);
 	if (tex_map(t)) /* a texture_map: the texture at the point */
 		t = mat_texture_leaf(mc, t, h->p);
-	si->h = h;
 	si->f = tex_finish(t);
 	si->pc = t->pigment.kind == PIG_SOLID ? t->pigment.c[0] : mat_pigment(mc, &t->pigment, h->p);
 	si->in = mat_interior(h->obj);
-	si->d = d;
-	si->nf = v_dot(h->n, d) < 0 ? h->n : v_neg(h->n);
 	si->legacy = s->legacy_lights;
 	si->straight = straight(s, h->obj, si->in);
+	surf_prepare_hit(h, d, si);
+}
+
+bool surf_prepare_obj(const struct scene *s, const struct object *o, struct surf_in *si)
+{
+	const struct texture *t = mat_texture(o);
+	if (tex_map(t) || t->pigment.kind != PIG_SOLID)
+		return false; /* (the texture or the pigment at the point) */
+	*si = (struct surf_in){.f = tex_finish(t), .pc = t->pigment.c[0], .in = mat_interior(o),
+	                       .legacy = s->legacy_lights};
+	si->straight = straight(s, o, si->in);
+	return true;
 }
 
 static bool opaque(struct colour c) { return c.f == 0 && c.t == 0; }

@@ -76,6 +76,20 @@ bool surf_any_straight(const struct scene *s);
 void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
                   struct surf_in *si);
 
+/* What surf_prepare fills for any hit on o, when that is all but the hit,
+ * the direction and the facing normal (surf_prepare_hit): o's texture is
+ * one texture (no texture_map) of a solid pigment. False otherwise, si
+ * then unset. A caller that meets o often (the light pass) makes it once. */
+bool surf_prepare_obj(const struct scene *s, const struct object *o, struct surf_in *si);
+
+/* The rest of surf_prepare, for ray direction d (unit) meeting hit h. */
+static inline void surf_prepare_hit(const struct hit *h, struct vec3 d, struct surf_in *si)
+{
+	si->h = h;
+	si->d = d;
+	si->nf = v_dot(h->n, d) < 0 ? h->n : v_neg(h->n);
+}
+
 /* An offset for spawned rays, relative to the size of the coordinates. */
 static inline double surf_eps(struct vec3 p)
 {

@@ -23,6 +23,7 @@
 #include "../optics.h"
 #include "../output/tmpfile.h"
 #include "../sampler.h"
+#include "../scatter.h"
 #include "../shape.h"
 #include "../spectrum.h"
 #include "../surface.h"
@@ -197,6 +198,11 @@ struct worker {
 		bool quiet;                /* no pass_through, no fade (inert) */
 		bool still;                /* dull and quiet: inert before any bounce */
 		bool convex;               /* shape_convex(o) */
+		bool fades;                /* its interior absorbs light (opt_fade) */
+		bool plain;                /* surf_prepare_obj filled si: */
+		struct surf_in si;         /* surf_prepare's fields that depend on o alone */
+		bool fixed;                /* plain, and its reflection is constant: */
+		struct sc_weights rt;      /* surf_weights, the same for any hit */
 	} oi[8];
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
@@ -474,19 +480,24 @@ static const struct finish *dull(const struct object *o)
 /* dull(o) and whether o lets nothing pass (photons { pass_through }) and
  * fades nothing, from the worker's small cache of them (a ray meets the
  * same few surfaces over and over). */
-static __attribute__((noinline)) void oinfo_fill(struct oinfo *x, const struct object *o)
+static __attribute__((noinline)) void oinfo_fill(const struct worker *w, struct oinfo *x, const struct object *o)
 {
 	const struct photon_spec *ph = obj_photons(o);
-	*x = (struct oinfo){o, dull(o), !(ph && ph->pass_through) && !(mat_interior(o)->fade_distance > 0), false,
-	                    shape_convex(o)};
+	bool fades = mat_interior(o)->fade_distance > 0;
+	*x = (struct oinfo){.o = o, .dull = dull(o), .quiet = !(ph && ph->pass_through) && !fades,
+	                    .convex = shape_convex(o), .fades = fades};
 	x->still = x->dull && x->quiet;
+	x->plain = surf_prepare_obj(w->job->s, o, &x->si);
+	x->fixed = x->plain && sc_refl_fixed(x->si.f);
+	if (x->fixed) /* (neither the angle nor the indices matter: any will do) */
+		x->rt = surf_weights(&x->si, 1, 1, 1);
 }
 
-static inline const struct oinfo *oinfo_of(struct worker *w, const struct object *o)
+static inline struct oinfo *oinfo_of(struct worker *w, const struct object *o)
 {
 	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7];
 	if (x->o != o)
-		oinfo_fill(x, o);
+		oinfo_fill(w, x, o);
 	return x;
 }
 
@@ -507,10 +518,17 @@ static bool inert(const struct need *n, const struct oinfo *x)
 
 /* (Asked only before the first bounce, where n->direct holds: after it,
  * every hit is needed whole and trace passes no callback.) */
+static __attribute__((noinline)) bool full_fill(struct worker *w, struct oinfo *x, const struct object *o)
+{
+	oinfo_fill(w, x, o);
+	return !x->still;
+}
+
 static bool full_hit(const void *ctx, const struct object *o)
 {
-	const struct need *n = ctx;
-	return !oinfo_of(n->w, o)->still;
+	struct worker *w = ((const struct need *)ctx)->w;
+	struct oinfo *x = &w->oi[((uintptr_t)o >> 6) & 7]; /* oinfo_of, its fill a tail call */
+	return x->o == o ? !x->still : full_fill(w, x, o);
 }
 
 /* Follows one light ray; nspec counts its specular bounces so far (a
@@ -536,7 +554,7 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			add3(w->escaped, e);
 			return;
 		}
-		const struct oinfo *hx = oinfo_of(w, h.obj);
+		struct oinfo *hx = oinfo_of(w, h.obj);
 		if (inert(&nd, hx)) { /* h holds only obj and t */
 			add3(hx->dull->diffuse > 0 ? w->direct : w->absorbed, e);
 			return;
@@ -554,7 +572,8 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			depth++, from = NULL;
 			continue;
 		}
-		if (!h.entering) { /* leaving a medium: its absorption over the path inside */
+		if (!h.entering && hx->fades) { /* leaving a medium: its absorption over the path inside
+		                                   (none, k = 1, unless it fades) */
 			struct vec3 k = opt_fade(mat_interior(h.obj), h.t * v_len(r.d));
 			double ea[3] = {en[0] * k.x, en[1] * k.y, en[2] * k.z};
 			for (int c = 0; c < 3; c++)
@@ -570,17 +589,28 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 			}
 			return;
 		}
-		struct surf_in si;
+		struct surf_in own, *si = &own;
 		struct surf_out so;
-		surf_prepare(J->s, J->mc, &h, v_norm(r.d), &si);
-		surf_scatter(&si, w->band, &so);
-		double opacity = 1 - si.pc.f - si.pc.t;
+		if (hx->plain) { /* the object's part made once (oinfo_fill), the hit's in place */
+			si = &hx->si;
+			surf_prepare_hit(&h, v_norm(r.d), si);
+		} else {
+			surf_prepare(J->s, J->mc, &h, v_norm(r.d), si);
+		}
+		if (hx->fixed) {
+			double n1, n2;
+			sc_sides(si, w->band, &n1, &n2);
+			surf_scatter_rt(si, n1, n2, hx->rt, &so);
+		} else {
+			surf_scatter(si, w->band, &so);
+		}
+		double opacity = 1 - si->pc.f - si->pc.t;
 		/* what neither reflects nor transmits stays at the surface: a diffuse
 		 * surface reached after a specular bounce keeps it in its map */
 		double rest[3];
 		for (int c = 0; c < 3; c++)
 			rest[c] = e[c] * (1 - v_comp(so.R, c) - v_comp(so.T, c));
-		bool diffuse = si.f->diffuse > 0 && opacity > 0;
+		bool diffuse = si->f->diffuse > 0 && opacity > 0;
 		if (diffuse && (nspec > 0 || J->o->deposit_direct) && (!ph || ph->collect)) {
 			record(w, &h, &r, e, sig);
 			add3(w->deposited, rest);
@@ -593,32 +623,33 @@ static void trace(struct worker *w, struct ray r, const double e_in[3], double c
 		if (!(tmax > 0) && !(rmax > 0))
 			return;
 		bool more = depth < J->o->max_depth;
-		bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
-		bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
 		/* the spawned rays start off the surface on the side of si.nf (the
 		 * reflected one) or of -si.nf (the transmitted one): the outside of a
 		 * convex object when that is the side of its outward normal */
 		const struct object *out = hx->convex ? h.obj : NULL;
-		bool outside = v_dot(si.nf, h.n) > 0; /* the incoming ray came from outside */
-		double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
-		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
-		bool goT = tmax > 0 && refract && max3(te[0], te[1], te[2]) > cutoff;
-		bool goR = rmax > 0 && reflect && max3(re[0], re[1], re[2]) > cutoff;
+		bool outside = v_dot(si->nf, h.n) > 0; /* the incoming ray came from outside */
 		uint64_t sig0 = sig;
 		depth++;
-		if (tmax > 0 && !goT)
-			add3(w->cut, te);
-		if (goT && rmax > 0) { /* both: the transmitted ray first, by a call */
-			trace(w, so.trans, te, cutoff, depth, si.straight ? nspec : nspec + 1, sig_mix(sig0, h.obj, 1),
-			      outside ? NULL : out);
-		} else if (goT) { /* the transmitted ray alone: on in this loop */
-			r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
-			nspec = si.straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1), from = outside ? NULL : out;
-			continue;
+		if (tmax > 0) {
+			bool refract = w->refract && (!ph || !ph->target || ph->refraction) && more;
+			double te[3] = {e[0] * so.T.x, e[1] * so.T.y, e[2] * so.T.z};
+			if (!(refract && max3(te[0], te[1], te[2]) > cutoff)) {
+				add3(w->cut, te);
+			} else if (rmax > 0) { /* both: the transmitted ray first, by a call */
+				trace(w, so.trans, te, cutoff, depth, si->straight ? nspec : nspec + 1,
+				      sig_mix(sig0, h.obj, 1), outside ? NULL : out);
+			} else { /* the transmitted ray alone: on in this loop */
+				r = so.trans, en[0] = te[0], en[1] = te[1], en[2] = te[2];
+				nspec = si->straight ? nspec : nspec + 1, sig = sig_mix(sig0, h.obj, 1);
+				from = outside ? NULL : out;
+				continue;
+			}
 		}
 		if (!(rmax > 0))
 			return;
-		if (!goR) {
+		bool reflect = w->reflect && (!ph || !ph->target || ph->reflection) && !J->o->transmit_only && more;
+		double re[3] = {e[0] * so.R.x, e[1] * so.R.y, e[2] * so.R.z};
+		if (!(reflect && max3(re[0], re[1], re[2]) > cutoff)) {
 			add3(w->cut, re);
 			return;
 		}
@@ -1001,21 +1032,29 @@ static void run_item(struct worker *w, const struct item *it)
 	w->reflect = l->photons_reflection;
 	w->band = J->band; /* a spectral pass sets each ray's wavelength */
 	long col = it->first % t->side, row = it->first / t->side; /* of ray i, kept without dividing */
-	for (long i = it->first; i < it->first + it->count; i++, col = col + 1 == t->side ? (row++, 0) : col + 1) {
+	/* what every ray of the item reads, in locals: trace writes memory the
+	 * compiler cannot tell apart from these, and would read them again */
+	const struct target T = *t;
+	const struct vec3 pos = l->pos;
+	const double side = (double)T.side;
+	const bool spot = l->kind == LIGHT_SPOT, spectral = J->o->spectral;
+	const long end = it->first + it->count;
+	double em[3] = {w->emitted[0], w->emitted[1], w->emitted[2]}; /* the same sums in the same order */
+	for (long i = it->first; i < end; i++, col = col + 1 == T.side ? (row++, 0) : col + 1) {
 		/* stratified in (cos θ, φ) over the cone, or in (r², φ) over the disc */
 		struct smp_stream ss = smp_start(key, (uint32_t)i); /* smp_get's dimensions 0 and 1, one key */
-		double sx = ((double)col + smp_next(&ss)) / (double)t->side;
-		double sy = ((double)row + smp_next(&ss)) / (double)t->side;
+		double sx = ((double)col + smp_next(&ss)) / side;
+		double sy = ((double)row + smp_next(&ss)) / side;
 		double ph = 2 * M_PI * sy;
-		struct vec3 o = l->pos, d;
+		struct vec3 o = pos, d;
 		if (beam) {
-			d = t->axis;
-			double rr = t->radius * sqrt(sx);
-			o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
+			d = T.axis;
+			double rr = T.radius * sqrt(sx);
+			o = v_add(T.origin, v_add(v_scale(T.t1, rr * cos(ph)), v_scale(T.t2, rr * sin(ph))));
 		} else {
-			double ct = 1 - sx * (1 - t->cosmax), s2 = 1 - ct * ct;
+			double ct = 1 - sx * (1 - T.cosmax), s2 = 1 - ct * ct;
 			double st = sqrt(s2 > 0 ? s2 : 0); /* fmax(0, s2), inline (s2 is never -0) */
-			d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
+			d = v_add(v_scale(T.axis, ct), v_add(v_scale(T.t1, st * cos(ph)), v_scale(T.t2, st * sin(ph))));
 		}
 		bool covered = false;
 		for (int k = 0; k < it->target && !covered; k++)
@@ -1023,18 +1062,20 @@ static void run_item(struct worker *w, const struct item *it)
 		if (covered)
 			continue;
 		double e[3] = {e0[0], e0[1], e0[2]};
-		if (l->kind == LIGHT_SPOT) {
+		if (spot) {
 			double k = opt_spot(l, d);
 			if (k <= 0)
 				continue;
 			e[0] *= k, e[1] *= k, e[2] *= k;
 		}
-		if (J->o->spectral)
-			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)t->side, e);
+		if (spectral)
+			w->band.lambda = ray_wavelength(key, (uint64_t)i, (uint64_t)T.side, e);
 		for (int c = 0; c < 3; c++)
-			w->emitted[c] += e[c];
+			em[c] += e[c];
 		trace(w, (struct ray){o, d}, e, cutoff, 0, 0, 0, NULL);
 	}
+	for (int c = 0; c < 3; c++)
+		w->emitted[c] = em[c];
 }
 
 /* The distinct surfaces of records r[0..nr) and footprints p[0..np) (see

@@ -71,21 +71,6 @@ bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double t
 	return pl_root(v_scale(o->g.plane.n, 1 / l), o->g.plane.d / l, r, tmin, tmax, t);
 }
 
-/* The hit at root t, from frame f: rebuilt from its (u,v) so it lies in
- * the plane. */
-static inline void pl_hit(const struct vec3 *n, const struct vec3 *e1, const struct vec3 *e2, double d,
-                          const struct ray *r, double t, struct local_hit *lh)
-{
-	struct vec3 p = ray_at(*r, t);
-	lh->t = t;
-	lh->u = v_dot(p, *e1);
-	lh->v = v_dot(p, *e2);
-	lh->p = v_madd(v_madd(v_scale(*n, d), *e1, lh->u), *e2, lh->v);
-	lh->n = *n;
-	lh->dpdu = *e1;
-	lh->dpdv = *e2;
-}
-
 /* One root. */
 static bool pl_intersect(const struct object *o, const struct ray *r, double tmin, double tmax,
                          struct local_hit *lh)
@@ -94,7 +79,7 @@ static bool pl_intersect(const struct object *o, const struct ray *r, double tmi
 	double t;
 	if (!pl_frame(o, &f) || !pl_root(f.n, f.d, r, tmin, tmax, &t))
 		return false;
-	pl_hit(&f.n, &f.e1, &f.e2, f.d, r, t, lh);
+	prim_plane_hit(&f.n, &f.e1, &f.e2, f.d, r, t, lh);
 	return true;
 }
 
@@ -103,16 +88,12 @@ void pl_prep(const struct object *o, struct pl_prep *p)
 	struct pframe f = {.d = 0};
 	p->ok = pl_frame(o, &f);
 	p->n = f.n, p->e1 = f.e1, p->e2 = f.e2, p->d = f.d;
+	p->nw = v_norm(f.n);
 }
 
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t)
 {
 	return p->ok && pl_root(p->n, p->d, r, tmin, tmax, t);
-}
-
-void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh)
-{
-	pl_hit(&p->n, &p->e1, &p->e2, p->d, r, t, lh);
 }
 
 static bool pl_inside(const struct object *o, struct vec3 p)

@@ -65,14 +65,35 @@ bool pl_hit_t(const struct object *o, const struct ray *r, double tmin, double t
  * hits). */
 struct pl_prep {
 	struct vec3 n, e1, e2;
+	struct vec3 nw; /* v_norm(n): the world normal of a plane without a
+	                   transform, as to_world finds it (shape_plane_hit_at) */
 	double d;
 	bool ok;
 };
 void pl_prep(const struct object *o, struct pl_prep *p);
 bool pl_prep_hit_t(const struct pl_prep *p, const struct ray *r, double tmin, double tmax, double *t);
+/* The hit of the plane n̂·p = d with in-plane axes e1, e2 at root t:
+ * rebuilt from its (u,v) so it lies in the plane. Inline: the plane's
+ * intersect and pl_prep_hit share it. */
+static inline void prim_plane_hit(const struct vec3 *n, const struct vec3 *e1, const struct vec3 *e2, double d,
+                                  const struct ray *r, double t, struct local_hit *lh)
+{
+	struct vec3 p = ray_at(*r, t);
+	lh->t = t;
+	lh->u = v_dot(p, *e1);
+	lh->v = v_dot(p, *e2);
+	lh->p = v_madd(v_madd(v_scale(*n, d), *e1, lh->u), *e2, lh->v);
+	lh->n = *n;
+	lh->dpdu = *e1;
+	lh->dpdv = *e2;
+}
+
 /* The hit at the root t that pl_prep_hit_t found, as the plane's intersect
- * fills it there. */
-void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh);
+ * fills it there (inline: a light ray's every landing on a floor). */
+static inline void pl_prep_hit(const struct pl_prep *p, const struct ray *r, double t, struct local_hit *lh)
+{
+	prim_plane_hit(&p->n, &p->e1, &p->e2, p->d, r, t, lh);
+}
 /* The torus's intersect without (u,v) and the partials (left unset):
  * the same t, point and normal (shape_intersect_bare). */
 bool to_hit(const struct object *o, const struct ray *r, double tmin, double tmax, struct local_hit *lh);
