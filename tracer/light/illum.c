@@ -825,8 +825,10 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
  * of them would be memory the kernel zeroes, written and read back):
  *   1. the splats are scanned in parallel chunks: the valid ones counted,
  *      the largest energy and whether all are white; up to PREP_MAX splats,
- *      which the sample would nearly all split again, are split here onto
- *      their nodes (axis_split) once, into a `prep` each;
+ *      which the sample would nearly all split again, and any number into a
+ *      colour map (whose step 3 has more to do per splat than splitting it
+ *      again saves: shaft maps, coloured light), are split here onto their
+ *      nodes (axis_split) once, into a `prep` each;
  *   2. one thread places the window over a sample of their tiles (every
  *      stride-th valid splat);
  *   3. the accumulators are added band by band, one thread per band of
@@ -1254,7 +1256,7 @@ void illum_deposit_runs(struct illum_map *m, const struct illum_run *runs, long 
 	long nchunks = (n + PREP_CHUNK - 1) / PREP_CHUNK, nj = nchunks > nb ? nchunks : nb;
 	struct deposit_job *D = mem_calloc((size_t)nj, sizeof *D);
 	D[0] = (struct deposit_job){.m = m, .runs = runs, .off = off, .nruns = nruns,
-	                            .p = n <= PREP_MAX ? mem_alloc(sizeof *D->p * (size_t)n) : NULL, .n = n,
+	                            .p = n <= PREP_MAX || !m->grey ? mem_alloc_huge(sizeof *D->p * (size_t)n) : NULL, .n = n,
 	                            .chunk = PREP_CHUNK, .nb = nb};
 	parallel_for(nchunks, nb, scan_work, D);
 	double emax = 0; /* n·emax bounds the total whatever the order: the unit is too */
