@@ -17,26 +17,35 @@
 #include "geo_rand.h"
 #include "test.h"
 
-/* surf_any_straight of a scene of one plane under a light with the given
- * texture and interior (SDL text); -1 when it does not evaluate. */
-static int straight_of(const char *texture, const char *interior)
+/* Evaluates SDL text (written to a temporary file) into *s: 0, or -1 when
+ * it does not evaluate. */
+static int load_scene(const char *text, struct scene *s)
 {
 	char path[64];
 	snprintf(path, sizeof path, "/tmp/arvo-test-surface-%ld.scn", (long)getpid());
 	FILE *f = fopen(path, "w");
 	if (!f)
 		return -1;
-	fprintf(f, "camera { location <0, 1, -4> look_at 0 }\nlight_source { <0, 5, -5>, rgb 1 }\n"
-	           "plane { y, 0 texture { %s } interior { %s } }\n", texture, interior);
+	fputs(text, f);
 	fclose(f);
 	struct eval_options eo;
 	eval_default_options(&eo);
 	struct diag dg;
 	diag_init(&dg, stdout);
-	struct scene s;
-	int rc = eval_scene(path, &eo, &dg, &s);
+	int rc = eval_scene(path, &eo, &dg, s);
 	remove(path);
-	if (rc != 0)
+	return rc != 0 ? -1 : 0;
+}
+
+/* surf_any_straight of a scene of one plane under a light with the given
+ * texture and interior (SDL text); -1 when it does not evaluate. */
+static int straight_of(const char *texture, const char *interior)
+{
+	char text[1024];
+	snprintf(text, sizeof text, "camera { location <0, 1, -4> look_at 0 }\nlight_source { <0, 5, -5>, rgb 1 }\n"
+	                            "plane { y, 0 texture { %s } interior { %s } }\n", texture, interior);
+	struct scene s;
+	if (load_scene(text, &s) != 0)
 		return -1;
 	int got = surf_any_straight(&s);
 	scene_free(&s);
@@ -84,23 +93,16 @@ static void t_clear_patterns(void)
 static long split_matches(const char *version, const char *texture, const char *interior, bool *plain, bool *fixed,
                           long *differ)
 {
-	char path[64];
-	snprintf(path, sizeof path, "/tmp/arvo-test-surface-%ld.scn", (long)getpid());
-	FILE *f = fopen(path, "w");
-	if (!f)
-		return -1;
-	fprintf(f, "%s\ncamera { location <0, 1, -4> look_at 0 }\nlight_source { <0, 5, -5>, rgb 1 }\n"
-	           "sphere { 0, 1 texture { %s } interior { %s } }\n", version, texture, interior);
-	fclose(f);
-	struct eval_options eo;
-	eval_default_options(&eo);
-	struct diag dg;
-	diag_init(&dg, stdout);
+	char text[1024];
+	snprintf(text, sizeof text, "%s\ncamera { location <0, 1, -4> look_at 0 }\nlight_source { <0, 5, -5>, rgb 1 }\n"
+	                            "sphere { 0, 1 texture { %s } interior { %s } }\n", version, texture, interior);
 	struct scene s;
-	int rc = eval_scene(path, &eo, &dg, &s);
-	remove(path);
-	if (rc != 0 || s.nobjects != 1)
+	if (load_scene(text, &s) != 0)
 		return -1;
+	if (s.nobjects != 1) {
+		scene_free(&s);
+		return -1;
+	}
 	const struct object *o = s.objects[0];
 	struct mat_cache mc;
 	memset(&mc, 0, sizeof mc);

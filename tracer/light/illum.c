@@ -826,9 +826,11 @@ static void adopt(struct illum_map *dst, struct illum_map *src)
  *   1. the splats are scanned in parallel chunks: the valid ones counted,
  *      the largest energy and whether all are white; up to PREP_MAX splats,
  *      which the sample would nearly all split again, and any number into a
- *      colour map (whose step 3 has more to do per splat than splitting it
- *      again saves: shaft maps, coloured light), are split here onto their
- *      nodes (axis_split) once, into a `prep` each;
+ *      map already in colour (whose step 3 has more to do per splat than
+ *      splitting it again saves: shaft maps, coloured light; not a larger
+ *      first coloured batch, which turns a grey map to colour while it is
+ *      scanned), are split here onto their nodes (axis_split) once, into a
+ *      `prep` each;
  *   2. one thread places the window over a sample of their tiles (every
  *      stride-th valid splat);
  *   3. the accumulators are added band by band, one thread per band of
