@@ -37,17 +37,25 @@ bool surf_straight(const struct scene *s, const struct object *o)
 	return straight(s, o, mat_interior(o));
 }
 
+/* What surf_prepare fills for o under texture t of pigment colour pc
+ * (all but the hit's own fields). */
+static void fill_obj(const struct scene *s, const struct object *o, const struct texture *t, struct colour pc,
+                     struct surf_in *si)
+{
+	si->f = tex_finish(t);
+	si->pc = pc;
+	si->in = mat_interior(o);
+	si->legacy = s->legacy_lights;
+	si->straight = straight(s, o, si->in);
+}
+
 void surf_prepare(const struct scene *s, const struct mat_cache *mc, const struct hit *h, struct vec3 d,
                   struct surf_in *si)
 {
 	const struct texture *t = mat_texture(h->obj);
 	if (tex_map(t)) /* a texture_map: the texture at the point */
 		t = mat_texture_leaf(mc, t, h->p);
-	si->f = tex_finish(t);
-	si->pc = t->pigment.kind == PIG_SOLID ? t->pigment.c[0] : mat_pigment(mc, &t->pigment, h->p);
-	si->in = mat_interior(h->obj);
-	si->legacy = s->legacy_lights;
-	si->straight = straight(s, h->obj, si->in);
+	fill_obj(s, h->obj, t, t->pigment.kind == PIG_SOLID ? t->pigment.c[0] : mat_pigment(mc, &t->pigment, h->p), si);
 	surf_prepare_hit(h, d, si);
 }
 
@@ -56,9 +64,8 @@ bool surf_prepare_obj(const struct scene *s, const struct object *o, struct surf
 	const struct texture *t = mat_texture(o);
 	if (tex_map(t) || t->pigment.kind != PIG_SOLID)
 		return false; /* (the texture or the pigment at the point) */
-	*si = (struct surf_in){.f = tex_finish(t), .pc = t->pigment.c[0], .in = mat_interior(o),
-	                       .legacy = s->legacy_lights};
-	si->straight = straight(s, o, si->in);
+	*si = (struct surf_in){.f = NULL};
+	fill_obj(s, o, t, t->pigment.c[0], si);
 	return true;
 }
 

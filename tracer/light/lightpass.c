@@ -1512,7 +1512,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 				pts[at] = x->p, psz[at] = x->size, x++;
 			else
 				pts[at] = v3(0, 0, 0), psz[at] = 0;
-			sp[at] = sg[g].g ? seg_splat(&sg[g], i) : sg[g].r[i].s;
+			sp[at] = seg_splat(&sg[g], i);
 		}
 	}
 	free(hasx);
