@@ -2070,6 +2070,7 @@ struct finish_job {
 	bool discard;
 	struct fx rem[3]; /* energy the isolated rule removed (exact) */
 	struct fx tot[3]; /* energy its tiles hold (exact) */
+	int32_t rti[2], rtj[2]; /* the least and greatest tile indices of its tiles */
 };
 
 static uint64_t tile_count(const struct illum_map *m, const struct tile *t)
@@ -2135,6 +2136,13 @@ static bool near_isolated(uint32_t c[NEAR_N][NEAR_N], int q)
 	return sum <= 4;
 }
 
+/* Widens range r (least, greatest) to hold [lo, hi]. */
+static inline void range_join(int32_t r[2], int32_t lo, int32_t hi)
+{
+	r[0] = lo < r[0] ? lo : r[0];
+	r[1] = hi > r[1] ? hi : r[1];
+}
+
 /* Job k of the array at ctx (a parallel_for item). */
 static void finish_work(void *ctx, long job, int worker)
 {
@@ -2145,8 +2153,11 @@ static void finish_work(void *ctx, long job, int worker)
 	 * a short wrapping axis) */
 	bool reach2 = (!m->ax[0].wraps || (m->ax[0].n - 1) / 2 >= 2) && (!m->ax[1].wraps || (m->ax[1].n - 1) / 2 >= 2);
 	struct wide tot[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rem[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+	int32_t rti[2] = {INT32_MAX, INT32_MIN}, rtj[2] = {INT32_MAX, INT32_MIN};
 	for (long k = J->k0; k < J->k1; k++) {
 		struct tile *t = m->tiles[k];
+		range_join(rti, t->ti, t->ti);
+		range_join(rtj, t->tj, t->tj);
 		for (int q = 0; q < TN; q++) {
 			if (m->grey) { /* the three sums are this one (wide_fx below) */
 				wide_add(&tot[0], t->g[q].e);
@@ -2191,12 +2202,18 @@ static void finish_work(void *ctx, long job, int worker)
 	}
 	for (int c = 0; c < 3; c++) /* (J's sums start at 0; a grey map's are all channel 0's) */
 		J->tot[c] = wide_fx(tot[m->grey ? 0 : c]), J->rem[c] = wide_fx(rem[m->grey ? 0 : c]);
+	J->rti[0] = rti[0], J->rti[1] = rti[1], J->rtj[0] = rtj[0], J->rtj[1] = rtj[1];
 }
 
 void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[3], int threads)
 {
 	bool plane = m->obj->kind == OBJ_PLANE;
-	if (m->nhashed) { /* readers (the isolated rule, lookups) index the window */
+	/* readers (the isolated rule, lookups) find a tile faster in the window
+	 * than in the hash: it is placed again when it holds too few of them
+	 * (none, as after single deposits); not for the few grazing rays' tiles
+	 * that batched deposits leave outside it (a sample of every tile, one
+	 * thread, for nothing) */
+	if (m->nhashed > m->ntiles / 8) {
 		long stride = m->ntiles / WIN_SAMPLE + 1, ns = 0;
 		int32_t *ti = mem_alloc(sizeof *ti * (size_t)(m->ntiles / stride + 1));
 		int32_t *tj = mem_alloc(sizeof *tj * (size_t)(m->ntiles / stride + 1));
@@ -2205,14 +2222,9 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 		win_fit(m, ti, tj, ns, 0);
 		free(ti), free(tj);
 	}
-	m->rti[0] = m->rtj[0] = INT32_MAX, m->rti[1] = m->rtj[1] = INT32_MIN;
-	for (long k = 0; k < m->ntiles; k++) {
-		struct tile *t = m->tiles[k];
-		if (!plane && !t->area)
-			t->area = ARENA_ARRAY(&m->pool, double, TN);
-		m->rti[0] = t->ti < m->rti[0] ? t->ti : m->rti[0], m->rti[1] = t->ti > m->rti[1] ? t->ti : m->rti[1];
-		m->rtj[0] = t->tj < m->rtj[0] ? t->tj : m->rtj[0], m->rtj[1] = t->tj > m->rtj[1] ? t->tj : m->rtj[1];
-	}
+	for (long k = 0; k < m->ntiles && !plane; k++) /* (a plane's nodes share one area) */
+		if (!m->tiles[k]->area)
+			m->tiles[k]->area = ARENA_ARRAY(&m->pool, double, TN);
 	if (plane && m->ntiles) /* its one area, before threads read it */
 		node_area(m, 0, 0);
 	/* chunks of FINISH_CHUNK tiles, claimed by the threads as they come
@@ -2222,13 +2234,16 @@ void illum_finish_mt(struct illum_map *m, bool discard_isolated, double removed[
 	struct finish_job *jobs = mem_alloc(sizeof *jobs * (size_t)nb);
 	for (long b = 0; b < nb; b++)
 		jobs[b] = (struct finish_job){m, m->ntiles * b / nb, m->ntiles * (b + 1) / nb, discard_isolated,
-		                              {{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}};
+		                              {{0, 0}, {0, 0}, {0, 0}}, {{0, 0}, {0, 0}, {0, 0}}, {0, 0}, {0, 0}};
 	parallel_for(nb, threads, finish_work, jobs);
 	struct fx rem[3] = {{0, 0}, {0, 0}, {0, 0}};
 	memset(m->total, 0, sizeof m->total);
+	m->rti[0] = m->rtj[0] = INT32_MAX, m->rti[1] = m->rtj[1] = INT32_MIN;
 	for (long b = 0; b < nb; b++) {
 		for (int c = 0; c < 3; c++)
 			fx_add(&rem[c], jobs[b].rem[c]), fx_add(&m->total[c], jobs[b].tot[c]);
+		range_join(m->rti, jobs[b].rti[0], jobs[b].rti[1]); /* the tiles held (none: empty) */
+		range_join(m->rtj, jobs[b].rtj[0], jobs[b].rtj[1]);
 	}
 	free(jobs);
 	if (removed)
