@@ -196,6 +196,12 @@ char *mem_strdup(const char *s) { return mem_strndup(s, strlen(s)); }
 
 void arena_init(struct arena *a) { memset(a, 0, sizeof *a); }
 
+void arena_init_large(struct arena *a)
+{
+	memset(a, 0, sizeof *a);
+	a->most = ARENA_LARGE_BLOCK;
+}
+
 void arena_init_sized(struct arena *a, size_t first)
 {
 	memset(a, 0, sizeof *a);
@@ -217,7 +223,7 @@ static void *alloc_aligned(struct arena *a, size_t n, size_t align)
 	size_t at = b ? (b->used + align - 1) & ~(align - 1) : 0; /* past what an 8-aligned one left */
 	if (!b || at > b->size || b->size - at < n) {
 		size_t want = a->block ? a->block : 65536, size = n > want ? n : want;
-		a->block = want < ((size_t)1 << 20) ? 2 * want : want;
+		a->block = want < (a->most ? a->most : (size_t)1 << 20) ? 2 * want : want;
 		b = mem_alloc_huge(sizeof *b + size); /* (huge pages from MEM_HUGE_MIN on) */
 		b->size = size;
 		b->used = 0;

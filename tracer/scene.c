@@ -11,7 +11,7 @@
 void scene_init(struct scene *s)
 {
 	memset(s, 0, sizeof *s);
-	arena_init(&s->arena);
+	arena_init_large(&s->arena); /* its objects: a million spheres fill ~100 MB */
 	s->version = 3.7;
 	s->camera = scene_default_camera();
 	s->background = (struct colour){0, 0, 0, 0, 0};
