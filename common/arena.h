@@ -65,7 +65,7 @@ void arena_init(struct arena *a);
 /* An arena that may come to hold a great deal (a scene's objects): its
  * blocks go on doubling to ARENA_LARGE_BLOCK, so that from MEM_HUGE_MIN on
  * they are backed by huge pages: a page fault per 2 MiB while it fills,
- * fewer TLB misses while it is read (docs/design.md §10, Allocation). */
+ * not one per 4 KiB (docs/design.md §10, Allocation). */
 #define ARENA_LARGE_BLOCK ((size_t)16 << 20)
 void arena_init_large(struct arena *a);
 /* An arena whose first block holds `first` bytes (for many small arenas). */
