@@ -65,6 +65,22 @@ struct cloud {
 	int n;
 };
 
+/* The roots t0 <= t1 of lane i of Embree's N-wide float rays r (rows:
+ * origin, tnear, direction, …) against sphere s (centre, radius); false
+ * when the ray's line misses it. */
+static bool float_roots(const float *s, const float *r, unsigned N, unsigned i, float *t0, float *t1)
+{
+	float ox = r[0 * N + i] - s[0], oy = r[1 * N + i] - s[1], oz = r[2 * N + i] - s[2];
+	float dx = r[4 * N + i], dy = r[5 * N + i], dz = r[6 * N + i];
+	float A = dx * dx + dy * dy + dz * dz, B = ox * dx + oy * dy + oz * dz;
+	float C = ox * ox + oy * oy + oz * oz - s[3] * s[3], D = B * B - A * C;
+	if (D < 0)
+		return false;
+	float q = sqrtf(D);
+	*t0 = (-B - q) / A, *t1 = (-B + q) / A;
+	return true;
+}
+
 /* A float ray-sphere test for the user-geometry kernel. */
 static void sphere_cb(const struct RTCIntersectFunctionNArguments *a)
 {
@@ -73,17 +89,11 @@ static void sphere_cb(const struct RTCIntersectFunctionNArguments *a)
 	float *rh = (float *)a->rayhit;
 	unsigned N = a->N;
 	for (unsigned i = 0; i < N; i++) {
-		if (!a->valid[i])
+		float t, t1;
+		if (!a->valid[i] || !float_roots(s, rh, N, i, &t, &t1))
 			continue;
-		float ox = rh[0 * N + i] - s[0], oy = rh[1 * N + i] - s[1], oz = rh[2 * N + i] - s[2];
-		float dx = rh[4 * N + i], dy = rh[5 * N + i], dz = rh[6 * N + i];
-		float A = dx * dx + dy * dy + dz * dz, B = ox * dx + oy * dy + oz * dz;
-		float C = ox * ox + oy * oy + oz * oz - s[3] * s[3], D = B * B - A * C;
-		if (D < 0)
-			continue;
-		float q = sqrtf(D), t = (-B - q) / A;
 		if (t < rh[3 * N + i])
-			t = (-B + q) / A;
+			t = t1;
 		if (t < rh[3 * N + i] || t > rh[8 * N + i])
 			continue;
 		rh[8 * N + i] = t;
@@ -101,15 +111,9 @@ static void sphere_occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 	float *r = (float *)a->ray;
 	unsigned N = a->N;
 	for (unsigned i = 0; i < N; i++) {
-		if (!a->valid[i])
+		float t0, t1;
+		if (!a->valid[i] || !float_roots(s, r, N, i, &t0, &t1))
 			continue;
-		float ox = r[0 * N + i] - s[0], oy = r[1 * N + i] - s[1], oz = r[2 * N + i] - s[2];
-		float dx = r[4 * N + i], dy = r[5 * N + i], dz = r[6 * N + i];
-		float A = dx * dx + dy * dy + dz * dz, B = ox * dx + oy * dy + oz * dz;
-		float C = ox * ox + oy * oy + oz * oz - s[3] * s[3], D = B * B - A * C;
-		if (D < 0)
-			continue;
-		float q = sqrtf(D), t0 = (-B - q) / A, t1 = (-B + q) / A;
 		float lo = r[3 * N + i], hi = r[8 * N + i];
 		if ((t0 > lo && t0 < hi) || (t1 > lo && t1 < hi))
 			r[8 * N + i] = -INFINITY;
