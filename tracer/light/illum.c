@@ -869,21 +869,11 @@ struct deposit_job {
 	struct illum_map *part; /* per band: tiles it made outside the window */
 };
 
-/* A splat as the steps read it. */
-struct uve {
-	double u, v, e[3];
-};
-
 /* Splat i of run r (an illum_splat, or an illum_gsplat in a grey run). */
-__attribute__((always_inline)) static inline struct uve run_at(const struct illum_run *r, long i)
+__attribute__((always_inline)) static inline struct illum_splat run_at(const struct illum_run *r, long i)
 {
 	const void *p = (const char *)r->s + (size_t)i * r->stride;
-	if (r->grey) {
-		const struct illum_gsplat *g = p;
-		return (struct uve){g->u, g->v, {g->e, g->e, g->e}};
-	}
-	const struct illum_splat *sp = p;
-	return (struct uve){sp->u, sp->v, {sp->e[0], sp->e[1], sp->e[2]}};
+	return r->grey ? illum_gsplat_splat(p) : *(const struct illum_splat *)p;
 }
 
 /* The run holding splat lo (off[r] <= lo < off[r+1]). */
@@ -900,8 +890,17 @@ static long run_of(const struct deposit_job *D, long lo)
 	return r0;
 }
 
+/* Splat q of the job's runs; *r, the run of an earlier splat (or 0), moves
+ * on to q's. */
+__attribute__((always_inline)) static inline struct illum_splat splat_at(const struct deposit_job *D, long q, long *r)
+{
+	while (q >= D->off[*r + 1])
+		++*r;
+	return run_at(&D->runs[*r], q - D->off[*r]);
+}
+
 /* Does splat s deposit? (Finite (u,v), some energy; e its energy cleaned.) */
-__attribute__((always_inline)) static inline bool splat_valid(const struct uve *s, double e[3])
+__attribute__((always_inline)) static inline bool splat_valid(const struct illum_splat *s, double e[3])
 {
 	return isfinite(s->u) && isfinite(s->v) && energy_clean(s->e, e);
 }
@@ -917,9 +916,7 @@ __attribute__((always_inline)) static inline void scan_chunk(struct deposit_job 
 	J->white = true;
 	long r0 = run_of(D, lo);
 	for (long q = lo; q < hi; q++) {
-		while (q >= D->off[r0 + 1])
-			r0++;
-		struct uve sp = run_at(&D->runs[r0], q - D->off[r0]);
+		struct illum_splat sp = splat_at(D, q, &r0);
 		double e[3], x = energy_max(sp.e);
 		J->emax = x > J->emax ? x : J->emax;
 		if (prep)
@@ -953,7 +950,7 @@ static void scan_work(void *ctx, long k, int worker)
 
 /* Sample entry c / stride: the tile of splat q, s. */
 __attribute__((always_inline)) static inline void sample_put(const struct deposit_job *D, long c, long q,
-                                                             const struct uve *s)
+                                                             const struct illum_splat *s)
 {
 	long i0 = D->p ? D->p[q].i : 0, i1, j0 = D->p ? D->p[q].j : 0, j1;
 	double f;
@@ -976,17 +973,13 @@ static void sample_work(void *ctx, long k, int worker)
 	if (J->valid == hi - lo) { /* every splat valid (the usual case): straight to the sampled ones */
 		long q = lo + (D->stride - c % D->stride) % D->stride, r = run_of(D, q);
 		for (; q < hi; q += D->stride) {
-			while (q >= D->off[r + 1])
-				r++;
-			struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+			struct illum_splat sp = splat_at(D, q, &r);
 			sample_put(D, c + q - lo, q, &sp);
 		}
 		return;
 	}
 	for (long q = lo, r = run_of(D, lo); q < hi; q++) {
-		while (q >= D->off[r + 1])
-			r++;
-		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		struct illum_splat sp = splat_at(D, q, &r);
 		double e[3];
 		if ((D->p ? D->p[q].i != INT32_MIN : splat_valid(&sp, e)) && c++ % D->stride == 0)
 			sample_put(D, c - 1, q, &sp);
@@ -1142,9 +1135,7 @@ __attribute__((always_inline)) static inline void accumulate_band(struct deposit
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
 	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit, m->grey};
 	for (long q = 0, r = 0; q < D->n; q++) {
-		while (q >= D->off[r + 1]) /* r: the run of splat q */
-			r++;
-		struct uve sp = run_at(&D->runs[r], q - D->off[r]);
+		struct illum_splat sp = splat_at(D, q, &r); /* r: the run of splat q */
 		double e[3];
 		/* a grey map's splats are white: the valid ones have e[0] > 0 */
 		bool fast = P.grey && P.finite;

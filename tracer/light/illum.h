@@ -105,6 +105,12 @@ struct illum_gsplat {
 	double e;
 };
 
+/* The illum_splat of white splat g: e in each channel. */
+static inline struct illum_splat illum_gsplat_splat(const struct illum_gsplat *g)
+{
+	return (struct illum_splat){g->u, g->v, {g->e, g->e, g->e}};
+}
+
 /* Splats s, s + stride, …, n of them, somewhere in the caller's memory (a
  * struct whose first member is the illum_splat, say; or the illum_gsplat
  * when grey). */

@@ -1376,9 +1376,7 @@ static const struct object *seg_obj(const struct seg *s, long i)
 
 static struct illum_splat seg_splat(const struct seg *s, long i)
 {
-	if (s->g)
-		return (struct illum_splat){s->g[i].u, s->g[i].v, {s->g[i].e, s->g[i].e, s->g[i].e}};
-	return s->r[i].s;
+	return s->g ? illum_gsplat_splat(&s->g[i]) : s->r[i].s;
 }
 
 /* One surface's records gathered for its map: segment g's records go to
