@@ -214,6 +214,57 @@ struct bbox shape_solid_bounds(const struct object *o)
 
 bool shape_bounded(const struct object *o) { return bbox_finite(shape_bounds(o)); }
 
+/* An upper bound on how far the linear part of a stretches a vector (its
+ * largest singular value): the square root of a bound on the greatest
+ * eigenvalue of AᵀA and of AAᵀ (the same eigenvalues), each its largest
+ * absolute row sum (Gershgorin). Exact for a rotation with any scale
+ * before or after it (one of the two products is then diagonal), which is
+ * how scene files transform objects. */
+static double xf_stretch(const struct xform *a)
+{
+	double best = INFINITY;
+	for (int t = 0; t < 2; t++) {
+		double most = 0;
+		for (int i = 0; i < 3; i++) {
+			double row = 0;
+			for (int j = 0; j < 3; j++) {
+				double b = 0;
+				for (int k = 0; k < 3; k++)
+					b += t ? a->m[i][k] * a->m[j][k] : a->m[k][i] * a->m[k][j];
+				row += fabs(b);
+			}
+			most = fmax(most, row);
+		}
+		best = fmin(best, most);
+	}
+	return sqrt(best) * (1 + 1e-12); /* the sums' rounding */
+}
+
+bool shape_bsphere(const struct object *o, struct vec3 *c, double *r)
+{
+	struct bbox wb = shape_bounds(o);
+	if (!bbox_finite(wb))
+		return false;
+	*c = v_scale(v_add(wb.lo, wb.hi), 0.5);
+	*r = 0.5 * v_len(v_sub(wb.hi, wb.lo));
+	const struct prim_ops *p = ops(o);
+	if (!p)
+		return true;
+	struct vec3 oc;
+	double orr;
+	if (o->kind == OBJ_SPHERE) {
+		oc = o->g.sphere.c, orr = fabs(o->g.sphere.r);
+	} else {
+		struct bbox ob = p->bounds(o);
+		oc = v_scale(v_add(ob.lo, ob.hi), 0.5), orr = 0.5 * v_len(v_sub(ob.hi, ob.lo));
+	}
+	if (o->xf)
+		oc = xf_point(o->xf, oc), orr *= xf_stretch(o->xf);
+	if (orr < *r)
+		*c = oc, *r = orr;
+	return true;
+}
+
 bool shape_dump(const struct object *o, FILE *out)
 {
 	const struct prim_ops *ps = ops(o);

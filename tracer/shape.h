@@ -102,6 +102,11 @@ struct bbox shape_bounds(const struct object *o);
 struct bbox shape_solid_bounds(const struct object *o);
 /* Are all of shape_bounds(o)'s components finite? */
 bool shape_bounded(const struct object *o);
+/* A sphere that holds the object's surface (centre *c, radius *r in world
+ * units; false when unbounded): a sphere's own, else the smaller of the
+ * world bounds' sphere and the transformed object-frame bounds' sphere.
+ * The light pass aims at it (docs/design.md §4). */
+bool shape_bsphere(const struct object *o, struct vec3 *c, double *r);
 /* Writes a primitive's geometry for --dump-scene; false for CSG kinds. */
 bool shape_dump(const struct object *o, FILE *out);
 

@@ -239,7 +239,7 @@ static void sun_profile(double E, double h, double n, double w, double *ref, int
 	}
 }
 
-/* Parallel lights: the beam covers the sphere's bounds, each ray carries
+/* Parallel lights: the beam covers the sphere, each ray carries
  * E·A/N, and the floor's binned flux matches sun_profile like the
  * point-light references. An opaque plane upstream casts the beam's shadow. */
 static void t_parallel(void)
@@ -254,11 +254,11 @@ static void t_parallel(void)
 	sun_profile(1, 3, 1.5, 0.05, ref, 60);
 	double l1, noise, g, t;
 	compare(flux, ref, 60, R.st.emitted[1] / (double)R.st.rays, &l1, &noise, &g, &t);
-	printf("# parallel light: L1 %.5f (noise %.5f), flux r<=3 %.6g (ref %.6g), emitted %.7g (3π = %.7g)\n",
-	       l1, noise, g, t, R.st.emitted[1], 3 * M_PI);
+	printf("# parallel light: L1 %.5f (noise %.5f), flux r<=3 %.6g (ref %.6g), emitted %.7g (π = %.7g)\n",
+	       l1, noise, g, t, R.st.emitted[1], M_PI);
 	CHECK(l1 <= 1.5 * noise + 0.005);
 	CHECK_NEAR(g / t, 1, 0.005);
-	CHECK_NEAR(R.st.emitted[1] / (3 * M_PI), 1, 1e-6); /* the disc of radius √3 around the box */
+	CHECK_NEAR(R.st.emitted[1] / M_PI, 1, 1e-6); /* the disc of radius 1 around the sphere (not √3, the box's) */
 	stop(&R);
 
 	struct run Q;

@@ -855,6 +855,67 @@ static void t_cone_alternating(void)
 	CHECK(bad == 0);
 }
 
+/* shape_bsphere holds the surface: points sampled over every bounded
+ * kind's (u,v) domain under random transforms (scale then rotate, mirrored
+ * one time in four, and rotate then scale) lie within it; it is never
+ * wider than the sphere around the world bounds; and for a sphere it is
+ * the sphere itself: c and r exactly without a transform, the scaled radius
+ * under a uniform scale, the largest axis under a non-uniform one. */
+static void t_bsphere(void)
+{
+	rng_seed(33);
+	int outside = 0, wider = 0, points = 0;
+	for (int i = 0; i < 4000; i++) {
+		enum object_kind k = all_kinds[i % NKINDS(all_kinds)];
+		if (k == OBJ_PLANE)
+			continue;
+		struct object o = rnd_prim(k, false);
+		struct xform x = rnd_xform(i % 3 == 0, true);
+		if (i % 5 == 1) /* rotate, then scale */
+			x = xf_then(xf_rotate(rnd_vec(-180, 180)), xf_scale(rnd_vec(0.4, 2.5)));
+		if (i % 7 != 0)
+			o.xf = xf_keep(x);
+		struct vec3 c;
+		double r;
+		CHECK(shape_bsphere(&o, &c, &r));
+		struct bbox b = shape_bounds(&o);
+		wider += r > 0.5 * v_len(v_sub(b.hi, b.lo));
+		for (int q = 0; q < 64; q++) {
+			struct vec3 p;
+			double u = rnd(), v = rnd();
+			if (k == OBJ_TRIANGLE && u + v > 1) /* the triangle is u + v <= 1 of its (u,v) square */
+				u = 1 - u, v = 1 - v;
+			if (!shape_uv_point(&o, u, v, &p, NULL, NULL))
+				continue;
+			points++;
+			outside += dist(p, c) > r * (1 + 1e-12);
+		}
+	}
+	printf("# %d surface points, %d outside, %d spheres wider than the bounds'\n", points, outside, wider);
+	CHECK(points > 100000);
+	CHECK(outside == 0 && wider == 0);
+	struct object o = mk_obj(OBJ_SPHERE);
+	o.g.sphere.c = v3(1, 2, 3);
+	o.g.sphere.r = 2;
+	struct vec3 c;
+	double r;
+	CHECK(shape_bsphere(&o, &c, &r));
+	CHECK(c.x == 1 && c.y == 2 && c.z == 3 && r == 2);
+	o.xf = xf_keep(xf_then(xf_then(xf_scale(v3(3, 3, 3)), xf_rotate(v3(30, 40, 50))), xf_translate(v3(0, 5, 0))));
+	CHECK(shape_bsphere(&o, &c, &r));
+	CHECK_NEAR(r, 6, 1e-9);
+	CHECK_NEAR(dist(c, xf_point(o.xf, v3(1, 2, 3))), 0, 1e-12);
+	o.xf = xf_keep(xf_then(xf_scale(v3(1, 4, 2)), xf_rotate(v3(10, 20, 30))));
+	CHECK(shape_bsphere(&o, &c, &r));
+	CHECK_NEAR(r, 8, 1e-9);
+	o.xf = xf_keep(xf_then(xf_rotate(v3(10, 20, 30)), xf_scale(v3(1, 4, 2))));
+	CHECK(shape_bsphere(&o, &c, &r));
+	CHECK_NEAR(r, 8, 1e-9);
+	struct object pl = mk_obj(OBJ_PLANE);
+	pl.g.plane.n = v3(0, 1, 0);
+	CHECK(!shape_bsphere(&pl, &c, &r));
+}
+
 int main(void)
 {
 	RUN(t_sphere_known);
@@ -874,5 +935,6 @@ int main(void)
 	RUN(t_torus_scales);
 	RUN(t_bare_as_intersect);
 	RUN(t_cone_alternating);
+	RUN(t_bsphere);
 	return test_done();
 }

@@ -248,16 +248,17 @@ bool lp_dispersive(const struct scene *s)
 	return false;
 }
 
-/* The cone from light position L that holds bounds bb. */
-static struct target cone_to(struct vec3 L, struct bbox bb)
+/* The cone from light position L that holds the sphere (c, r) (bounded;
+ * every direction when not). */
+static struct target cone_to(struct vec3 L, bool bounded, struct vec3 c, double r)
 {
 	struct target t;
 	memset(&t, 0, sizeof t);
 	t.cosmax = -1;
 	t.axis = v3(0, -1, 0);
-	if (bbox_finite(bb)) {
-		struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
-		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9), d = v_len(v_sub(c, L));
+	if (bounded) {
+		double d = v_len(v_sub(c, L));
+		r *= 1 + 1e-9;
 		if (d > r) {
 			t.axis = v_scale(v_sub(c, L), 1 / d);
 			t.cosmax = sqrt(1 - (r / d) * (r / d));
@@ -272,20 +273,19 @@ static struct target cone_to(struct vec3 L, struct bbox bb)
 
 static bool in_cone(const struct target *t, struct vec3 d) { return v_dot(d, t->axis) >= t->cosmax; }
 
-/* The beam of parallel light travelling along unit D that covers bounds bb
- * (finite), its disc placed upstream of everything in the scene: past the
+/* The beam of parallel light travelling along unit D that covers the
+ * sphere (c, r), its disc placed upstream of everything in the scene: past the
  * finite objects' bounds and past any unbounded object (a plane) that the
  * beam crosses before it reaches bb, so what shadows the object in the eye
  * pass (whose shadow rays toward a parallel light never end) shadows the
  * beam too. */
-static struct target beam_to(const struct scene *s, struct vec3 D, struct bbox bb)
+static struct target beam_to(const struct scene *s, struct vec3 D, struct vec3 c, double r)
 {
 	struct target t;
 	memset(&t, 0, sizeof t);
-	struct vec3 c = v_scale(v_add(bb.lo, bb.hi), 0.5);
 	t.axis = D;
 	t.cosmax = 1;
-	t.radius = 0.5 * v_len(v_sub(bb.hi, bb.lo)) * (1 + 1e-9);
+	t.radius = r * (1 + 1e-9);
 	t.omega = M_PI * t.radius * t.radius;
 	double back = t.radius;
 	for (int i = 0; i < s->nobjects; i++) {
@@ -1605,13 +1605,19 @@ static long plan(struct job *J)
 		for (int i = 0; i < s->nobjects; i++) {
 			if (!J->o->aim_all && !is_specular(s, s->objects[i]))
 				continue;
+			/* aimed at a sphere round the object (a sphere's own: the box's
+			 * would send two rays in three past it) */
 			struct bbox bb = shape_bounds(s->objects[i]);
+			struct vec3 c;
+			double r;
+			bool bounded = shape_bsphere(s->objects[i], &c, &r);
 			if (l->kind != LIGHT_PARALLEL)
-				tg[nt] = cone_to(l->pos, bb);
-			else if (bbox_finite(bb))
-				tg[nt] = beam_to(s, D, bb);
+				tg[nt] = cone_to(l->pos, bounded, c, r);
+			else if (bounded)
+				tg[nt] = beam_to(s, D, c, r);
 			else {
-				tg[nt] = beam_to(s, D, scene_extent(s));
+				struct bbox e = scene_extent(s);
+				tg[nt] = beam_to(s, D, v_scale(v_add(e.lo, e.hi), 0.5), 0.5 * v_len(v_sub(e.hi, e.lo)));
 				if (!J->clipped)
 					J->clipped = s->objects[i];
 			}
