@@ -65,7 +65,7 @@ fi
 WARN="-Wall -Wextra -Wpedantic -Wshadow -Wundef -Wpointer-arith -Wcast-align -Wwrite-strings
  -Wmissing-prototypes -Wstrict-prototypes -Wmissing-declarations -Wformat=2 -Wvla -Wold-style-definition"
 PKG_CFLAGS=$(pkg-config --cflags OpenEXR OpenColorIO libpng freetype2)
-PKG_LIBS=$(pkg-config --libs OpenEXR OpenColorIO libpng freetype2) -lembree3
+PKG_LIBS="$(pkg-config --libs OpenEXR OpenColorIO libpng freetype2) -lembree3"
 # shellcheck disable=SC2086
 cc -std=c11 -O2 $WARN -pthread -D_DEFAULT_SOURCE $PKG_CFLAGS -o "$tmp/lightrays" \
 	"$here/lightrays.c" "$LIBARVO" $PKG_LIBS -lstdc++ -lm -pthread
