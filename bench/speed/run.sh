@@ -63,7 +63,17 @@ median() { sort -g | awk '{ v[NR] = $1 } END { if (NR) print v[int((NR + 1) / 2)
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a == "" || b == "" || b + 0 == 0) print ""; else printf "%.2f", a / b }'; }
 # met VALUE OP TARGET: yes/no (empty when the value is)
 met() { awk -v v="$1" -v op="$2" -v t="$3" 'BEGIN { if (v == "") print ""; else if (op == ">=") print (v + 0 >= t + 0 ? "yes" : "no"); else print (v + 0 <= t + 0 ? "yes" : "no") }'; }
-row() { echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"; }
+# row SECTION NAME OBJECTS THREADS ARVO POVRAY RATIO UNIT TARGET MET: a line
+# of the CSV; stops the bench when arvo's figure is missing (a run failed:
+# its messages are shown), rather than write an empty or NaN row as met
+row() {
+	if ! echo "$5" | grep -Eq '^[0-9]+([.][0-9]+)?$'; then
+		echo "bench/speed: no figure for $1 $2 $3 (\"$5\"): an arvo run failed?" >&2
+		cat "$tmp/a.log" "$tmp/l.log" 2> /dev/null | tail -5 >&2
+		exit 1
+	fi
+	echo "$1,$2,$3,$4,$5,$6,$7,$8,$9,${10}" >> "$csv"; tail -1 "$csv"
+}
 stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
 
 # arvo_eye N THREADS [W H [SCENE]]: median eye-pass seconds; rays of the last run in
