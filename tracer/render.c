@@ -144,11 +144,11 @@ static enum illum_passes passes_of(const struct scene *s, const struct render_op
  * shooting as many rays as the three channel passes; it deposits points
  * (a shaft's corners would part ways). With a tolerance each pass is
  * progressive (lp_run). Returns the number of results. */
-/* POV-Ray's photons { spacing S }: POV-Ray shoots a target's photons S
- * apart where they reach it, about pi r^2 / (S s)^2 of them for a target
- * of bounding radius r and spacing multiplier s; the light pass shoots as
- * many rays per light (at least 10^4, at most 10^7); without spacing (or
- * a target) 10^6, the default. */
+/* POV-Ray's photons { spacing S }: photons S apart where they reach a
+ * target, pi r^2 / (S s)^2 of them for spacing multiplier s and r the
+ * radius of the sphere the light pass aims at (shape_bsphere), so its rays
+ * arrive S·s apart; the light pass shoots as many rays per light (at least
+ * 10^4, at most 10^7); without spacing (or a target) 10^6, the default. */
 static long photon_rays(const struct scene *s)
 {
 	double S = s->gs.illum.spacing, n = 0;
@@ -159,8 +159,9 @@ static long photon_rays(const struct scene *s)
 		const struct photon_spec *ph = obj_photons(o);
 		if (!ph || !ph->target || !shape_bounded(o))
 			continue;
-		struct bbox bb = shape_bounds(o);
-		double r = 0.5 * v_len(v_sub(bb.hi, bb.lo)), sp = S * ph->spacing;
+		struct vec3 c;
+		double r, sp = S * ph->spacing;
+		shape_bsphere(o, &c, &r);
 		n += M_PI * r * r / (sp * sp);
 	}
 	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 1000000;

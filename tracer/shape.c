@@ -222,6 +222,15 @@ bool shape_bounded(const struct object *o) { return bbox_finite(shape_bounds(o))
  * how scene files transform objects. */
 static double xf_stretch(const struct xform *a)
 {
+	double s = 0, m[3][3]; /* the linear part over its largest entry: no squares under- or overflow */
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			s = fmax(s, fabs(a->m[i][j]));
+	if (!(s > 0) || !isfinite(s))
+		return s > 0 ? INFINITY : 0;
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			m[i][j] = a->m[i][j] / s;
 	double best = INFINITY;
 	for (int t = 0; t < 2; t++) {
 		double most = 0;
@@ -230,14 +239,14 @@ static double xf_stretch(const struct xform *a)
 			for (int j = 0; j < 3; j++) {
 				double b = 0;
 				for (int k = 0; k < 3; k++)
-					b += t ? a->m[i][k] * a->m[j][k] : a->m[k][i] * a->m[k][j];
+					b += t ? m[i][k] * m[j][k] : m[k][i] * m[k][j];
 				row += fabs(b);
 			}
 			most = fmax(most, row);
 		}
 		best = fmin(best, most);
 	}
-	return sqrt(best) * (1 + 1e-12); /* the sums' rounding */
+	return s * sqrt(best) * (1 + 1e-12); /* the sums' rounding */
 }
 
 bool shape_bsphere(const struct object *o, struct vec3 *c, double *r)

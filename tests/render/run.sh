@@ -230,10 +230,12 @@ check "the caustic disc of one of two lenses is even: no seam between the light 
 	echo "under the pane $a, bare floor $b" >> "$tmp/log" &&
 	awk -v a="$a" -v b="$b" 'BEGIN { r = a / b; want = (9.45 / 10) ^ 2; exit !(r > 0.97 * want && r < 1.03 * want) }'
 check "legacy lights: the caustic under a pane matches the direct light, scaled by (d_pane/d_floor)^2 within 3 %" $?
-# photons { spacing 0.01 } on a unit glass sphere: pi*3/0.01^2 = 94248 rays
+# photons { spacing 0.01 } on a unit glass sphere: rays 0.01 apart where
+# they reach it, pi*1^2/0.01^2 = 31416 (the sphere's own radius: the light
+# pass aims at the sphere, not at the sphere round its box, sqrt(3) wider)
 "$ARVO" --stats --method point --width 8 --height 8 -o "$tmp/ps.exr" "$T/photon_spacing.scn" > "$tmp/st" 2>&1
-awk '/light pass .*light rays/ { r = $6; sub(/^\(/, "", r) } END { print "light rays " r; exit !(r > 0.99 * 94248 && r < 1.01 * 94248) }' "$tmp/st" > "$tmp/log"
-check "photons { spacing 0.01 } on a unit sphere shoots pi*3/spacing^2 light rays, within 1 %" $?
+awk '/light pass .*light rays/ { r = $6; sub(/^\(/, "", r) } END { print "light rays " r; exit !(r > 0.99 * 31416 && r < 1.01 * 31416) }' "$tmp/st" > "$tmp/log"
+check "photons { spacing 0.01 } on a unit sphere shoots pi/spacing^2 light rays, within 1 %" $?
 # layered textures and a declared sky_sphere: each layer is shaded with its
 # own finish (POV-Ray's): half the blue layer under ambient 1 over half the
 # red one under the default ambient 0.1, so the left half is (0.05, 0, 0.5);

@@ -171,6 +171,26 @@ static void t_sphere(void)
 	CHECK_NEAR(fr, 1, 0.001);
 }
 
+/* Every ray that meets the ideal glass sphere lands on the floor, so what
+ * lands is the light's intensity times the sphere's solid angle, exactly
+ * (1 W/sr per channel; sin a = 1/7): no shaft at the sphere's outline
+ * drops its missed corners' share (the target is grown past the outline,
+ * lightpass.c widen), and none of the sphere's light is missed. By points
+ * as well, at any ray count. */
+static void t_sphere_energy(void)
+{
+	double want = 2 * M_PI * (1 - sqrt(48.0 / 49.0));
+	for (int k = 0; k < 6; k++) {
+		long rays = k % 3 == 0 ? 20000 : k % 3 == 1 ? 50000 : 200000;
+		struct run R;
+		CHECK(start(&R, "tests/accuracy/sphere.scn", "Fresnel=0", rays, k < 3, 2, true));
+		printf("# %s, %ld rays: landed %.9g, I*omega %.9g, direct %.3g\n", k < 3 ? "shafts" : "points", rays,
+		       R.st.landed[1], want, R.st.direct[1]);
+		CHECK_NEAR(R.st.landed[1] / want, 1, 1e-8); /* (the cone pads the radius by 1e-9: 2e-9 more) */
+		stop(&R);
+	}
+}
+
 static void t_slab(void)
 {
 	double fr, l1 = radial_l1("tests/accuracy/slab.scn", "Fresnel=0", "tests/accuracy/C_profile_binned_0.05.csv", 6,
@@ -336,6 +356,7 @@ static void t_threads(void)
 int main(void)
 {
 	RUN(t_sphere);
+	RUN(t_sphere_energy);
 	RUN(t_slab);
 	RUN(t_mirror);
 	RUN(t_ring);

@@ -63,10 +63,11 @@ struct recbuf {
 };
 
 /* What one light aims at one specular object: from a point or spot light,
- * the cone of directions that holds the object's bounds; from a parallel
- * light, the beam of parallel rays whose cross-section (a disc) covers them. */
+ * the cone of directions that holds the sphere round the object
+ * (shape_bsphere); from a parallel light, the beam of parallel rays whose
+ * cross-section (a disc) covers it. */
 struct target {
-	struct vec3 axis;  /* unit direction to the bounds' centre; parallel: of travel */
+	struct vec3 axis;  /* unit direction to the sphere's centre; parallel: of travel */
 	struct vec3 t1, t2;/* frame around axis */
 	double cosmax;     /* cosine of the half-angle (-1: every direction) */
 	double omega;      /* solid angle, sr; parallel: the disc's area, m² */
@@ -276,7 +277,7 @@ static bool in_cone(const struct target *t, struct vec3 d) { return v_dot(d, t->
 /* The beam of parallel light travelling along unit D that covers the
  * sphere (c, r), its disc placed upstream of everything in the scene: past the
  * finite objects' bounds and past any unbounded object (a plane) that the
- * beam crosses before it reaches bb, so what shadows the object in the eye
+ * beam crosses before it reaches the sphere, so what shadows the object in the eye
  * pass (whose shadow rays toward a parallel light never end) shadows the
  * beam too. */
 static struct target beam_to(const struct scene *s, struct vec3 D, struct vec3 c, double r)
@@ -1590,6 +1591,25 @@ static double legacy_gain(const struct scene *s, const struct light *l, struct b
 	return fmax(g, 1e-12);
 }
 
+/* Shafts: target t grown by 1.5 rows of its grid (in sx, the grid's
+ * equal-area coordinate), so the object's outline lies inside the grid,
+ * not on its last corner row. A cone or beam fitted to a sphere touches it
+ * along that row, whose corner rays then all just miss, and a shaft split
+ * at the outline deposits its corners' quarters: the ones that missed
+ * would lose light that reached the sphere, always in the same direction.
+ * Inside the grid, a split shaft's corners err both ways. */
+static void widen(struct target *t)
+{
+	double f = (double)t->side / ((double)t->side - 1.5);
+	if (t->cosmax == 1) { /* a beam: sx is r² */
+		t->radius *= sqrt(f);
+		t->omega = M_PI * t->radius * t->radius;
+	} else if (t->cosmax > -1) { /* a cone: sx is 1 − cos θ */
+		t->cosmax = fmax(-1, 1 - (1 - t->cosmax) * f);
+		t->omega = 2 * M_PI * (1 - t->cosmax);
+	}
+}
+
 /* Cones and ray counts for every light; returns the number of work items. */
 static long plan(struct job *J)
 {
@@ -1631,6 +1651,8 @@ static long plan(struct job *J)
 			/* shafts: a grid cell costs about two rays (a corner, its
 			 * centre) before any subdivision */
 			tg[k].side = (long)fmax(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 2 : share) + 0.5));
+			if (J->o->shafts)
+				widen(&tg[k]);
 			long nr = J->o->shafts ? tg[k].side : tg[k].side * tg[k].side;
 			long chunk = J->o->shafts ? (4 * CHUNK + tg[k].side - 1) / tg[k].side : CHUNK; /* rows */
 			for (long f = 0; f < nr; f += chunk) {
