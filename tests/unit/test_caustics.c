@@ -66,7 +66,23 @@ struct bins {
 	int nx, nz;       /* grid size (radial: nx annuli) */
 	double *flux;     /* per bin, green channel */
 	int channel;
+	double h;         /* grid cells: the map's node spacing in x and z (a plane's cell) */
 };
+
+/* The share of a tent of half-width h centred at c (area 1) over [a, b]. */
+static double tent_share(double c, double h, double a, double b)
+{
+	double lo = fmax(a, c - h), hi = fmin(b, c + h);
+	if (!(hi > lo))
+		return 0;
+	/* ∫ (1 − |x − c|/h) dx / h over [lo, hi], split at c */
+	double s = 0, l = fmin(hi, c), r = fmax(lo, c);
+	if (l > lo) /* left half: rises from lo to l */
+		s += ((l - lo) - ((c - lo) * (c - lo) - (c - l) * (c - l)) / (2 * h)) / h;
+	if (hi > r) /* right half */
+		s += ((hi - r) - ((hi - c) * (hi - c) - (r - c) * (r - c)) / (2 * h)) / h;
+	return s;
+}
 
 static void bin_node(void *ctx, const struct illum_node *n)
 {
@@ -77,10 +93,16 @@ static void bin_node(void *ctx, const struct illum_node *n)
 		int k = (int)(sqrt(p.x * p.x + p.z * p.z) / B->w);
 		if (k < B->nx)
 			B->flux[k] += n->energy[B->channel];
-	} else {
-		double fx = (p.x - B->x0) / B->w, fz = (p.z - B->z0) / B->w;
-		if (fx >= 0 && fz >= 0 && fx < B->nx && fz < B->nz)
-			B->flux[(int)fx * B->nz + (int)fz] += n->energy[B->channel];
+	} else { /* the node's tent (its bilinear weight), spread exactly over the cells it reaches */
+		int i0 = (int)floor((p.x - B->h - B->x0) / B->w), k0 = (int)floor((p.z - B->h - B->z0) / B->w);
+		for (int i = i0; i <= i0 + 1; i++)
+			for (int k = k0; k <= k0 + 1; k++) {
+				if (i < 0 || k < 0 || i >= B->nx || k >= B->nz)
+					continue;
+				double x = B->x0 + i * B->w, z = B->z0 + k * B->w;
+				B->flux[i * B->nz + k] += n->energy[B->channel] * tent_share(p.x, B->h, x, x + B->w) *
+				                          tent_share(p.z, B->h, z, z + B->w);
+			}
 	}
 }
 
@@ -129,7 +151,7 @@ static void radial_case(const char *scene, const char *define, const char *csv, 
 	if (!R.r)
 		return;
 	double flux[60] = {0}, ref[60];
-	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1};
+	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1, 0};
 	illum_each(lp_map(R.r, R.floor), bin_node, &B);
 	CHECK(read_column(csv, col, ref, 60) == 60);
 	double l1, noise, g, t;
@@ -164,6 +186,27 @@ static void t_slab_ideal(void)
 static void t_slab_fresnel(void)
 {
 	radial_case("tests/accuracy/slab.scn", "Fresnel=1", "tests/accuracy/C_profile_binned_0.05.csv", 7, 0);
+}
+
+/* Aim: the light of C sits 1 above the slab, inside the sphere round its
+ * box but outside the box, so it shoots into the cone round the box's
+ * corners (axis -y, cos = 1/sqrt(51) at the top corners), not in every
+ * direction (half of those rays went up and escaped): what it emits is
+ * that cone's solid angle, nothing escapes, and what lands is the light
+ * through the top face, the square of side 10 one below the light
+ * (4 atan(25/sqrt(51)) sr; the lossless slab lets all of it reach the
+ * floor), to the sampling of the face's outline. */
+static void t_slab_aim(void)
+{
+	struct run R;
+	CHECK(start(&R, "tests/accuracy/slab.scn", "Fresnel=0", -1, false));
+	double cone = 2 * M_PI * (1 - 1 / sqrt(51.0)), face = 4 * atan(25 / sqrt(51.0));
+	printf("# slab: emitted %.9g (cone %.9g), escaped %g, landed %.7g (top face %.7g)\n", R.st.emitted[1], cone,
+	       R.st.escaped[1], R.st.landed[1], face);
+	CHECK_NEAR(R.st.emitted[1] / cone, 1, 1e-8);
+	CHECK(R.st.escaped[1] == 0);
+	CHECK_NEAR(R.st.landed[1] / face, 1, 0.001);
+	stop(&R);
 }
 
 /* Energy: for the lossless sphere, the maps hold exactly what entered it
@@ -249,7 +292,7 @@ static void t_parallel(void)
 	if (!R.r)
 		return;
 	double flux[60] = {0}, ref[60];
-	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1};
+	struct bins B = {R.floor, 1, 0.05, 0, 0, 60, 1, flux, 1, 0};
 	illum_each(lp_map(R.r, R.floor), bin_node, &B);
 	sun_profile(1, 3, 1.5, 0.05, ref, 60);
 	double l1, noise, g, t;
@@ -299,7 +342,10 @@ static void t_spotlight(void)
 	stop(&R);
 }
 
-/* Mirror A: 0.1 cells over x in [-3, 1], z in [-4, 4]; reflectance 1, or
+/* Mirror A: 0.1 cells over x in [-3, 1], z in [-4, 4] (each node's tent
+ * spread over the cells it reaches: a node binned whole at its point put
+ * the light of the nodes at x = 1, under the mirror's face, out of the grid,
+ * 0.5 % of it, and shifted light across every cell edge); reflectance 1, or
  * Fresnel for n = 1.5 (then the total on the floor is 0.0707892 W). */
 static void mirror_case(const char *define, int col, double exact_total)
 {
@@ -310,7 +356,7 @@ static void mirror_case(const char *define, int col, double exact_total)
 	enum { NX = 40, NZ = 80 };
 	static double flux[NX * NZ], ref[NX * NZ];
 	memset(flux, 0, sizeof flux);
-	struct bins B = {R.floor, 0, 0.1, -3, -4, NX, NZ, flux, 1};
+	struct bins B = {R.floor, 0, 0.1, -3, -4, NX, NZ, flux, 1, 0.01}; /* mirror.scn's cell */
 	illum_each(lp_map(R.r, R.floor), bin_node, &B);
 	CHECK(read_column("tests/accuracy/A_grid_cellavg_0.1.csv", col, ref, NX * NZ) == NX * NZ);
 	for (int k = 0; k < NX * NZ; k++)
@@ -607,6 +653,7 @@ int main(void)
 	RUN(t_sphere_fresnel);
 	RUN(t_slab_ideal);
 	RUN(t_slab_fresnel);
+	RUN(t_slab_aim);
 	RUN(t_energy_lossless);
 	RUN(t_spotlight);
 	RUN(t_parallel);

@@ -249,9 +249,33 @@ bool lp_dispersive(const struct scene *s)
 	return false;
 }
 
-/* The cone from light position L that holds the sphere (c, r) (bounded;
- * every direction when not). */
-static struct target cone_to(struct vec3 L, bool bounded, struct vec3 c, double r)
+/* The cone from light position L round the box bb: its axis towards the
+ * box's centre, wide enough for the eight corners, when the light is
+ * outside the box and the cone narrower than a half-space (then it is
+ * convex and holds the whole box, the corners' hull); else cosmax -1. */
+static void cone_box(struct vec3 L, struct bbox bb, struct vec3 *axis, double *cosmax)
+{
+	*cosmax = -1;
+	struct vec3 c = v_sub(v_scale(v_add(bb.lo, bb.hi), 0.5), L);
+	if (!(v_len(c) > 0))
+		return;
+	struct vec3 a = v_norm(c);
+	double m = 1;
+	for (int k = 0; k < 8; k++) {
+		struct vec3 q = v_sub(v3(k & 1 ? bb.hi.x : bb.lo.x, k & 2 ? bb.hi.y : bb.lo.y, k & 4 ? bb.hi.z : bb.lo.z), L);
+		double l = v_len(q);
+		m = l > 0 ? fmin(m, v_dot(q, a) / l) : -1;
+	}
+	if (m > 1e-6)
+		*axis = a, *cosmax = m - 1e-9; /* the rounding of the corners' cosines */
+}
+
+/* The cone from light position L that holds the sphere (c, r) and the box
+ * bb round the object (bounded; every direction when not): the narrower
+ * of the cone round the sphere and the one round the box's corners (a
+ * light beside a wide slab or a tall mirror is inside their sphere, not
+ * their box). */
+static struct target cone_to(struct vec3 L, bool bounded, struct vec3 c, double r, struct bbox bb)
 {
 	struct target t;
 	memset(&t, 0, sizeof t);
@@ -264,6 +288,11 @@ static struct target cone_to(struct vec3 L, bool bounded, struct vec3 c, double 
 			t.axis = v_scale(v_sub(c, L), 1 / d);
 			t.cosmax = sqrt(1 - (r / d) * (r / d));
 		}
+		struct vec3 ba;
+		double bc;
+		cone_box(L, bb, &ba, &bc);
+		if (bc > t.cosmax)
+			t.axis = ba, t.cosmax = bc;
 	}
 	t.omega = 2 * M_PI * (1 - t.cosmax);
 	struct vec3 a = fabs(t.axis.x) < 0.9 ? v3(1, 0, 0) : v3(0, 1, 0);
@@ -1632,7 +1661,7 @@ static long plan(struct job *J)
 			double r;
 			bool bounded = shape_bsphere(s->objects[i], &c, &r);
 			if (l->kind != LIGHT_PARALLEL)
-				tg[nt] = cone_to(l->pos, bounded, c, r);
+				tg[nt] = cone_to(l->pos, bounded, c, r, bb);
 			else if (bounded)
 				tg[nt] = beam_to(s, D, c, r);
 			else {
