@@ -58,6 +58,9 @@ struct bbox {
 static inline struct bbox bbox_empty(void) { return (struct bbox){v3(INFINITY, INFINITY, INFINITY), v3(-INFINITY, -INFINITY, -INFINITY)}; }
 static inline struct bbox bbox_union(struct bbox a, struct bbox b) { return (struct bbox){v_min(a.lo, b.lo), v_max(a.hi, b.hi)}; }
 static inline struct bbox bbox_add(struct bbox a, struct vec3 p) { return (struct bbox){v_min(a.lo, p), v_max(a.hi, p)}; }
+/* The centre of b, and the radius of the sphere round b about it (half its diagonal). */
+static inline struct vec3 bbox_centre(struct bbox b) { return v_scale(v_add(b.lo, b.hi), 0.5); }
+static inline double bbox_radius(struct bbox b) { return 0.5 * v_len(v_sub(b.hi, b.lo)); }
 static inline bool bbox_finite(struct bbox b)
 {
 	return isfinite(b.lo.x) && isfinite(b.lo.y) && isfinite(b.lo.z) && isfinite(b.hi.x) &&

@@ -157,11 +157,11 @@ static long photon_rays(const struct scene *s)
 	for (int i = 0; i < s->nobjects; i++) {
 		const struct object *o = s->objects[i];
 		const struct photon_spec *ph = obj_photons(o);
-		if (!ph || !ph->target || !shape_bounded(o))
-			continue;
 		struct vec3 c;
-		double r, sp = S * ph->spacing;
-		shape_bsphere(o, &c, &r);
+		double r;
+		if (!ph || !ph->target || !shape_bsphere(o, &c, &r)) /* (false when unbounded) */
+			continue;
+		double sp = S * ph->spacing;
 		n += M_PI * r * r / (sp * sp);
 	}
 	return n > 0 ? (long)fmin(fmax(n, 1e4), 1e7) : 1000000;

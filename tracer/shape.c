@@ -254,8 +254,7 @@ bool shape_bsphere(const struct object *o, struct vec3 *c, double *r)
 	struct bbox wb = shape_bounds(o);
 	if (!bbox_finite(wb))
 		return false;
-	*c = v_scale(v_add(wb.lo, wb.hi), 0.5);
-	*r = 0.5 * v_len(v_sub(wb.hi, wb.lo));
+	*c = bbox_centre(wb), *r = bbox_radius(wb);
 	const struct prim_ops *p = ops(o);
 	if (!p)
 		return true;
@@ -265,7 +264,7 @@ bool shape_bsphere(const struct object *o, struct vec3 *c, double *r)
 		oc = o->g.sphere.c, orr = fabs(o->g.sphere.r);
 	} else {
 		struct bbox ob = p->bounds(o);
-		oc = v_scale(v_add(ob.lo, ob.hi), 0.5), orr = 0.5 * v_len(v_sub(ob.hi, ob.lo));
+		oc = bbox_centre(ob), orr = bbox_radius(ob);
 	}
 	if (o->xf)
 		oc = xf_point(o->xf, oc), orr *= xf_stretch(o->xf);

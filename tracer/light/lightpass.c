@@ -256,7 +256,7 @@ bool lp_dispersive(const struct scene *s)
 static void cone_box(struct vec3 L, struct bbox bb, struct vec3 *axis, double *cosmax)
 {
 	*cosmax = -1;
-	struct vec3 c = v_sub(v_scale(v_add(bb.lo, bb.hi), 0.5), L);
+	struct vec3 c = v_sub(bbox_centre(bb), L);
 	if (!(v_len(c) > 0))
 		return;
 	struct vec3 a = v_norm(c);
@@ -325,8 +325,8 @@ static struct target beam_to(const struct scene *s, struct vec3 D, struct vec3 c
 		struct bbox ob = shape_bounds(s->objects[i]);
 		struct hit h;
 		if (bbox_finite(ob)) {
-			struct vec3 oc = v_scale(v_add(ob.lo, ob.hi), 0.5);
-			back = fmax(back, v_len(v_sub(oc, c)) + 0.5 * v_len(v_sub(ob.hi, ob.lo)));
+			struct vec3 oc = bbox_centre(ob);
+			back = fmax(back, v_len(v_sub(oc, c)) + bbox_radius(ob));
 		} else if (shape_intersect(s->objects[i], &(struct ray){c, v_neg(D)}, 0, INFINITY, &h)) {
 			back = fmax(back, h.t);
 		}
@@ -1614,7 +1614,7 @@ static double legacy_gain(const struct scene *s, const struct light *l, struct b
 {
 	if (!s->legacy_lights || l->kind == LIGHT_PARALLEL || !bbox_finite(bb))
 		return 1;
-	double d = v_len(v_sub(v_scale(v_add(bb.lo, bb.hi), 0.5), l->pos));
+	double d = v_len(v_sub(bbox_centre(bb), l->pos));
 	double g = d * d;
 	if (l->fade_distance > 0) {
 		double fp = l->fade_power > 0 ? l->fade_power : 1;
@@ -1669,7 +1669,7 @@ static long plan(struct job *J)
 				tg[nt] = beam_to(s, D, c, r);
 			else {
 				struct bbox e = scene_extent(s);
-				tg[nt] = beam_to(s, D, v_scale(v_add(e.lo, e.hi), 0.5), 0.5 * v_len(v_sub(e.hi, e.lo)));
+				tg[nt] = beam_to(s, D, bbox_centre(e), bbox_radius(e));
 				if (!J->clipped)
 					J->clipped = s->objects[i];
 			}
