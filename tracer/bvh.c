@@ -64,7 +64,25 @@ struct bvh {
 	                                  within pad of this leaf's (bvh_intersect_in) */
 	struct leafbox *box;           /* the leaves' boxes grown by pad, when brute
 	                                  tests boxes first (NULL: it does not) */
+	/* with Embree (spatial_order): leaf ids in Morton order, and what the
+	 * callbacks read of each leaf side by side in that order */
+	int32_t *rank;                 /* leaf id is prims[rank[id]] (leaf); NULL: prims[id] */
+	struct sph *sph;               /* per leaf id: its centre and radius, when a sphere
+	                                  without a transform */
+	unsigned flags_any;            /* the object flags of any leaf, or'ed */
 };
+
+/* A leaf as the callbacks test it when it is a sphere without a transform:
+ * the centre and radius of its object, copied; r NaN when it is not one. */
+struct sph {
+	double x, y, z, r;
+};
+
+/* The object of leaf id (a primitive index of the queries and of Embree). */
+static inline const struct object *leaf(const struct bvh *b, int id)
+{
+	return b->prims[b->rank ? b->rank[id] : id];
+}
 
 /* One query: Embree's context first, so the callbacks can reach the rest;
  * lanes says whether the context is this query (1) or a packet's (16). */
@@ -254,7 +272,7 @@ static float up(double x)
 static void bounds_cb(const struct RTCBoundsFunctionArguments *a)
 {
 	const struct bvh *t = a->geometryUserPtr;
-	struct bbox b = shape_bounds(t->prims[a->primID]); /* as collect found it */
+	struct bbox b = shape_bounds(leaf(t, (int)a->primID)); /* as collect found it */
 	double p = t->pad;
 	*a->bounds_o = (struct RTCBounds){down(b.lo.x - p), down(b.lo.y - p), down(b.lo.z - p), 0,
 	                                  up(b.hi.x + p), up(b.hi.y + p), up(b.hi.z + p), 0};
@@ -269,16 +287,24 @@ HOT bool sphere_t(const struct object *o, const struct ray *r, double tmin, doub
 	return shape_hit_t(o, r, tmin, tmax, t);
 }
 
-/* Tests primitive id for query q: on a better hit, records it (a sphere by
- * its t alone; traverse fills *h at the end) and returns true. */
-/* The end of the interval primitive id is tested over for query q: a tie
- * with the best so far is looked at, and the lower index wins. */
-HOT double upper_end(const struct query *q, int id)
+/* Whether leaf a comes before leaf b in collection order (prims may be in
+ * spatial order: rank). */
+HOT bool before(const struct bvh *t, int a, int b)
 {
-	return q->found && q->best >= 0 && id < q->best ? next_up(q->tmax) : q->tmax;
+	return t->rank ? t->rank[a] < t->rank[b] : a < b;
 }
 
-/* consider_obj over (q->tmin, hi). */
+/* The end of the interval primitive id is tested over for query q: a tie
+ * with the best so far is looked at, and the leaf first in collection
+ * order wins. */
+HOT double upper_end(const struct query *q, int id)
+{
+	return q->found && q->best >= 0 && before(q->b, id, q->best) ? next_up(q->tmax) : q->tmax;
+}
+
+/* Tests primitive id for query q over (q->tmin, hi): on a better hit,
+ * records it (a sphere by its t alone; traverse fills *h at the end) and
+ * returns true. */
 HOT bool consider_to(struct query *q, int id, const struct object *o, double hi)
 {
 	if ((o->flags & q->skip) || o == q->from)
@@ -311,7 +337,41 @@ HOT bool consider_obj(struct query *q, int id, const struct object *o)
 
 HOT bool consider(struct query *q, int id)
 {
-	return consider_obj(q, id, q->b->prims[id]);
+	return consider_obj(q, id, leaf(q->b, id));
+}
+
+/* Leaf id's compact record (struct sph) when the callbacks may test it by
+ * that alone: a sphere without a transform, and no flag the query skips is
+ * set on any leaf; else NULL (its object is read). */
+HOT const struct sph *plain(const struct query *q, int id)
+{
+	const struct sph *s = q->b->sph ? &q->b->sph[id] : NULL;
+	return s && !isnan(s->r) && !(q->skip & q->b->flags_any) ? s : NULL;
+}
+
+/* Whether query q's ray leaves leaf id outward (q->from): read only when
+ * the leaf is hit, so a miss does not read its object. */
+HOT bool is_from(const struct query *q, int id)
+{
+	return q->from && leaf(q->b, id) == q->from;
+}
+
+/* consider, the object read only when the leaf is hit where it is a plain
+ * sphere (plain): the same test on the same doubles. */
+HOT bool consider_id(struct query *q, int id)
+{
+	const struct sph *s = plain(q, id);
+	if (!s)
+		return consider(q, id);
+	double hi = upper_end(q, id), t;
+	if (!prim_sphere_t(v3(s->x, s->y, s->z), s->r, q->r, q->tmin, hi, &t) || is_from(q, id))
+		return false;
+	q->deferred = true;
+	q->best_t = q->tmax = t;
+	q->best = id;
+	q->best_hi = hi;
+	q->found = true;
+	return true;
 }
 
 /* consider, for leaves tested in index order from the first (brute's
@@ -334,10 +394,9 @@ static void lane_hit(const struct query *q, int id, struct RTCRayHitN *rayhit, u
 	((unsigned *)rayhit)[18 * N + i] = geom;
 }
 
-static void test_lane(struct query *q, int id, const struct object *o, struct RTCRayHitN *rayhit, unsigned N,
-                      unsigned i, unsigned geom)
+static void test_lane(struct query *q, int id, struct RTCRayHitN *rayhit, unsigned N, unsigned i, unsigned geom)
 {
-	if (consider_obj(q, id, o))
+	if (consider_id(q, id))
 		lane_hit(q, id, rayhit, N, i, geom);
 }
 
@@ -365,14 +424,14 @@ struct half16 {
 };
 
 __attribute__((target("avx512f"), always_inline)) static inline void sphere_half(const struct packet *P,
-                                                                                 const struct object *o, int h,
+                                                                                 const struct sph *o, int h,
                                                                                  struct half16 *s)
 {
-	const double r2 = o->g.sphere.r * o->g.sphere.r;
+	const double r2 = o->r * o->r;
 	const __m512d zero = _mm512_setzero_pd(), eps = _mm512_set1_pd(1e-12);
-	s->fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), _mm512_set1_pd(o->g.sphere.c.x));
-	s->fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), _mm512_set1_pd(o->g.sphere.c.y));
-	s->fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), _mm512_set1_pd(o->g.sphere.c.z));
+	s->fx = _mm512_sub_pd(_mm512_load_pd(P->ox + 8 * h), _mm512_set1_pd(o->x));
+	s->fy = _mm512_sub_pd(_mm512_load_pd(P->oy + 8 * h), _mm512_set1_pd(o->y));
+	s->fz = _mm512_sub_pd(_mm512_load_pd(P->oz + 8 * h), _mm512_set1_pd(o->z));
 	s->dx = _mm512_load_pd(P->dx + 8 * h), s->dy = _mm512_load_pd(P->dy + 8 * h);
 	s->dz = _mm512_load_pd(P->dz + 8 * h), s->a = _mm512_load_pd(P->dd + 8 * h);
 	s->fd = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(s->fx, s->dx), _mm512_mul_pd(s->fy, s->dy)),
@@ -399,7 +458,7 @@ __attribute__((target("avx512f"), always_inline)) static inline void sphere_half
  * per valid lane: 12-16 % more camera rays a second at 100k spheres
  * (bench/eye/kernel.c). Called only where Embree has native 16-wide
  * packets, which is where the CPU has AVX-512. */
-__attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *P, const struct object *o)
+__attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *P, const struct sph *o)
 {
 	unsigned m = 0;
 	for (int h = 0; h < 2; h++) {
@@ -421,10 +480,10 @@ __attribute__((target("avx512f"))) static unsigned lanes16(const struct packet *
  * bits. The scalar test solved each lane that lanes16 let through in turn,
  * its square roots and divisions one after another: 60 % of intersect_cb's
  * samples on bench/eye/grid.scn (perf). */
-__attribute__((target("avx512f"))) static unsigned roots16(const struct packet *P, const struct object *o,
+__attribute__((target("avx512f"))) static unsigned roots16(const struct packet *P, const struct sph *o,
                                                           double *t0, double *t1)
 {
-	const double rad = o->g.sphere.r;
+	const double rad = o->r;
 	const __m512d zero = _mm512_setzero_pd(), two = _mm512_set1_pd(2), four = _mm512_set1_pd(4);
 	const __m512d half = _mm512_set1_pd(-0.5), vrad = _mm512_set1_pd(rad);
 	const __m512i sign = _mm512_set1_epi64((long long)0x8000000000000000ull);
@@ -464,13 +523,13 @@ __attribute__((target("avx512f"))) static unsigned roots16(const struct packet *
 }
 #endif
 
-/* The lanes of packet P (N rays; NULL: a single ray) that object o may
+/* The lanes of packet P (N rays; NULL: a single ray) that leaf o may
  * meet: lanes16's mask for a sphere without a transform in a native
  * 16-wide packet, else every lane. */
-static inline unsigned may_meet(struct packet *P, unsigned N, const struct object *o)
+static inline unsigned may_meet(struct packet *P, unsigned N, const struct sph *o)
 {
 #ifdef LANES16
-	if (native16 && P && N == BVH_PACKET && o->kind == OBJ_SPHERE && !o->xf) {
+	if (native16 && P && N == BVH_PACKET && !isnan(o->r)) {
 		if (!P->rows)
 			packet_rows(P);
 		return lanes16(P, o);
@@ -486,17 +545,18 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
 	struct query *lane = P ? &P->q[P->base] : q; /* lane i's query: lane[i], or q alone */
-	const struct object *o = lane->b->prims[a->primID]; /* looked up once for every lane */
+	const struct bvh *b = lane->b;
+	const struct sph *o = &b->sph[a->primID]; /* looked up once for every lane */
 #ifdef LANES16
-	if (native16 && P && a->N == BVH_PACKET && o->kind == OBJ_SPHERE && !o->xf && o->g.sphere.r > 0) {
+	if (native16 && P && a->N == BVH_PACKET && o->r > 0) { /* (a NaN r: not a plain sphere) */
 		_Alignas(64) double t0[BVH_PACKET], t1[BVH_PACKET];
 		if (!P->rows)
 			packet_rows(P);
 		unsigned m = roots16(P, o, t0, t1);
-		for (; m; m &= m - 1) { /* consider_obj with the roots in hand */
+		for (; m; m &= m - 1) { /* consider_id with the roots in hand */
 			unsigned i = (unsigned)__builtin_ctz(m);
 			struct query *qi = &lane[i];
-			if (!a->valid[i] || (o->flags & qi->skip) || o == qi->from)
+			if (!a->valid[i] || ((qi->skip & b->flags_any) && (leaf(b, (int)a->primID)->flags & qi->skip)))
 				continue;
 			double hi = upper_end(qi, (int)a->primID), t;
 			if (t0[i] > qi->tmin && t0[i] < hi)
@@ -504,6 +564,8 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 			else if (t1[i] > qi->tmin && t1[i] < hi)
 				t = t1[i];
 			else
+				continue;
+			if (is_from(qi, (int)a->primID))
 				continue;
 			qi->deferred = true;
 			qi->best_t = qi->tmax = t;
@@ -518,14 +580,17 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 	unsigned m = may_meet(P, a->N, o);
 	for (unsigned i = 0; i < a->N; i++)
 		if (a->valid[i] && (m >> (i & 31) & 1))
-			test_lane(P ? &lane[i] : q, (int)a->primID, o, a->rayhit, a->N, i, a->geomID);
+			test_lane(P ? &lane[i] : q, (int)a->primID, a->rayhit, a->N, i, a->geomID);
 }
 
 /* Whether primitive id blocks query q's ray over its interval. */
 static bool blocks(const struct query *q, unsigned id)
 {
-	const struct object *o = q->b->prims[id];
+	const struct sph *s = plain(q, (int)id);
 	double t;
+	if (s)
+		return prim_sphere_t(v3(s->x, s->y, s->z), s->r, q->r, q->tmin, q->tmax, &t) && !is_from(q, (int)id);
+	const struct object *o = leaf(q->b, (int)id);
 	if ((o->flags & q->skip) || o == q->from)
 		return false;
 	return o->kind == OBJ_SPHERE ? sphere_t(o, q->r, q->tmin, q->tmax, &t)
@@ -538,7 +603,7 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 {
 	struct query *q = (struct query *)a->context;
 	struct packet *P = q->lanes == 1 ? NULL : (struct packet *)a->context;
-	unsigned m = P ? may_meet(P, a->N, P->q[0].b->prims[a->primID]) : ~0u; /* lanes that may be blocked */
+	unsigned m = P ? may_meet(P, a->N, &P->q[0].b->sph[a->primID]) : ~0u; /* lanes that may be blocked */
 	for (unsigned i = 0; i < a->N; i++) {
 		struct query *qi = P ? &P->q[P->base + (int)i] : q;
 		if (a->valid[i] && (m >> (i & 31) & 1) && !qi->found && blocks(qi, a->primID)) {
@@ -549,6 +614,86 @@ static void occluded_cb(const struct RTCOccludedFunctionNArguments *a)
 }
 
 /* ==== building =========================================================== */
+
+/* The low 10 bits of v spread out to every third bit: one axis of a
+ * Morton code. */
+static uint64_t spread3(uint64_t v)
+{
+	v &= 0x3ff;
+	v = (v | v << 16) & 0x30000ffull;
+	v = (v | v << 8) & 0x300f00full;
+	v = (v | v << 4) & 0x30c30c3ull;
+	v = (v | v << 2) & 0x9249249ull;
+	return v;
+}
+
+/* x in [lo, lo + ext] as a 10-bit grid coordinate (0 for NaN and a flat
+ * axis). */
+static uint64_t grid10(double x, double lo, double ext)
+{
+	double f = ext > 0 ? (x - lo) / ext : 0;
+	return f > 0 ? f < 1 ? (uint64_t)(f * 1024.0) : 1023 : 0;
+}
+
+#define RADIX_BITS 10 /* a Morton code's bits per axis, and a radix sort pass's */
+
+/* Numbers the leaves in the Morton order of their boxes' centres (docs/
+ * design.md §5), on a grid of 2^10 cells an axis: rank. Embree is given
+ * the leaves by these ids. A stable sort (leaves in one cell keep their
+ * collection order), and ties between hits still go by collection order
+ * (upper_end), so every hit is the one collection order gives. In
+ * collection order a random cloud's leaves lie scattered over memory, and
+ * the callbacks' reads of a hierarchy node's leaves miss the cache one by
+ * one; in this order they lie together (plain_fill). Keys hold the code
+ * above the collection index, and a radix sort passes over the code's
+ * digits alone. */
+static void spatial_order(struct bvh *t)
+{
+	long n = t->nprims;
+	uint64_t *a = mem_alloc_huge(sizeof *a * (size_t)n), *b = mem_alloc_huge(sizeof *b * (size_t)n);
+	struct vec3 lo = t->bounds.lo, ext = v_sub(t->bounds.hi, t->bounds.lo);
+	for (long i = 0; i < n; i++) {
+		struct vec3 c = bbox_centre(shape_bounds(t->prims[i]));
+		uint64_t code = spread3(grid10(c.x, lo.x, ext.x)) | spread3(grid10(c.y, lo.y, ext.y)) << 1 |
+		                spread3(grid10(c.z, lo.z, ext.z)) << 2;
+		a[i] = code << 32 | (uint64_t)i;
+	}
+	const unsigned digit = (1u << RADIX_BITS) - 1;
+	for (int shift = 32; shift < 32 + 3 * RADIX_BITS; shift += RADIX_BITS) { /* lowest digit first */
+		long count[(1 << RADIX_BITS) + 1] = {0};
+		for (long i = 0; i < n; i++)
+			count[(a[i] >> shift & digit) + 1]++;
+		if (count[(a[0] >> shift & digit) + 1] == n)
+			continue; /* one digit for all: the order stays */
+		for (unsigned d = 0; d < digit + 1; d++)
+			count[d + 1] += count[d];
+		for (long i = 0; i < n; i++)
+			b[count[a[i] >> shift & digit]++] = a[i];
+		uint64_t *x = a;
+		a = b, b = x;
+	}
+	free(b);
+	t->rank = mem_alloc(sizeof *t->rank * (size_t)n);
+	for (long k = 0; k < n; k++)
+		t->rank[k] = (int32_t)(a[k] & 0xffffffffu);
+	free(a);
+}
+
+/* sph and flags_any, once Embree has built its hierarchy (whose build
+ * memory is then given back: a million spheres' 32 MB do not add to the
+ * peak). */
+static void plain_fill(struct bvh *t)
+{
+	t->sph = mem_alloc_huge(sizeof *t->sph * (size_t)t->nprims);
+	t->flags_any = 0;
+	for (int k = 0; k < t->nprims; k++) {
+		const struct object *o = leaf(t, k);
+		t->flags_any |= o->flags;
+		t->sph[k] = o->kind == OBJ_SPHERE && !o->xf
+		                ? (struct sph){o->g.sphere.c.x, o->g.sphere.c.y, o->g.sphere.c.z, o->g.sphere.r}
+		                : (struct sph){0, 0, 0, NAN};
+	}
+}
 
 /* Whether boxes a and b lie more than gap apart along some axis. */
 static bool apart(struct bbox a, struct bbox b, double gap)
@@ -609,7 +754,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 	pthread_once(&device_once, make_device);
 	if (!device)
 		return t; /* no Embree: every leaf is tested (see traverse) */
-
+	spatial_order(t);
 	t->scene = rtcNewScene(device);
 	rtcSetSceneBuildQuality(t->scene, RTC_BUILD_QUALITY_MEDIUM);
 	RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -622,6 +767,7 @@ struct bvh *bvh_build(struct object **objs, int n)
 	rtcAttachGeometry(t->scene, g);
 	rtcReleaseGeometry(g);
 	rtcCommitScene(t->scene);
+	plain_fill(t);
 	return t;
 }
 
@@ -633,7 +779,7 @@ void bvh_free(struct bvh *b)
 		rtcReleaseScene(b->scene);
 	if (b->own_prims)
 		free(b->prims);
-	free(b->unbound), free(b->uplane), free(b->box);
+	free(b->unbound), free(b->uplane), free(b->box), free(b->rank), free(b->sph);
 	free(b);
 }
 
@@ -841,7 +987,7 @@ static inline void finish(struct query *q)
 HOT void finish_hit(struct query *q)
 {
 	if (q->deferred)
-		shape_hit_at(q->b->prims[q->best], q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
+		shape_hit_at(leaf(q->b, q->best), q->r, q->tmin, q->best_hi, q->best_t, q->uv, q->h);
 	else if (q->best < 0 && q->ubest >= 0) /* an unbounded winner found by its t, still q->tmax; its
 	                                          (u,v) come with its point (pl_prep_hit): kept, as a light
 	                                          ray's deposit needs them */
@@ -867,7 +1013,7 @@ static void new_query(struct query *q, const struct bvh *b, const struct ray *r,
 HOT void finish_if(struct query *q, bool (*full)(const void *ctx, const struct object *o),
                const void *ctx)
 {
-	const struct object *o = q->deferred                       ? q->b->prims[q->best]
+	const struct object *o = q->deferred                       ? leaf(q->b, q->best)
 	                         : q->best < 0 && q->ubest >= 0 ? q->b->unbound[q->ubest]
 	                                                         : NULL;
 	if (!o || !full || full(ctx, o)) {
@@ -1001,7 +1147,7 @@ __attribute__((target("avx512f"))) static unsigned hits16(struct packet *Q, unsi
 	if (!Q->rows)
 		packet_rows(Q);
 	for (int i = 0; i < BVH_PACKET; i++) {
-		const struct object *o = Q->q[i].b->prims[Q->q[i].best < 0 ? 0 : Q->q[i].best];
+		const struct object *o = leaf(Q->q[i].b, Q->q[i].best < 0 ? 0 : Q->q[i].best);
 		bool on = m >> i & 1;
 		t[i] = on ? Q->q[i].best_t : 0;
 		cx[i] = on ? o->g.sphere.c.x : 0, cy[i] = on ? o->g.sphere.c.y : 0, cz[i] = on ? o->g.sphere.c.z : 0;
@@ -1042,7 +1188,7 @@ __attribute__((target("avx512f"))) static unsigned hits16(struct packet *Q, unsi
 	for (unsigned mm = ok; mm; mm &= mm - 1) {
 		int i = __builtin_ctz(mm);
 		struct query *q = &Q->q[i];
-		const struct object *o = q->b->prims[q->best];
+		const struct object *o = leaf(q->b, q->best);
 		struct hit *hh = q->h;
 		struct vec3 n = v3(out[3][i], out[4][i], out[5][i]);
 		if (o->flags & OF_INVERSE)
@@ -1068,7 +1214,7 @@ static void done(struct packet *Q, int n, bool *found)
 		unsigned m = 0;
 		for (int i = 0; i < n; i++) {
 			const struct query *q = &Q->q[i];
-			if (q->deferred && !q->uv && !q->b->prims[q->best]->xf)
+			if (q->deferred && !q->uv && !leaf(q->b, q->best)->xf)
 				m |= 1u << i;
 		}
 		if (m)
