@@ -321,11 +321,13 @@ int render(const struct scene *s, const struct render_opts *o, struct diag *dg, 
 	}
 	struct bvh *b = bvh_build(s->objects, s->nobjects);
 	struct framebuffer *fb = new_film(o);
-	/* the image's planes, made and written once here: their pages fault in
-	 * while the image is set up, not one by one under the eye pass */
+	/* the image's planes, made and written once here (fb_reserve): their
+	 * pages fault in while the image is set up, not one by one under the
+	 * eye pass */
 	int nplanes = o->beauty_only ? 3 : NPLANES - 1;
+	fb_reserve(fb, nplanes);
 	for (int k = 0; k < nplanes; k++)
-		memset(fb_plane(fb, plane_names[k]), 0, (size_t)fb->w * (size_t)fb->h * sizeof(float));
+		fb_plane(fb, plane_names[k]);
 	st.threads = pool_threads(o->threads);
 	/* the eye pass's set-up (camera, and a scan of every object for one
 	 * that passes light straight through) is part of the scene's: 11 ms

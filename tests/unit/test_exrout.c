@@ -75,6 +75,43 @@ static void t_fb_order(void)
 	fb_free(fb);
 }
 
+/* fb_reserve: the next planes made come from one zeroed block, in the
+ * order they are made, each its own w*h floats; planes past the reserve,
+ * and a second reserve, work as before; fb_free frees each once (the
+ * sanitized build checks). 1024x1024: a block of 16 MiB, on huge pages. */
+static void t_fb_reserve(void)
+{
+	struct framebuffer *fb = fb_new(1024, 1024);
+	size_t n = (size_t)fb->w * (size_t)fb->h;
+	fb_reserve(fb, 4);
+	float *p[6];
+	for (int k = 0; k < 6; k++) {
+		p[k] = fb_plane(fb, names[k]);
+		if (k == 2)
+			fb_reserve(fb, 8); /* ignored: the block is there */
+	}
+	for (int k = 1; k < 4; k++)
+		CHECK(p[k] == p[0] + n * (size_t)k); /* one block, in order made */
+	CHECK(p[4] != p[3] + n && p[5] != p[4] + n);
+	int nonzero = 0;
+	for (int k = 0; k < 6; k++)
+		for (size_t i = 0; i < n; i++)
+			nonzero += p[k][i] != 0.0f;
+	CHECK(nonzero == 0);
+	for (int k = 0; k < 6; k++) /* each plane written whole: none overlaps another */
+		for (size_t i = 0; i < n; i++)
+			p[k][i] = (float)k;
+	int wrong = 0;
+	for (int k = 0; k < 6; k++) {
+		CHECK(fb_find(fb, names[k]) == p[k]);
+		for (size_t i = 0; i < n; i++)
+			wrong += p[k][i] != (float)k;
+	}
+	CHECK(wrong == 0);
+	CHECK(fb_count(fb) == 6);
+	fb_free(fb);
+}
+
 /* Writes fb with opts, reads it back and compares every plane: exact for
  * float (and for Z), within half precision otherwise. */
 static void roundtrip(const struct out_exr_opts *o, const char *file)
@@ -380,6 +417,7 @@ int main(void)
 		return 1;
 	}
 	RUN(t_fb_order);
+	RUN(t_fb_reserve);
 	RUN(t_float_all_compressions);
 	RUN(t_half);
 	RUN(t_half_rgb);

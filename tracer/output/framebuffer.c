@@ -73,9 +73,28 @@ float *fb_plane(struct framebuffer *fb, const char *name)
 		at--;
 	memmove(fb->planes + at + 1, fb->planes + at, (size_t)(fb->count - at) * sizeof *fb->planes);
 	fb->planes[at].name = mem_strdup(name);
-	fb->planes[at].data = mem_calloc((size_t)fb->w * (size_t)fb->h, sizeof(float));
+	size_t n = (size_t)fb->w * (size_t)fb->h;
+	if (fb->spare > 0)
+		fb->planes[at].data = fb->block + n * (size_t)fb->given++, fb->spare--;
+	else
+		fb->planes[at].data = mem_calloc(n, sizeof(float));
 	fb->count++;
 	return fb->planes[at].data;
+}
+
+void fb_reserve(struct framebuffer *fb, int n)
+{
+	if (fb->block || n <= 0)
+		return;
+	size_t bytes = (size_t)fb->w * (size_t)fb->h * sizeof(float) * (size_t)n;
+	fb->block = memset(mem_alloc_huge(bytes), 0, bytes);
+	fb->spare = n;
+}
+
+/* Whether p is one of the planes carved from fb's block. */
+static int in_block(const struct framebuffer *fb, const float *p)
+{
+	return fb->block && p >= fb->block && p < fb->block + (size_t)fb->w * (size_t)fb->h * (size_t)fb->given;
 }
 
 int fb_count(const struct framebuffer *fb) { return fb->count; }
@@ -97,8 +116,9 @@ void fb_free(struct framebuffer *fb)
 		return;
 	for (int i = 0; i < fb->count; i++) {
 		free(fb->planes[i].name);
-		free(fb->planes[i].data);
+		if (!in_block(fb, fb->planes[i].data))
+			free(fb->planes[i].data);
 	}
-	free(fb->planes);
+	free(fb->planes), free(fb->block);
 	free(fb);
 }
