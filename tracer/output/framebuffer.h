@@ -33,7 +33,7 @@ struct framebuffer {
 struct framebuffer *fb_new(int w, int h);
 /* Makes room for n more planes at once, zeroed, in one block backed by
  * huge pages where the system gives them (common/arena.h): the next n
- * planes fb_plane creates take it. A megapixel image's 25 planes in 4 KiB
+ * planes fb_plane creates take it. A megapixel image's 26 planes in 4 KiB
  * pages took 0.36 s of page faults to set up. Call it once, before those
  * planes exist. */
 void fb_reserve(struct framebuffer *fb, int n);
