@@ -302,9 +302,22 @@ HOT double upper_end(const struct query *q, int id)
 	return q->found && q->best >= 0 && before(q->b, id, q->best) ? next_up(q->tmax) : q->tmax;
 }
 
+/* Query q's best hit so far becomes leaf id's at t, tested over
+ * (q->tmin, hi); deferred: a sphere's found by its t alone (traverse fills
+ * *h at the end), else *h holds it already. */
+HOT void take(struct query *q, int id, double t, double hi, bool deferred)
+{
+	q->deferred = deferred;
+	if (deferred)
+		q->best_t = t;
+	q->tmax = t;
+	q->best = id;
+	q->best_hi = hi;
+	q->found = true;
+}
+
 /* Tests primitive id for query q over (q->tmin, hi): on a better hit,
- * records it (a sphere by its t alone; traverse fills *h at the end) and
- * returns true. */
+ * records it (take) and returns true. */
 HOT bool consider_to(struct query *q, int id, const struct object *o, double hi)
 {
 	if ((o->flags & q->skip) || o == q->from)
@@ -313,20 +326,14 @@ HOT bool consider_to(struct query *q, int id, const struct object *o, double hi)
 	if (o->kind == OBJ_SPHERE) {
 		if (!sphere_t(o, q->r, q->tmin, hi, &t))
 			return false;
-		q->deferred = true;
-		q->best_t = t;
+		take(q, id, t, hi, true);
 	} else {
 		struct hit tmp;
 		if (!(q->skip & BVH_UV_UNREAD ? shape_intersect_bare : shape_intersect)(o, q->r, q->tmin, hi, &tmp))
 			return false;
 		*q->h = tmp;
-		t = tmp.t;
-		q->deferred = false;
+		take(q, id, tmp.t, hi, false);
 	}
-	q->tmax = t;
-	q->best = id;
-	q->best_hi = hi;
-	q->found = true;
 	return true;
 }
 
@@ -366,11 +373,7 @@ HOT bool consider_id(struct query *q, int id)
 	double hi = upper_end(q, id), t;
 	if (!prim_sphere_t(v3(s->x, s->y, s->z), s->r, q->r, q->tmin, hi, &t) || is_from(q, id))
 		return false;
-	q->deferred = true;
-	q->best_t = q->tmax = t;
-	q->best = id;
-	q->best_hi = hi;
-	q->found = true;
+	take(q, id, t, hi, true);
 	return true;
 }
 
@@ -567,11 +570,7 @@ static void intersect_cb(const struct RTCIntersectFunctionNArguments *a)
 				continue;
 			if (is_from(qi, (int)a->primID))
 				continue;
-			qi->deferred = true;
-			qi->best_t = qi->tmax = t;
-			qi->best = (int)a->primID;
-			qi->best_hi = hi;
-			qi->found = true;
+			take(qi, (int)a->primID, t, hi, true);
 			lane_hit(qi, (int)a->primID, a->rayhit, a->N, i, a->geomID);
 		}
 		return;

@@ -275,8 +275,8 @@ static void cone_box(struct vec3 L, struct bbox bb, struct vec3 *axis, double *c
  * narrower of that and the cone round the corners of its box bb (a light
  * beside a wide slab or a tall mirror is inside their sphere, not their
  * box). Shafts keep the sphere's: on tests/accuracy's mirror the corner
- * cone (its pole on the mirror) left them 4x the L1 at 10^6 rays
- * (docs/design.md §4). */
+ * cone left them 4x the L1 at 10^6 rays, as its grid's pole points at the
+ * mirror, not down along the caustic's axis of symmetry (docs/design.md §4). */
 static struct target cone_to(struct vec3 L, bool bounded, struct vec3 c, double r, struct bbox bb, bool corners)
 {
 	struct target t;

@@ -2,6 +2,7 @@
 /* framebuffer.c: named float planes kept in a stable, canonical order. */
 #include "framebuffer.h"
 
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -92,7 +93,7 @@ void fb_reserve(struct framebuffer *fb, int n)
 }
 
 /* Whether p is one of the planes carved from fb's block. */
-static int in_block(const struct framebuffer *fb, const float *p)
+static bool in_block(const struct framebuffer *fb, const float *p)
 {
 	return fb->block && p >= fb->block && p < fb->block + (size_t)fb->w * (size_t)fb->h * (size_t)fb->given;
 }
