@@ -1278,7 +1278,7 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
  * finer nodes alias in the eye pass's point reads), or, when
  * most of its deposits are points (folds, silhouettes), their rule
  * (choose_spec). */
-static struct illum_spec shaft_spec(const struct object *o, const struct prec *p, long np, const struct vec3 *pts,
+static struct illum_spec shaft_spec(const struct object *o, const struct prec *const *p, long np, const struct vec3 *pts,
                                     long k, const struct lp_opts *opt)
 {
 	struct illum_spec own = obj_illum(o);
@@ -1286,12 +1286,12 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *p
 		return own;
 	double *sz = mem_alloc(sizeof *sz * (size_t)(np ? np : 1)), px = 0;
 	for (long i = 0; i < np; i++)
-		sz[i] = p[i].size;
+		sz[i] = p[i]->size;
 	double cell = np ? 0.5 * order_nth(sz, np, np / 10) : 0;
 	/* no finer than a pixel of the image where the light lands (the eye
 	 * pass reads one point per sample: a finer map only adds noise) */
 	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
-		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i].p, opt->eye)) * opt->pixel_angle;
+		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i]->p, opt->eye)) * opt->pixel_angle;
 	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
 		px = order_nth(sz, np, np / 2);
 	}
@@ -1344,7 +1344,7 @@ static double footprint_cells(const double (*uv)[2], int n, double du, double dv
  * deposit at its centre; one touching more than FOOTPRINT_MAX_CELLS of its
  * level's cells (footprint_cells: by area and edges, not bounding box; nl =
  * 1: a fixed grid) gives its energy to its corners. */
-static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *p,
+static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *const *p,
                            long np, const struct illum_splat *s, const double *sz, long ns, int threads)
 {
 	struct illum_poly *pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1));
@@ -1352,14 +1352,14 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 	/* each one's level, found once (not once a level) */
 	unsigned char *lp = mem_alloc((size_t)(np + ns + 1)), *ls = lp + np;
 	for (long i = 0; i < np; i++)
-		lp[i] = (unsigned char)level_of(p[i].size, cell, nl);
+		lp[i] = (unsigned char)level_of(p[i]->size, cell, nl);
 	for (long i = 0; i < ns; i++)
 		ls[i] = (unsigned char)level_of(sz[i], cell, nl);
 	for (int l = 0; l < nl; l++) {
 		long n = 0, m = 0;
 		for (long i = 0; i < np; i++)
 			if (lp[i] == l)
-				pp[n++] = (struct illum_poly){(const double(*)[2])p[i].uv, p[i].nv, {p[i].e[0], p[i].e[1], p[i].e[2]}};
+				pp[n++] = (struct illum_poly){(const double(*)[2])p[i]->uv, p[i]->nv, {p[i]->e[0], p[i]->e[1], p[i]->e[2]}};
 		for (long i = 0; i < ns; i++)
 			if (ls[i] == l)
 				ps[m++] = s[i];
@@ -1489,7 +1489,7 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	struct vec3 *pts = need_pts ? mem_alloc(sizeof *pts * (size_t)(total ? total : 1)) : NULL;
 	struct illum_splat *sp = inplace ? NULL : mem_alloc(sizeof *sp * (size_t)(total ? total : 1));
 	double *psz = inplace ? NULL : mem_alloc(sizeof *psz * (size_t)(total ? total : 1));
-	struct prec *pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1));
+	const struct prec **pr = mem_alloc(sizeof *pr * (size_t)(ptotal ? ptotal : 1)); /* by surface, in order */
 	t = 0;
 	for (long g = 0; g < nseg && ki; g++) {
 		if (sg[g].g) { /* one surface */
@@ -1504,9 +1504,11 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	}
 	if (!ki && n)
 		start[1] = total;
-	for (long g = 0; g < nseg; g++)
+	for (long g = 0; g < nseg && n > 1; g++) /* (one surface: every record is its) */
 		for (long i = 0; i < sg[g].np; i++)
 			pstart[find_map(r, sg[g].p[i].obj) + 1]++;
+	if (n == 1)
+		pstart[1] = ptotal;
 	for (int k = 0; k < n; k++)
 		start[k + 1] += start[k], pstart[k + 1] += pstart[k];
 	t = 0;
@@ -1550,8 +1552,8 @@ static struct lp_result *build_maps(const struct seg *sg, long nseg, const struc
 	memset(fill, 0, sizeof *fill * ((size_t)n + 1));
 	for (long g = 0; g < nseg; g++)
 		for (long i = 0; i < sg[g].np; i++) {
-			int k = find_map(r, sg[g].p[i].obj);
-			pr[pstart[k] + fill[k]++] = sg[g].p[i];
+			int k = n > 1 ? find_map(r, sg[g].p[i].obj) : 0;
+			pr[pstart[k] + fill[k]++] = &sg[g].p[i];
 		}
 	struct lp_result *out = mem_calloc(1, sizeof *out);
 	int cap2 = n ? n : 1;
