@@ -512,6 +512,16 @@ static double max_curve_length(const struct object *o, const struct uv_range *r,
 
 /* ==== construction ======================================================== */
 
+/* A map's arena: small blocks at first (most maps are small), doubling to
+ * ARENA_LARGE_BLOCK, so the tiles of a large map lie in huge pages (a page
+ * fault per 2 MiB, not per 4 KiB; with 1 MiB blocks, the faults of a
+ * shaft pass's 70 MB of tiles were a tenth of its time). */
+static void map_pool(struct arena *a)
+{
+	arena_init_sized(a, 4096);
+	a->most = ARENA_LARGE_BLOCK;
+}
+
 struct illum_map *illum_new(const struct object *o, const struct illum_spec *spec)
 {
 	struct uv_range r;
@@ -522,7 +532,7 @@ struct illum_map *illum_new(const struct object *o, const struct illum_spec *spe
 	m->last = -1;
 	m->grey = true;
 	m->unit = m->inv_unit = 1;
-	arena_init_sized(&m->pool, 4096);
+	map_pool(&m->pool);
 	m->bytes = sizeof *m;
 	if (!r.bounded) {
 		struct vec3 p, pu, pv;
@@ -571,7 +581,7 @@ struct illum_map *illum_new_like(const struct illum_map *src)
 	m->shift = src->shift;
 	m->unit = src->unit;
 	m->inv_unit = src->inv_unit;
-	arena_init_sized(&m->pool, 4096);
+	map_pool(&m->pool);
 	m->bytes = sizeof *m;
 	return m;
 }

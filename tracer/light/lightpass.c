@@ -116,7 +116,7 @@ struct job {
 #define DISTINCT_MAX 4 /* surfaces an item lists (more: the maps step reads its records) */
 
 /* The records of one work item: r[0 .. nr) (in worker w's recs) and
- * precs.r[p0 .. p0+np) of worker w. Taken in item order, the records are in the same
+ * p[0 .. np) (in worker w's precs). Taken in item order, the records are in the same
  * order for any thread count, and so is every map's sum (even its float
  * Σw²). The distinct surfaces they reach, in order of first appearance,
  * are listed while they are in cache (nd of them; -1: more than
@@ -127,7 +127,9 @@ struct span {
 	const struct rec *r;        /* NULL when grey */
 	const struct illum_gsplat *g; /* a grey item's records: one surface, white light */
 	const struct object *obj;   /* and their surface */
-	long nr, p0, np;
+	long nr;
+	const struct prec *p;       /* NULL when np = 0 */
+	long np;
 	const struct recx *x;       /* the recx of those records that have one (rec_has_x) */
 	int nd;
 	const struct object *d[DISTINCT_MAX];
@@ -171,10 +173,6 @@ struct prec {
 	double size;              /* world diameter of the footprint */
 };
 
-struct precbuf {
-	struct prec *r;
-	long n, cap;
-};
 
 struct worker {
 	struct job *job;
@@ -188,7 +186,7 @@ struct worker {
 	bool xneed;
 	bool corners;               /* tracing shaft corners: landings go to lands */
 	struct landbuf lands;
-	struct precbuf precs;
+	struct recbuf precs;        /* struct prec */
 	long long primaries;        /* shaft corner rays traced */
 	long long segments;
 	double emitted[3];
@@ -892,10 +890,7 @@ static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx
 
 static void push_prec(struct worker *w, const struct prec *p)
 {
-	struct precbuf *b = &w->precs;
-	if (b->n == b->cap)
-		b->r = mem_realloc(b->r, sizeof *b->r * (size_t)(b->cap = b->cap ? b->cap * 2 : 1024));
-	b->r[b->n++] = *p;
+	*(struct prec *)recbuf_push(&w->precs) = *p;
 }
 
 /* One shaft: the grid cell [sx0,sx1]×[sy0,sy1] at subdivision level lv,
@@ -1165,17 +1160,17 @@ static void work(void *ctx, long k, int worker)
 {
 	struct worker *w = (struct worker *)ctx + worker;
 	struct job *J = w->job;
-	long p0 = w->precs.n;
 	w->stage.n = w->stage.item0 = 0;
+	w->precs.item0 = w->precs.n;
 	w->recx.item0 = w->recx.n;
 	if (J->o->shafts)
 		run_shafts(w, &J->items[k]);
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	*sp = (struct span){worker, NULL, NULL, NULL, 0, p0, w->precs.n - p0, recbuf_item(&w->recx), 0, {NULL}};
-	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->np ? w->precs.r + p0 : NULL,
-	              sp->np);
+	*sp = (struct span){worker, NULL, NULL, NULL, 0, recbuf_item(&w->precs), w->precs.n - w->precs.item0,
+	                    recbuf_item(&w->recx), 0, {NULL}};
+	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->p, sp->np);
 	keep_item(w, sp);
 	progress_step(J->o->progress, 1);
 }
@@ -1347,8 +1342,9 @@ static double footprint_cells(const double (*uv)[2], int n, double du, double dv
 static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *const *p,
                            long np, const struct illum_splat *s, const double *sz, long ns, int threads)
 {
-	struct illum_poly *pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1));
-	struct illum_splat *ps = mem_alloc(sizeof *ps * (size_t)(ns + 4 * np + 1));
+	struct illum_poly *pp = mem_alloc_huge(sizeof *pp * (size_t)(np ? np : 1));
+	struct illum_splat *ps = mem_alloc_huge(sizeof *ps * (size_t)(ns + 4 * np + 1)); /* (only what is
+	                                                                                    written is touched) */
 	/* each one's level, found once (not once a level) */
 	unsigned char *lp = mem_alloc((size_t)(np + ns + 1)), *ls = lp + np;
 	for (long i = 0; i < np; i++)
@@ -1720,17 +1716,16 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct worker *ws = mem_calloc((size_t)nt, sizeof *ws);
 	for (int i = 0; i < nt; i++)
 		ws[i].job = &J, ws[i].stage.sz = ws[i].recs.sz = sizeof(struct rec), ws[i].recx.sz = sizeof(struct recx),
-		ws[i].grecs.sz = sizeof(struct illum_gsplat);
+		ws[i].grecs.sz = sizeof(struct illum_gsplat), ws[i].precs.sz = sizeof(struct prec);
 	parallel_for(J.nitems, nt, work, ws);
 	progress_end(o->progress);
-	struct recbuf *bufs = mem_calloc(3 * (size_t)nt, sizeof *bufs); /* recs, grecs, recx */
-	struct precbuf *pbufs = mem_calloc((size_t)nt, sizeof *pbufs);
+	struct recbuf *bufs = mem_calloc(4 * (size_t)nt, sizeof *bufs); /* recs, grecs, recx, precs */
 	struct lp_stats acc;
 	memset(&acc, 0, sizeof acc);
 	for (int i = 0; i < nt; i++) {
-		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].grecs, bufs[2 * nt + i] = ws[i].recx;
+		bufs[i] = ws[i].recs, bufs[nt + i] = ws[i].grecs, bufs[2 * nt + i] = ws[i].recx,
+		bufs[3 * nt + i] = ws[i].precs;
 		recbuf_free(&ws[i].stage);
-		pbufs[i] = ws[i].precs;
 		free(ws[i].lands.l);
 		acc.segments += ws[i].segments;
 		acc.rays += ws[i].primaries;
@@ -1746,7 +1741,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->np ? pbufs[p->w].r + p->p0 : NULL, p->np, p->nd,
+		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->p, p->np, p->nd,
 		                     p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
@@ -1768,8 +1763,8 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	if (st)
 		*st = acc;
 	for (int i = 0; i < nt; i++)
-		recbuf_free(&bufs[i]), recbuf_free(&bufs[nt + i]), recbuf_free(&bufs[2 * nt + i]), free(pbufs[i].r);
-	free(pbufs);
+		for (int k = 0; k < 4; k++)
+			recbuf_free(&bufs[k * nt + i]);
 	for (int li = 0; li < s->nlights; li++)
 		free(J.targets[li]);
 	free(bufs), free(ws), free(J.items), free(J.targets), free(J.ntargets);
