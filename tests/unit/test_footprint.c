@@ -700,8 +700,18 @@ static void t_bookkeeping(void)
 /* illum_deposit_poly_all gives the same map, bit for bit (energies, Σw²,
  * counts, drops), for 1, 2, 3 and 7 threads as one by one, over more than
  * one of its rounds: on a plane with polygons spanning several bands and a
- * few huge ones, and on a torus with seam crossings. */
+ * few huge ones, and on a torus with seam crossings. In coloured light and
+ * in white light, where its map stays grey (a tile of a third the size)
+ * while one by one makes it colour: the same numbers all the same. */
+static void threads_case(bool white);
+
 static void t_threads(void)
+{
+	for (int white = 0; white < 2; white++)
+		threads_case(white);
+}
+
+static void threads_case(bool white)
 {
 	enum { N = 17000 }; /* more than one round of illum_deposit_poly_all (POLY_ROUND) */
 	static double corners[N][6][2];
@@ -716,18 +726,23 @@ static void t_threads(void)
 			int n = random_poly(cx, cy, h, k % 5, corners[k]);
 			for (int q = 0; q < n; q++)
 				grid_uv(one, corners[k][q][0], corners[k][q][1], corners[k][q]);
-			p[k] = (struct illum_poly){(const double (*)[2])corners[k], n, {rnd(), 1e-9 * rnd(), 0}};
+			double x = rnd();
+			p[k] = (struct illum_poly){(const double (*)[2])corners[k], n,
+			                           {x, white ? x : 1e-9 * rnd(), white ? x : 0}};
 		}
 		corners[17][1][0] = NAN;
 		for (int k = 0; k < N; k++)
 			illum_deposit_poly(one, p[k].uv, p[k].n, p[k].e);
 		struct nodes *s1 = nodes_of(one);
-		printf("# %s: %d nodes, %ld tiles\n", shape ? "torus" : "plane", s1->n, illum_tiles(one));
+		printf("# %s, %s light: %d nodes, %ld tiles\n", shape ? "torus" : "plane", white ? "white" : "coloured", s1->n,
+		       illum_tiles(one));
 		CHECK(s1->n > 1000 && s1->n < MAXN);
 		static const int threads[] = {1, 2, 3, 7};
 		for (int t = 0; t < 4; t++) {
-			struct illum_map *m = illum_new_like(one);
+			struct illum_map *m = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
 			illum_deposit_poly_all(m, p, N, threads[t]);
+			/* a grey map's tiles: 120 bytes for four nodes, a colour one's 280 */
+			CHECK(white == (illum_memory(m) < 0.6 * illum_memory(one)));
 			struct nodes *s2 = nodes_of(m);
 			int diff = s1->n != s2->n;
 			for (int q = 0; q < s1->n && q < s2->n; q++) {

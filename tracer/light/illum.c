@@ -389,9 +389,9 @@ static long tile_add(struct illum_map *m, int32_t ti, int32_t tj)
 	return tile_insert(m, t);
 }
 
-/* The accumulator of node (i,j), or NULL when its tile is absent and create
- * is false. Indices must already be wrapped/clamped (axis_node). */
-static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
+/* The tile of node (i,j), or NULL when it is absent and create is false.
+ * Indices must already be wrapped/clamped (axis_node). */
+static struct tile *tile_of(struct illum_map *m, long i, long j, bool create)
 {
 	long ti = floordiv(i), tj = floordiv(j), k;
 	if (m->last >= 0 && m->tiles[m->last]->ti == ti && m->tiles[m->last]->tj == tj)
@@ -402,7 +402,15 @@ static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
 		k = tile_add(m, (int32_t)ti, (int32_t)tj);
 	}
 	m->last = k;
-	return &m->tiles[k]->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)]; /* (colour maps: the callers ungrey) */
+	return m->tiles[k];
+}
+
+/* The accumulator of node (i,j) of a colour map (the callers ungrey), as
+ * tile_of finds its tile. */
+static struct acc *node_acc(struct illum_map *m, long i, long j, bool create)
+{
+	struct tile *t = tile_of(m, i, j, create);
+	return t ? &t->n[tile_rem(j) * ILLUM_TILE + tile_rem(i)] : NULL;
 }
 
 /* Read-only lookup of node (i,j): its tile and slot, or NULL. */
@@ -1683,6 +1691,16 @@ static void acc_add_fx(struct acc *n, const struct fx d[3], double unit, bool wh
 	n->count += n->count < UINT32_MAX;
 }
 
+/* acc_add_fx's white light on a grey map's node: its one channel gets what
+ * each of the three would. */
+static void gacc_add_fx(struct gacc *g, struct fx d, double unit)
+{
+	double x = fx_to_double(d) * unit;
+	fx_add(&g->e, d);
+	g->sq += (float)(x * x);
+	g->count += g->count < UINT32_MAX;
+}
+
 /* Quantises node row k (from n0) cumulatively into the map: C repeats the
  * additions of fp_row_sums from pre[k], so the row ends exactly where the
  * next one starts, whoever writes it. */
@@ -1700,7 +1718,12 @@ static void fp_emit(struct fp *F, long k)
 			continue;
 		C += w[i];
 		fp_cum(F, nc, C, cum, d);
-		acc_add_fx(node_acc(F->m, vnode(&F->ax[0], F->ax[0].n0 + i), fj, true), d, F->m->unit, white);
+		long fi = vnode(&F->ax[0], F->ax[0].n0 + i);
+		if (F->m->grey) /* (white: illum_deposit_poly_all) */
+			gacc_add_fx(&tile_of(F->m, fi, fj, true)->g[tile_rem(fj) * ILLUM_TILE + tile_rem(fi)], d[0],
+			            F->m->unit);
+		else
+			acc_add_fx(node_acc(F->m, fi, fj, true), d, F->m->unit, white);
 	}
 }
 
@@ -1912,9 +1935,13 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
 	double more = 0;
-	ungrey(m); /* (footprints write colour maps) */
-	for (long i = 0; i < n; i++)
+	bool white = true;
+	for (long i = 0; i < n; i++) {
 		more += energy_max(p[i].e);
+		white = white && p[i].e[0] == p[i].e[1] && p[i].e[1] == p[i].e[2];
+	}
+	if (!white) /* (white light, the usual case: a grey map stays grey, its tiles a third the size) */
+		ungrey(m);
 	map_reserve(m, more); /* the unit for them all, before any of them (order-free) */
 	if (nb == 1 || n < 1024) {
 		for (long i = 0; i < n; i++)
