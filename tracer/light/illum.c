@@ -1931,6 +1931,38 @@ static void poly_write(void *ctx, long k, int worker)
 	}
 }
 
+/* Places m's window (win_fit) over where the footprints p[0..n) lie, from
+ * the first corner of a sample of them: their tiles are then found by
+ * indexing an array, not through the hash (which was a tenth of a shaft
+ * pass's time, and its growing tables fresh memory). */
+static void poly_window(struct illum_map *m, const struct illum_poly *p, long n)
+{
+	long stride = n / WIN_SAMPLE + 1, ns = 0;
+	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1)), *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
+	for (long k = 0; k < n; k += stride) {
+		if (!p[k].uv || p[k].n < 1 || !isfinite(p[k].uv[0][0]) || !isfinite(p[k].uv[0][1]))
+			continue;
+		long i0, i1, j0, j1;
+		double f;
+		axis_split(&m->ax[0], p[k].uv[0][0], &i0, &i1, &f);
+		axis_split(&m->ax[1], p[k].uv[0][1], &j0, &j1, &f);
+		ti[ns] = (int32_t)floordiv(i0), tj[ns++] = (int32_t)floordiv(j0);
+	}
+	win_fit(m, ti, tj, ns, n);
+	free(ti), free(tj);
+}
+
+/* Gives part (a band's share of m, no tiles yet) a window where m has one. */
+static void part_window(struct illum_map *part, const struct illum_map *m)
+{
+	if (!m->win)
+		return;
+	part->wti = m->wti, part->wtj = m->wtj, part->wnu = m->wnu, part->wnv = m->wnv;
+	part->win = mem_calloc((size_t)(m->wnu * m->wnv), sizeof *part->win);
+	mem_huge(part->win, (size_t)(m->wnu * m->wnv) * sizeof *part->win);
+	part->bytes += (size_t)(m->wnu * m->wnv) * sizeof *part->win;
+}
+
 void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
@@ -1943,6 +1975,8 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 	if (!white) /* (white light, the usual case: a grey map stays grey, its tiles a third the size) */
 		ungrey(m);
 	map_reserve(m, more); /* the unit for them all, before any of them (order-free) */
+	if (n >= 1024)
+		poly_window(m, p, n);
 	if (nb == 1 || n < 1024) {
 		for (long i = 0; i < n; i++)
 			poly_one(m, p[i].uv, p[i].n, p[i].e);
@@ -1960,7 +1994,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 	R.part = mem_alloc(sizeof *R.part * (size_t)nb);
 	R.keep = mem_alloc(sizeof *R.keep * (size_t)nitems);
 	for (int b = 0; b < nb; b++)
-		R.scratch[b] = illum_new_like(m), R.part[b] = illum_new_like(m);
+		R.scratch[b] = illum_new_like(m), R.part[b] = illum_new_like(m), part_window(R.part[b], m);
 	for (long k = 0; k < nitems; k++)
 		arena_init(&R.keep[k]);
 	for (long at = 0; at < n; at += nround) {
