@@ -702,27 +702,30 @@ static void t_bookkeeping(void)
  * one of its rounds: on a plane with polygons spanning several bands and a
  * few huge ones, and on a torus with seam crossings. In coloured light and
  * in white light, where its map stays grey (a tile of a third the size)
- * while one by one makes it colour: the same numbers all the same. */
-static void threads_case(bool white);
+ * while one by one makes it colour: the same numbers all the same. Spread
+ * over the bands (written band by band) and, on the plane, in a strip of
+ * one band (integrated on all threads first, then written). */
+static void threads_case(bool white, bool narrow);
 
 static void t_threads(void)
 {
 	for (int white = 0; white < 2; white++)
-		threads_case(white);
+		threads_case(white, false);
+	threads_case(false, true);
 }
 
-static void threads_case(bool white)
+static void threads_case(bool white, bool narrow)
 {
 	enum { N = 17000 }; /* more than one round of illum_deposit_poly_all (POLY_ROUND) */
 	static double corners[N][6][2];
 	static struct illum_poly p[N];
-	for (int shape = 0; shape < 2; shape++) {
+	for (int shape = 0; shape < 2 - narrow; shape++) {
 		rng_seed(61 + shape);
 		struct object o = prim(shape ? OBJ_TORUS : OBJ_PLANE);
 		struct illum_map *one = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
 		for (int k = 0; k < N; k++) {
-			double h = exp(rndr(log(0.1), log(shape ? 20 : 80))) * (k % 500 == 7 ? 100 : 1);
-			double cx = rndr(-100, 100), cy = rndr(-100, 100);
+			double h = narrow ? rndr(0.1, 5) : exp(rndr(log(0.1), log(shape ? 20 : 80))) * (k % 500 == 7 ? 100 : 1);
+			double cx = rndr(-100, 100), cy = narrow ? rndr(2, 25) : rndr(-100, 100);
 			int n = random_poly(cx, cy, h, k % 5, corners[k]);
 			for (int q = 0; q < n; q++)
 				grid_uv(one, corners[k][q][0], corners[k][q][1], corners[k][q]);
@@ -734,8 +737,8 @@ static void threads_case(bool white)
 		for (int k = 0; k < N; k++)
 			illum_deposit_poly(one, p[k].uv, p[k].n, p[k].e);
 		struct nodes *s1 = nodes_of(one);
-		printf("# %s, %s light: %d nodes, %ld tiles\n", shape ? "torus" : "plane", white ? "white" : "coloured", s1->n,
-		       illum_tiles(one));
+		printf("# %s, %s light%s: %d nodes, %ld tiles\n", shape ? "torus" : "plane", white ? "white" : "coloured",
+		       narrow ? ", one band" : "", s1->n, illum_tiles(one));
 		CHECK(s1->n > 1000 && s1->n < MAXN);
 		static const int threads[] = {1, 2, 3, 7};
 		for (int t = 0; t < 4; t++) {

@@ -1931,6 +1931,65 @@ static void poly_write(void *ctx, long k, int worker)
 	}
 }
 
+/* Footprints written band by band (poly_band). */
+struct poly_bands {
+	const struct illum_poly *p;
+	long n;
+	struct illum_map **part; /* per band: the tiles it writes, and its scratch */
+	int nb;
+};
+
+/* Band k of the footprints (a parallel_for item): each set up, and those
+ * with node rows in the band integrated and written there, as poly_one
+ * does. A footprint across two bands is integrated by both (a few: bands
+ * are stripes of 32 node rows), but its weights are written where they
+ * were made, still in cache. */
+static void poly_band(void *ctx, long k, int worker)
+{
+	(void)worker;
+	const struct poly_bands *B = ctx;
+	struct illum_map *m = B->part[k];
+	for (long i = 0; i < B->n; i++) {
+		const struct illum_poly *p = &B->p[i];
+		if (!p->uv || p->n < 1 || !corners_finite(p->uv, p->n)) {
+			m->dropped += k == 0;
+			continue;
+		}
+		struct fp F;
+		struct pt2 *c;
+		bool poly;
+		if (!fp_setup(&F, m, p->uv, p->n, p->e, &c, &poly))
+			continue;
+		F.band = (int)k, F.nb = B->nb;
+		if (!fp_any_mine(&F))
+			continue;
+		if (!fp_run(&F) && poly) { /* as poly_one */
+			fp_point(&F, c);
+			fp_run(&F);
+		}
+		m->finished = false;
+	}
+}
+
+/* Whether the footprints p[0..n) are shared out evenly enough among nb
+ * bands, by the band of each one's first corner (in a sample), to be
+ * written band by band (poly_band): no band has more than 60 % of them. */
+static bool bands_even(const struct illum_map *m, const struct illum_poly *p, long n, int nb)
+{
+	long cnt[64] = {0}, all = 0, most = 0, stride = n / WIN_SAMPLE + 1;
+	for (long k = 0; k < n; k += stride) {
+		if (!p[k].uv || p[k].n < 1 || !isfinite(p[k].uv[0][1]))
+			continue;
+		long j0, j1;
+		double f;
+		axis_split(&m->ax[1], p[k].uv[0][1], &j0, &j1, &f);
+		int b = band_of(j0, nb);
+		cnt[b]++, all++;
+		most = cnt[b] > most ? cnt[b] : most;
+	}
+	return (double)most <= 0.6 * (double)all;
+}
+
 /* Places m's window (win_fit) over where the footprints p[0..n) lie, from
  * the first corner of a sample of them: their tiles are then found by
  * indexing an array, not through the hash (which was a tenth of a shaft
@@ -1982,11 +2041,21 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 			poly_one(m, p[i].uv, p[i].n, p[i].e);
 		return;
 	}
-	/* in rounds: step 1 integrates every footprint once, on all threads;
-	 * step 2 writes them, one thread per band of node rows (band_of), each
-	 * band's footprints in order: what poly_one does, band by band, with
-	 * the integration shared (a caustic in one band no longer keeps one
-	 * thread busy alone) */
+	if (bands_even(m, p, n, nb)) { /* one thread per band of node rows (band_of), each writing its
+	                                  rows of every footprint in order: what poly_one does, band by band */
+		struct poly_bands B = {p, n, mem_alloc(sizeof *B.part * (size_t)nb), nb};
+		for (int b = 0; b < nb; b++)
+			B.part[b] = illum_new_like(m), part_window(B.part[b], m);
+		parallel_for(nb, nb, poly_band, &B);
+		for (int b = 0; b < nb; b++) /* bands hold disjoint tiles: the order is free */
+			adopt(m, B.part[b]);
+		free(B.part);
+		return;
+	}
+	/* else in rounds: step 1 integrates every footprint once, on all
+	 * threads; step 2 writes them, one thread per band, each band's
+	 * footprints in order (a caustic in one band does not keep one thread
+	 * busy alone) */
 	long nround = n < POLY_ROUND ? n : POLY_ROUND, nitems = (nround + POLY_ITEM - 1) / POLY_ITEM;
 	struct poly_round R = {.nb = nb};
 	R.done = mem_alloc(sizeof *R.done * (size_t)nround);
