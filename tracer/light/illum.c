@@ -1939,6 +1939,31 @@ struct poly_bands {
 	int nb;
 };
 
+/* Whether footprint p may have node rows in band k of nb: false only when
+ * its corners' v, widened by two rows (snap, the tents), lie in other
+ * bands' stripes (a test before fp_setup, the tenth of a footprint's cost
+ * that every band would pay for every footprint). */
+static bool may_be_mine(const struct illum_map *m, const struct illum_poly *p, int k, int nb)
+{
+	const struct axis *a = &m->ax[1];
+	if (a->wraps)
+		return true;
+	double lo = INFINITY, hi = -INFINITY;
+	for (int c = 0; c < p->n; c++) {
+		double y = (p->uv[c][1] - a->lo) / a->step;
+		lo = y < lo ? y : lo, hi = y > hi ? y : hi;
+	}
+	if (!(lo > -0x1p30 && hi < 0x1p30)) /* (far out: clamped later) */
+		return true;
+	long j0 = (long)floor(lo) - 2, j1 = (long)ceil(hi) + 2;
+	if (j1 - j0 >= 16 * ILLUM_TILE * nb) /* a stripe of every band */
+		return true;
+	for (long j = j0; j <= j1; j++)
+		if (band_of(j, nb) == k)
+			return true;
+	return false;
+}
+
 /* Band k of the footprints (a parallel_for item): each set up, and those
  * with node rows in the band integrated and written there, as poly_one
  * does. A footprint across two bands is integrated by both (a few: bands
@@ -1958,7 +1983,7 @@ static void poly_band(void *ctx, long k, int worker)
 		struct fp F;
 		struct pt2 *c;
 		bool poly;
-		if (!fp_setup(&F, m, p->uv, p->n, p->e, &c, &poly))
+		if (!may_be_mine(m, p, (int)k, B->nb) || !fp_setup(&F, m, p->uv, p->n, p->e, &c, &poly))
 			continue;
 		F.band = (int)k, F.nb = B->nb;
 		if (!fp_any_mine(&F))
