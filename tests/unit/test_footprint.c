@@ -700,7 +700,8 @@ static void t_bookkeeping(void)
 /* illum_deposit_poly_all gives the same map, bit for bit (energies, Σw²,
  * counts, drops), for 1, 2, 3 and 7 threads as one by one, over more than
  * one of its rounds: on a plane with polygons spanning several bands and a
- * few huge ones, and on a torus with seam crossings. In coloured light and
+ * few huge ones, on a torus with seam crossings, and on a sphere with some
+ * beyond its poles (clamped onto the edge rows). In coloured light and
  * in white light, where its map stays grey (a tile of a third the size)
  * while one by one makes it colour: the same numbers all the same. Spread
  * over the bands (written band by band) and, on the plane, in a strip of
@@ -719,13 +720,15 @@ static void threads_case(bool white, bool narrow)
 	enum { N = 17000 }; /* more than one round of illum_deposit_poly_all (POLY_ROUND) */
 	static double corners[N][6][2];
 	static struct illum_poly p[N];
-	for (int shape = 0; shape < 2 - narrow; shape++) {
+	static const enum object_kind kinds[] = {OBJ_PLANE, OBJ_TORUS, OBJ_SPHERE};
+	for (int shape = 0; shape < (narrow ? 1 : 3); shape++) {
 		rng_seed(61 + shape);
-		struct object o = prim(shape ? OBJ_TORUS : OBJ_PLANE);
+		struct object o = prim(kinds[shape]);
 		struct illum_map *one = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
 		for (int k = 0; k < N; k++) {
-			double h = narrow ? rndr(0.1, 5) : exp(rndr(log(0.1), log(shape ? 20 : 80))) * (k % 500 == 7 ? 100 : 1);
-			double cx = rndr(-100, 100), cy = narrow ? rndr(2, 25) : rndr(-100, 100);
+			double h = narrow ? rndr(0.1, 5)
+			                  : exp(rndr(log(0.1), log(shape ? 20 : 80))) * (k % 500 == 7 ? 100 : 1);
+			double cx = rndr(-100, 100), cy = narrow ? rndr(2, 25) : shape == 2 ? rndr(-10, 105) : rndr(-100, 100);
 			int n = random_poly(cx, cy, h, k % 5, corners[k]);
 			for (int q = 0; q < n; q++)
 				grid_uv(one, corners[k][q][0], corners[k][q][1], corners[k][q]);
@@ -737,8 +740,8 @@ static void threads_case(bool white, bool narrow)
 		for (int k = 0; k < N; k++)
 			illum_deposit_poly(one, p[k].uv, p[k].n, p[k].e);
 		struct nodes *s1 = nodes_of(one);
-		printf("# %s, %s light%s: %d nodes, %ld tiles\n", shape ? "torus" : "plane", white ? "white" : "coloured",
-		       narrow ? ", one band" : "", s1->n, illum_tiles(one));
+		printf("# %s, %s light%s: %d nodes, %ld tiles\n", shape == 2 ? "sphere" : shape ? "torus" : "plane",
+		       white ? "white" : "coloured", narrow ? ", one band" : "", s1->n, illum_tiles(one));
 		CHECK(s1->n > 1000 && s1->n < MAXN);
 		static const int threads[] = {1, 2, 3, 7};
 		for (int t = 0; t < 4; t++) {

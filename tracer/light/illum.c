@@ -1953,8 +1953,8 @@ static bool may_be_mine(const struct illum_map *m, const struct illum_poly *p, i
 		double y = (p->uv[c][1] - a->lo) / a->step;
 		lo = y < lo ? y : lo, hi = y > hi ? y : hi;
 	}
-	if (!(lo > -0x1p30 && hi < 0x1p30)) /* (far out: clamped later) */
-		return true;
+	if (!(lo > -0x1p30 && hi < 0x1p30) || (a->bounded && (lo < 0 || hi > (double)(a->n - 1))))
+		return true; /* (beyond an edge: clamped onto it later) */
 	long j0 = (long)floor(lo) - 2, j1 = (long)ceil(hi) + 2;
 	if (j1 - j0 >= 16 * ILLUM_TILE * nb) /* a stripe of every band */
 		return true;
@@ -2022,7 +2022,8 @@ static bool bands_even(const struct illum_map *m, const struct illum_poly *p, lo
 static void poly_window(struct illum_map *m, const struct illum_poly *p, long n)
 {
 	long stride = n / WIN_SAMPLE + 1, ns = 0;
-	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1)), *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
+	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1));
+	int32_t *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
 	for (long k = 0; k < n; k += stride) {
 		if (!p[k].uv || p[k].n < 1 || !isfinite(p[k].uv[0][0]) || !isfinite(p[k].uv[0][1]))
 			continue;

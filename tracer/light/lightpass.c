@@ -173,7 +173,6 @@ struct prec {
 	double size;              /* world diameter of the footprint */
 };
 
-
 struct worker {
 	struct job *job;
 	bool refract, reflect;      /* the current light's photons { } switches */
@@ -1273,8 +1272,8 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
  * finer nodes alias in the eye pass's point reads), or, when
  * most of its deposits are points (folds, silhouettes), their rule
  * (choose_spec). */
-static struct illum_spec shaft_spec(const struct object *o, const struct prec *const *p, long np, const struct vec3 *pts,
-                                    long k, const struct lp_opts *opt)
+static struct illum_spec shaft_spec(const struct object *o, const struct prec *const *p, long np,
+                                    const struct vec3 *pts, long k, const struct lp_opts *opt)
 {
 	struct illum_spec own = obj_illum(o);
 	if (own.resolution > 0 || own.cell > 0)
@@ -1339,12 +1338,13 @@ static double footprint_cells(const double (*uv)[2], int n, double du, double dv
  * deposit at its centre; one touching more than FOOTPRINT_MAX_CELLS of its
  * level's cells (footprint_cells: by area and edges, not bounding box; nl =
  * 1: a fixed grid) gives its energy to its corners. */
-static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl, const struct prec *const *p,
-                           long np, const struct illum_splat *s, const double *sz, long ns, int threads)
+static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl,
+                           const struct prec *const *p, long np, const struct illum_splat *s, const double *sz,
+                           long ns, int threads)
 {
 	struct illum_poly *pp = mem_alloc_huge(sizeof *pp * (size_t)(np ? np : 1));
-	struct illum_splat *ps = mem_alloc_huge(sizeof *ps * (size_t)(ns + 4 * np + 1)); /* (only what is
-	                                                                                    written is touched) */
+	struct illum_splat *ps = mem_alloc_huge(sizeof *ps * (size_t)(ns + 4 * np + 1)); /* (what is written
+	                                                                                    is touched) */
 	/* each one's level, found once (not once a level) */
 	unsigned char *lp = mem_alloc((size_t)(np + ns + 1)), *ls = lp + np;
 	for (long i = 0; i < np; i++)
@@ -1355,7 +1355,8 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 		long n = 0, m = 0;
 		for (long i = 0; i < np; i++)
 			if (lp[i] == l)
-				pp[n++] = (struct illum_poly){(const double(*)[2])p[i]->uv, p[i]->nv, {p[i]->e[0], p[i]->e[1], p[i]->e[2]}};
+				pp[n++] = (struct illum_poly){(const double(*)[2])p[i]->uv, p[i]->nv,
+				                              {p[i]->e[0], p[i]->e[1], p[i]->e[2]}};
 		for (long i = 0; i < ns; i++)
 			if (ls[i] == l)
 				ps[m++] = s[i];
