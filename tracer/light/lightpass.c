@@ -169,7 +169,8 @@ struct prec {
 	double uv[4][2];          /* corners in (u,v), unwrapped across seams */
 	int nv;                   /* corners used: 4, or 3 for a fold's hull */
 	double e[3];              /* the shaft's energy along this path (W) */
-	struct vec3 p;            /* world point of corner 0 */
+	double px;                /* a pixel's width where corner 0 lands (lp_opts' view; 0 without
+	                             one), for shaft_spec */
 	double size;              /* world diameter of the footprint */
 };
 
@@ -949,7 +950,11 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 			}
 			if (k > 0)
 				continue; /* the whole path was spread from corner 0 */
-			struct prec pr = {L->obj, {{0}}, nv, {0, 0, 0}, L->p, 0};
+			const struct lp_opts *o = w->job->o;
+			double px = o->pixel_width > 0   ? o->pixel_width
+			            : o->pixel_angle > 0 ? v_len(v_sub(L->p, o->eye)) * o->pixel_angle
+			                                 : 0;
+			struct prec pr = {L->obj, {{0}}, nv, {0, 0, 0}, px, 0};
 			memcpy(pr.uv, uv, sizeof uv);
 			for (int j = 0; j < 4; j++) {
 				for (int ch = 0; ch < 3; ch++)
@@ -1285,7 +1290,7 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *c
 	/* no finer than a pixel of the image where the light lands (the eye
 	 * pass reads one point per sample: a finer map only adds noise) */
 	for (long i = 0; i < np && (opt->pixel_width > 0 || opt->pixel_angle > 0); i++)
-		sz[i] = opt->pixel_width > 0 ? opt->pixel_width : v_len(v_sub(p[i]->p, opt->eye)) * opt->pixel_angle;
+		sz[i] = p[i]->px;
 	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
 		px = order_nth(sz, np, np / 2);
 	}
