@@ -1847,10 +1847,30 @@ struct fp_done {
 	double *pre, *w;      /* in the step's arena of its item */
 };
 
-/* Footprints per round of the two steps (bounds the weights held), and per
- * step-1 item. */
+/* Footprints per round of the two steps at most, and per step-1 item; and
+ * the weights a round may hold, about (poly_bytes): footprints of up to
+ * FOOTPRINT_MAX_CELLS cells (lightpass.c) hold up to 8 KiB each, and 16384
+ * of them held 130 MB, which the kernel zeroed again every round. */
 #define POLY_ROUND 16384
 #define POLY_ITEM 256
+#define POLY_ROUND_BYTES ((double)(16 << 20))
+
+/* About the bytes footprint p's weights take in step 1 (fp_alloc's rows ×
+ * columns and row sums): from its corners' extent in node units, two nodes
+ * wider each way. */
+static double poly_bytes(const struct illum_map *m, const struct illum_poly *p)
+{
+	if (!p->uv || p->n < 1)
+		return 0;
+	double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+	for (int c = 0; c < p->n; c++)
+		for (int a = 0; a < 2; a++) {
+			double x = p->uv[c][a] / m->ax[a].step;
+			lo[a] = x < lo[a] ? x : lo[a], hi[a] = x > hi[a] ? x : hi[a];
+		}
+	double rows = hi[1] - lo[1] + 3, cols = hi[0] - lo[0] + 3;
+	return isfinite(rows) && isfinite(cols) ? 8 * (rows + 1 + rows * cols) : 0;
+}
 
 struct poly_round {
 	const struct illum_poly *p;       /* the round's footprints */
@@ -2092,9 +2112,12 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 		R.scratch[b] = illum_new_like(m), R.part[b] = illum_new_like(m), part_window(R.part[b], m);
 	for (long k = 0; k < nitems; k++)
 		arena_init(&R.keep[k]);
-	for (long at = 0; at < n; at += nround) {
+	for (long at = 0; at < n; at += R.n) {
+		double bytes = 0;
 		R.p = p + at;
-		R.n = n - at < nround ? n - at : nround;
+		R.n = 0;
+		while (R.n < nround && at + R.n < n && (R.n == 0 || bytes < POLY_ROUND_BYTES))
+			bytes += poly_bytes(m, &p[at + R.n++]);
 		parallel_for((R.n + POLY_ITEM - 1) / POLY_ITEM, nb, poly_weigh, &R);
 		parallel_for(nb, nb, poly_write, &R);
 		for (long k = 0; k < nitems; k++)
