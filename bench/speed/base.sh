@@ -16,6 +16,12 @@
 #   eye prims             the same on bench/eye/prims.scn
 #   light T thread(s)     light-pass seconds, tests/accuracy/sphere.scn,
 #                         --method point, 1M rays, T = 1 and 2
+#   shafts B T thread(s)  the same with light shafts (the default method)
+#   shafts A, shafts C    the same on tests/accuracy/mirror.scn and slab.scn,
+#                         $THREADS threads
+#   demo light pass       light-pass seconds of stdlib-scenes/demo.scn (make
+#                         demo's scene, its own settings)
+#   demo peak MiB         its peak memory (--stats); speedup: base / new
 #   loop1m                wall seconds of bench/frontend/loop1m.scn, 1x1
 # Writes bench/results/base.csv (name,new,base,speedup) and base.txt;
 # speedup = base / new (> 1: the new build is faster).
@@ -79,6 +85,16 @@ for t in 1 2; do
 	pair "light $t thread(s)" "light pass" -q --method point --rays 1000000 --threads "$t" --width 64 \
 		--height 64 -o "$tmp/b.exr" "$root/tests/accuracy/sphere.scn"
 done
+for t in 1 2; do
+	pair "shafts B $t thread(s)" "light pass" -q --rays 1000000 --threads "$t" --width 64 --height 64 \
+		-o "$tmp/b.exr" "$root/tests/accuracy/sphere.scn"
+done
+pair "shafts A" "light pass" -q --rays 1000000 --threads "$THREADS" --width 64 --height 64 -o "$tmp/b.exr" \
+	"$root/tests/accuracy/mirror.scn"
+pair "shafts C" "light pass" -q --rays 1000000 --threads "$THREADS" --width 64 --height 64 -o "$tmp/b.exr" \
+	"$root/tests/accuracy/slab.scn"
+pair "demo light pass" "light pass" -q --threads "$THREADS" -o "$tmp/d.exr" "$root/stdlib-scenes/demo.scn"
+pair "demo peak MiB" "peak memory" -q --threads "$THREADS" -o "$tmp/d.exr" "$root/stdlib-scenes/demo.scn"
 pair "loop1m" wall -q --max-objects 2000000 --rays 0 --threads "$THREADS" --width 1 --height 1 \
 	-o "$tmp/f.exr" -D N=1000000 "$root/bench/frontend/loop1m.scn"
 
