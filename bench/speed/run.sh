@@ -31,7 +31,10 @@
 #             memory, a random walk through 32 MiB), the most this
 #             machine's two cores give (no target: the yardstick)
 #   light     light-pass segments/s/core on 2 threads, 1M rays, isolated-
-#             sample rule on, deposits included (target >= 1e7)
+#             sample rule on, deposits included (target >= 1e7); and the
+#             same scene with light shafts, the default method (no target:
+#             its footprints cost more than its tracing): seconds and
+#             segments/s/core on 2 threads, and 1 -> 2 threads by turns
 #   frontend  bench/frontend/loop1m.scn (1M spheres) evaluated and bounded
 #             (arvo: a 1x1 render without light pass; POV-Ray: its parse,
 #             which bounds too): wall s, CPU s (user + sys) and peak MB
@@ -105,10 +108,10 @@ pov_trace() {
 	median < "$tmp/pc" > "$tmp/pcpu"
 }
 
-# arvo_light THREADS: median light-pass seconds; segments in $tmp/segs
+# arvo_light THREADS [METHOD]: median light-pass seconds; segments in $tmp/segs
 arvo_light() {
 	for i in $(seq "$RUNS"); do
-		"$ARVO" -q --stats --method point --rays 1000000 --threads "$1" --width 64 --height 64 \
+		"$ARVO" -q --stats --method "${2:-point}" --rays 1000000 --threads "$1" --width 64 --height 64 \
 			-o "$tmp/b.exr" "$root/tests/accuracy/sphere.scn" 2> "$tmp/l.log"
 		stat_of "light pass" "$tmp/l.log"
 	done | median
@@ -171,18 +174,25 @@ row eye_cpu prims 8 "$THREADS" "$ac" "$pc" "$r" "CPU s" ">=3x" "$(met "$r" ">=" 
 # speed (a fifth within minutes) then moves both sides alike, where all the
 # runs on 1 thread and then all on 2 put the drift into the ratio
 runs=$RUNS RUNS=1
-: > "$tmp/e1"; : > "$tmp/e2"; : > "$tmp/l1"; : > "$tmp/l2"
+: > "$tmp/e1"; : > "$tmp/e2"; : > "$tmp/l1"; : > "$tmp/l2"; : > "$tmp/s1"; : > "$tmp/s2"
 for i in $(seq "$runs"); do
 	arvo_eye 100000 1 "$TW" "$TH" >> "$tmp/e1"; arvo_eye 100000 2 "$TW" "$TH" >> "$tmp/e2"
 done
 for i in $(seq "$runs"); do
 	arvo_light 1 >> "$tmp/l1"; arvo_light 2 >> "$tmp/l2"
 done
+cp "$tmp/segs" "$tmp/psegs"
+for i in $(seq "$runs"); do
+	arvo_light 1 shaft >> "$tmp/s1"; arvo_light 2 shaft >> "$tmp/s2"
+done
+cp "$tmp/segs" "$tmp/ssegs"
 RUNS=$runs
 e1=$(median < "$tmp/e1"); e2=$(median < "$tmp/e2"); r=$(ratio "$e1" "$e2")
 row threads "eye pass" 100000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
-l1=$(median < "$tmp/l1"); l2=$(median < "$tmp/l2"); segs=$(cat "$tmp/segs"); r=$(ratio "$l1" "$l2")
+l1=$(median < "$tmp/l1"); l2=$(median < "$tmp/l2"); segs=$(cat "$tmp/psegs"); r=$(ratio "$l1" "$l2")
 row threads "light pass" 1000000 "1->2" "$r" "" "" "x" ">=1.85x" "$(met "$r" ">=" 1.85)"
+s1=$(median < "$tmp/s1"); s2=$(median < "$tmp/s2"); ssegs=$(cat "$tmp/ssegs")
+row threads "light pass (shafts)" 1000000 "1->2" "$(ratio "$s1" "$s2")" "" "" "x" "" ""
 # the machine's own ceiling for the two rows above: a perfectly parallel
 # program (ceiling.c) on 1 and 2 threads; no target, it is the yardstick
 if cc -std=c11 -O2 -pthread -o "$tmp/ceiling" "$here/ceiling.c" 2> /dev/null; then
@@ -194,6 +204,9 @@ if cc -std=c11 -O2 -pthread -o "$tmp/ceiling" "$here/ceiling.c" 2> /dev/null; th
 fi
 rate=$(awk -v s="$segs" -v t="$l2" 'BEGIN { printf "%.0f", s / t / 2 }')
 row light "segments/s/core" 1000000 2 "$rate" "" "" "segments/s/core" ">=1e7" "$(met "$rate" ">=" 10000000)"
+row light "shafts seconds" 1000000 2 "$s2" "" "" "s" "" ""
+row light "shafts segments/s/core" 1000000 2 "$(awk -v s="$ssegs" -v t="$s2" 'BEGIN { printf "%.0f", s / t / 2 }')" "" "" \
+	"segments/s/core" "" ""
 
 # ---- front end: 1M spheres evaluated and bounded ----
 : > "$tmp/fa"; : > "$tmp/fp"
