@@ -115,15 +115,14 @@ struct job {
 
 #define DISTINCT_MAX 4 /* surfaces an item lists (more: the maps step reads its records) */
 
-/* The records of one work item: r[0 .. nr) (in worker w's recs) and
- * p[0 .. np) (in worker w's precs). Taken in item order, the records are in the same
- * order for any thread count, and so is every map's sum (even its float
+/* The records of one work item: r[0 .. nr) and p[0 .. np), in the buffers
+ * of the worker that traced it. Taken in item order, the records are in the
+ * same order for any thread count, and so is every map's sum (even its float
  * Σw²). The distinct surfaces they reach, in order of first appearance,
  * are listed while they are in cache (nd of them; -1: more than
  * DISTINCT_MAX), so the serial step that numbers the surfaces reads a few
  * per item instead of every record. */
 struct span {
-	int w;
 	const struct rec *r;        /* NULL when grey */
 	const struct illum_gsplat *g; /* a grey item's records: one surface, white light */
 	const struct object *obj;   /* and their surface */
@@ -1172,7 +1171,7 @@ static void work(void *ctx, long k, int worker)
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	*sp = (struct span){worker, NULL, NULL, NULL, 0, recbuf_item(&w->precs), w->precs.n - w->precs.item0,
+	*sp = (struct span){NULL, NULL, NULL, 0, recbuf_item(&w->precs), w->precs.n - w->precs.item0,
 	                    recbuf_item(&w->recx), 0, {NULL}};
 	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->p, sp->np);
 	keep_item(w, sp);
@@ -1747,8 +1746,7 @@ static struct lp_result *run_once(const struct scene *s, const struct bvh *b, co
 	struct seg *sg = mem_alloc(sizeof *sg * (size_t)(J.nitems ? J.nitems : 1));
 	for (long k = 0; k < J.nitems; k++) {
 		const struct span *p = &J.spans[k];
-		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->p, p->np, p->nd,
-		                     p->d};
+		sg[k] = (struct seg){p->r, p->g, p->obj, p->nr, p->x, p->p, p->np, p->nd, p->d};
 	}
 	struct lp_result *r = J.nitems > 0 ? build_maps(sg, J.nitems, o) : NULL;
 	free(sg), free(J.spans);
