@@ -160,7 +160,8 @@ struct illum_map {
 	struct loops loops;       /* polygon deposits: the current polygon's simple loops */
 	struct pt2 *pts;          /* polygon deposits: corners and clip buffers (scratch) */
 	double *rows;             /* polygon deposits: row shares and node weights (scratch) */
-	size_t cap_pts, cap_rows; /* allocated lengths of pts and rows */
+	long *spans;              /* polygon deposits: each weight row's written columns (scratch) */
+	size_t cap_pts, cap_rows, cap_spans; /* allocated lengths of pts, rows and spans */
 };
 
 _Static_assert((ILLUM_TILE & (ILLUM_TILE - 1)) == 0, "ILLUM_TILE: a power of two");
@@ -605,6 +606,7 @@ void illum_free(struct illum_map *m)
 	loops_free(&m->loops);
 	free(m->pts);
 	free(m->rows);
+	free(m->spans);
 	free(m);
 }
 
@@ -1450,8 +1452,13 @@ struct fp {
 	struct pt2 *slab, *cell, *tmp; /* clip buffers */
 	double *sc;                    /* per loop: ±1/(total area), the sign of its winding */
 	double *ylo, *yhi;             /* per loop: its v range */
-	double *w;                     /* node weights, row-major over nodes n0..n1 of both axes */
-	long cols;                     /* nodes per row of w */
+	double *w;                     /* node weights: row k's (k from n0 of v) at w[woff[k] + i], i
+	                                  its columns (from n0 of u) clo[k]..chi[k], the only ones
+	                                  written (the rest are 0; none when clo[k] > chi[k]) */
+	long *clo, *chi, *woff;        /* per row */
+	bool sparse;                   /* while integrating: rows are zeroed as written (fp_at), not
+	                                  all at first */
+	long cols;                     /* nodes per row of the box (w's row stride while integrating) */
 	double *pre;                   /* per node row: the running sum of the weights before it */
 	double total;                  /* the area, then the sum of all weights (1 to rounding) */
 };
@@ -1547,6 +1554,8 @@ static void *grow(void *buf, size_t *cap, size_t n, size_t sz)
 
 /* The loop weights and ranges and the zeroed node weights, from the map's
  * scratch. */
+#define FP_DENSE 4096 /* weights of a footprint's box zeroed at once, at most (32 KiB) */
+
 static void fp_alloc(struct fp *F)
 {
 	struct illum_map *m = F->m;
@@ -1554,13 +1563,24 @@ static void fp_alloc(struct fp *F)
 	size_t rows = (size_t)(F->ax[1].n1 - F->ax[1].n0 + 1), cols = (size_t)(F->ax[0].n1 - F->ax[0].n0 + 1);
 	size_t need = 3 * loops + rows * cols + rows + 1;
 	m->rows = grow(m->rows, &m->cap_rows, need, sizeof *m->rows);
+	m->spans = grow(m->spans, &m->cap_spans, 3 * rows, sizeof *m->spans);
 	F->sc = m->rows;
 	F->ylo = F->sc + loops;
 	F->yhi = F->ylo + loops;
 	F->pre = F->yhi + loops;
 	F->w = F->pre + rows + 1;
 	F->cols = (long)cols;
-	memset(F->w, 0, rows * cols * sizeof *F->w);
+	F->clo = m->spans, F->chi = F->clo + rows, F->woff = F->chi + rows;
+	/* a small box zeroed whole, every column of every row taken as written;
+	 * a large one row by row as written (fp_at): the box of a thin slanted
+	 * footprint is mostly empty, and zeroing and reading it all cost more
+	 * than its cells */
+	F->sparse = rows * cols > FP_DENSE;
+	if (!F->sparse)
+		memset(F->w, 0, rows * cols * sizeof *F->w);
+	for (size_t k = 0; k < rows; k++)
+		F->clo[k] = F->sparse ? (long)cols : 0, F->chi[k] = F->sparse ? -1 : (long)cols - 1,
+		F->woff[k] = (long)(k * cols);
 	for (size_t k = 0; k < loops; k++) {
 		const struct pt2 *p = F->l->pt + F->l->start[k];
 		F->sc[k] = copysign(1 / F->total, poly_area(p, F->l->len[k]));
@@ -1584,9 +1604,30 @@ static const struct pt2 *fp_slab(struct fp *F, int l, const struct cellw *wv, in
 	return F->slab;
 }
 
-/* Adds sc × the weights the moments mo of cell (cu, cv) give its nodes. */
-static void fp_add(struct fp *F, long cu, long cv, const struct cellw *wu, const struct cellw *wv,
-                   struct moments mo, double sc)
+/* The weight of row r, column c (from the box's first node), zeroed on the
+ * row's first write there, with the columns between it and those written
+ * before (fp_alloc). */
+static double *fp_at(struct fp *F, long r, long c)
+{
+	double *w = F->w + F->woff[r];
+	if (F->clo[r] > F->chi[r]) {
+		w[c] = 0;
+		F->clo[r] = F->chi[r] = c;
+	} else if (c < F->clo[r]) {
+		memset(w + c, 0, sizeof *w * (size_t)(F->clo[r] - c));
+		F->clo[r] = c;
+	} else if (c > F->chi[r]) {
+		memset(w + F->chi[r] + 1, 0, sizeof *w * (size_t)(c - F->chi[r]));
+		F->chi[r] = c;
+	}
+	return &w[c];
+}
+
+/* Adds sc × the weights the moments mo of cell (cu, cv) give its nodes
+ * (sparse: F->sparse, a constant where it is inlined). */
+__attribute__((always_inline)) static inline void fp_add(struct fp *F, long cu, long cv, const struct cellw *wu,
+                                                         const struct cellw *wv, struct moments mo, double sc,
+                                                         bool sparse)
 {
 	for (int b = 0; b < 2; b++)
 		for (int a = 0; a < 2; a++) {
@@ -1594,7 +1635,8 @@ static void fp_add(struct fp *F, long cu, long cv, const struct cellw *wu, const
 				continue;
 			double w = wu->al[a] * wv->al[b] * mo.a + wu->al[a] * wv->be[b] * mo.y +
 			           wu->be[a] * wv->al[b] * mo.x + wu->be[a] * wv->be[b] * mo.xy;
-			F->w[(cv + b - F->ax[1].n0) * F->cols + cu + a - F->ax[0].n0] += sc * w;
+			long r = cv + b - F->ax[1].n0, c = cu + a - F->ax[0].n0;
+			*(sparse ? fp_at(F, r, c) : &F->w[r * F->cols + c]) += sc * w;
 		}
 }
 
@@ -1605,15 +1647,16 @@ static long cell_of(const struct vaxis *A, double c)
 }
 
 /* The weights cell row cv gives its nodes. Only the cells the row's slab
- * spans are clipped, and a piece inside its cell is not. */
-static void fp_cell_row(struct fp *F, long cv)
+ * spans are clipped, and a piece inside its cell is not. sparse: F->sparse
+ * (a constant: fp_cell_row). */
+__attribute__((always_inline)) static inline void fp_cell_row_as(struct fp *F, long cv, bool sparse)
 {
 	const struct vaxis *U = &F->ax[0];
 	struct cellw wv = vcell(&F->ax[1], cv, F->r.y);
 	if (F->point) {
 		struct cellw wu = vcell(U, U->c0, F->r.x);
 		double x = -wu.org, y = -wv.org;
-		fp_add(F, U->c0, cv, &wu, &wv, (struct moments){1, x, y, x * y}, 1);
+		fp_add(F, U->c0, cv, &wu, &wv, (struct moments){1, x, y, x * y}, 1, sparse);
 		return;
 	}
 	for (int l = 0; l < F->l->n; l++) {
@@ -1632,9 +1675,18 @@ static void fp_cell_row(struct fp *F, long cv)
 			else
 				c = F->cell, kc = poly_clip_slab(p, k, 0, wu.lo, wu.hi, F->cell, F->tmp);
 			if (kc >= 3)
-				fp_add(F, cu, cv, &wu, &wv, poly_moments(c, kc, (struct pt2){wu.org, wv.org}), F->sc[l]);
+				fp_add(F, cu, cv, &wu, &wv, poly_moments(c, kc, (struct pt2){wu.org, wv.org}), F->sc[l],
+				       sparse);
 		}
 	}
+}
+
+static void fp_cell_row(struct fp *F, long cv)
+{
+	if (F->sparse)
+		fp_cell_row_as(F, cv, true);
+	else
+		fp_cell_row_as(F, cv, false);
 }
 
 /* Zeroes the weights below NODE_EPS (rounding noise: slivers, degenerate
@@ -1645,12 +1697,13 @@ static void fp_row_sums(struct fp *F)
 	long rows = F->ax[1].n1 - F->ax[1].n0 + 1;
 	double run = 0;
 	for (long k = 0; k < rows; k++) {
-		double *w = F->w + k * F->cols;
+		double *w = F->w;
+		long o = F->woff[k];
 		F->pre[k] = run;
-		for (long i = 0; i < F->cols; i++) {
-			if (!(w[i] >= NODE_EPS))
-				w[i] = 0;
-			run += w[i];
+		for (long i = F->clo[k]; i <= F->chi[k]; i++) { /* (the rest are 0: adding them changes no bit) */
+			if (!(w[o + i] >= NODE_EPS))
+				w[o + i] = 0;
+			run += w[o + i];
 		}
 	}
 	F->pre[rows] = F->total = run;
@@ -1706,17 +1759,17 @@ static void gacc_add_fx(struct gacc *g, struct fx d, double unit)
  * next one starts, whoever writes it. */
 static void fp_emit(struct fp *F, long k)
 {
-	const double *w = F->w + k * F->cols;
-	long fj = vnode(&F->ax[1], F->ax[1].n0 + k);
+	const double *w = F->w;
+	long o = F->woff[k], fj = vnode(&F->ax[1], F->ax[1].n0 + k);
 	double C = F->pre[k];
 	struct fx cum[3], d[3];
 	bool white = F->e[0] == F->e[1] && F->e[1] == F->e[2];
 	int nc = white ? 1 : 3;
 	fp_cum(F, nc, C, cum, NULL);
-	for (long i = 0; i < F->cols; i++) {
-		if (w[i] == 0)
+	for (long i = F->clo[k]; i <= F->chi[k]; i++) {
+		if (w[o + i] == 0)
 			continue;
-		C += w[i];
+		C += w[o + i];
 		fp_cum(F, nc, C, cum, d);
 		long fi = vnode(&F->ax[0], F->ax[0].n0 + i);
 		if (F->m->grey) /* (white: illum_deposit_poly_all) */
@@ -1844,7 +1897,9 @@ struct fp_done {
 	struct vaxis ax[2];   /* the weights' axes */
 	double e[3], total;
 	long cols;
-	double *pre, *w;      /* in the step's arena of its item */
+	double *pre, *w;      /* in the step's arena of its item: pre, and w's written columns row
+	                         after row (struct fp) */
+	long *clo, *chi, *woff;
 };
 
 /* Footprints per round of the two steps at most, and per step-1 item; and
@@ -1855,26 +1910,31 @@ struct fp_done {
 #define POLY_ITEM 256
 #define POLY_ROUND_BYTES ((double)(16 << 20))
 
-/* About the bytes footprint p's weights take in step 1 (fp_alloc's rows ×
- * columns and row sums): from its corners' extent in node units, two nodes
- * wider each way. */
+/* About the bytes footprint p's weights take in step 1: the columns written
+ * in each row (its area and edges in node units, as cells touched) and four
+ * numbers a row (pre and the row's columns, struct fp). */
 static double poly_bytes(const struct illum_map *m, const struct illum_poly *p)
 {
 	if (!p->uv || p->n < 1)
 		return 0;
-	double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-	for (int c = 0; c < p->n; c++)
-		for (int a = 0; a < 2; a++) {
-			double x = p->uv[c][a] / m->ax[a].step;
-			lo[a] = x < lo[a] ? x : lo[a], hi[a] = x > hi[a] ? x : hi[a];
-		}
-	double rows = hi[1] - lo[1] + 3, cols = hi[0] - lo[0] + 3;
-	return isfinite(rows) && isfinite(cols) ? 8 * (rows + 1 + rows * cols) : 0;
+	double area = 0, edges = 0, lo = INFINITY, hi = -INFINITY;
+	for (int c = 0; c < p->n; c++) {
+		const double *a = p->uv[c], *b = p->uv[(c + 1) % p->n];
+		double ax = a[0] / m->ax[0].step, ay = a[1] / m->ax[1].step;
+		double bx = b[0] / m->ax[0].step, by = b[1] / m->ax[1].step;
+		area += ax * by - bx * ay;
+		edges += fabs(bx - ax) + fabs(by - ay);
+		lo = ay < lo ? ay : lo, hi = ay > hi ? ay : hi;
+	}
+	double bytes = 8 * (0.5 * fabs(area) + 2 * edges + 4 * (hi - lo + 3) + 4);
+	return isfinite(bytes) ? bytes : 0;
 }
 
 struct poly_round {
 	const struct illum_poly *p;       /* the round's footprints */
 	long n;
+	long item;                        /* footprints per step-1 item (POLY_ITEM, fewer in a small
+	                                     round: four items a thread at least) */
 	struct fp_done *done;             /* one per footprint */
 	struct illum_map **scratch;       /* per worker: buffers for step 1 */
 	struct arena *keep;               /* per step-1 item: the weights */
@@ -1889,7 +1949,7 @@ static void poly_weigh(void *ctx, long k, int worker)
 {
 	struct poly_round *R = ctx;
 	struct illum_map *m = R->scratch[worker];
-	for (long i = k * POLY_ITEM; i < R->n && i < (k + 1) * POLY_ITEM; i++) {
+	for (long i = k * R->item; i < R->n && i < (k + 1) * R->item; i++) {
 		const struct illum_poly *p = &R->p[i];
 		struct fp_done *d = &R->done[i];
 		memset(d, 0, sizeof *d);
@@ -1911,11 +1971,21 @@ static void poly_weigh(void *ctx, long k, int worker)
 		}
 		if (!d->ok)
 			continue;
-		size_t rows = (size_t)(F.ax[1].n1 - F.ax[1].n0 + 1), cols = (size_t)F.cols;
-		d->pre = arena_alloc8(&R->keep[k], (rows + 1 + rows * cols) * sizeof *d->pre);
+		size_t rows = (size_t)(F.ax[1].n1 - F.ax[1].n0 + 1), n = 0;
+		for (size_t r = 0; r < rows; r++)
+			n += F.clo[r] <= F.chi[r] ? (size_t)(F.chi[r] - F.clo[r] + 1) : 0;
+		d->pre = arena_alloc8(&R->keep[k], (rows + 1 + n) * sizeof *d->pre);
 		d->w = d->pre + rows + 1;
+		d->clo = arena_alloc8(&R->keep[k], 3 * rows * sizeof *d->clo);
+		d->chi = d->clo + rows, d->woff = d->chi + rows;
 		memcpy(d->pre, F.pre, (rows + 1) * sizeof *d->pre);
-		memcpy(d->w, F.w, rows * cols * sizeof *d->w);
+		for (size_t r = 0, at = 0; r < rows; r++) { /* the written columns alone, row after row */
+			long len = F.clo[r] <= F.chi[r] ? F.chi[r] - F.clo[r] + 1 : 0;
+			d->clo[r] = F.clo[r], d->chi[r] = F.chi[r], d->woff[r] = (long)at - F.clo[r];
+			if (len)
+				memcpy(d->w + at, F.w + F.woff[r] + F.clo[r], sizeof *d->w * (size_t)len);
+			at += (size_t)len;
+		}
 		d->ax[0] = F.ax[0], d->ax[1] = F.ax[1];
 		memcpy(d->e, F.e, sizeof d->e);
 		d->total = F.total, d->cols = F.cols;
@@ -1945,6 +2015,7 @@ static void poly_write(void *ctx, long k, int worker)
 			F.ax[0] = d->ax[0], F.ax[1] = d->ax[1];
 			memcpy(F.e, d->e, sizeof F.e);
 			F.total = d->total, F.cols = d->cols, F.pre = d->pre, F.w = d->w;
+			F.clo = d->clo, F.chi = d->chi, F.woff = d->woff;
 			fp_emit_mine(&F);
 		}
 		part->finished = false;
@@ -2103,6 +2174,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 	 * footprints in order (a caustic in one band does not keep one thread
 	 * busy alone) */
 	long nround = n < POLY_ROUND ? n : POLY_ROUND, nitems = (nround + POLY_ITEM - 1) / POLY_ITEM;
+	nitems = nitems > 4 * nb ? nitems : 4 * nb; /* (see poly_round.item) */
 	struct poly_round R = {.nb = nb};
 	R.done = mem_alloc(sizeof *R.done * (size_t)nround);
 	R.scratch = mem_alloc(sizeof *R.scratch * (size_t)nb);
@@ -2118,7 +2190,8 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 		R.n = 0;
 		while (R.n < nround && at + R.n < n && (R.n == 0 || bytes < POLY_ROUND_BYTES))
 			bytes += poly_bytes(m, &p[at + R.n++]);
-		parallel_for((R.n + POLY_ITEM - 1) / POLY_ITEM, nb, poly_weigh, &R);
+		R.item = R.n / (4 * nb) + 1 < POLY_ITEM ? R.n / (4 * nb) + 1 : POLY_ITEM;
+		parallel_for((R.n + R.item - 1) / R.item, nb, poly_weigh, &R);
 		parallel_for(nb, nb, poly_write, &R);
 		for (long k = 0; k < nitems; k++)
 			arena_reset(&R.keep[k]);
@@ -2514,7 +2587,7 @@ long illum_dropped(const struct illum_map *m) { return m->dropped; }
 size_t illum_memory(const struct illum_map *m)
 {
 	return m->bytes + m->pool.used + loops_bytes(&m->loops) + m->cap_pts * sizeof *m->pts +
-	       m->cap_rows * sizeof *m->rows;
+	       m->cap_rows * sizeof *m->rows + m->cap_spans * sizeof *m->spans;
 }
 long illum_tiles(const struct illum_map *m) { return m->ntiles; }
 
