@@ -259,6 +259,18 @@ static long tile_insert(struct illum_map *m, struct tile *t)
 #define WIN_MIN 65536L         /* a window of this many tiles is always allowed */
 #define WIN_MAX (1L << 26)     /* and none beyond this (256 MiB of int32) */
 
+/* Gives m an empty window of nu × nv tiles from tile (ti0, tj0), in place
+ * of any it had (whose entries the caller puts back). */
+static void win_new(struct illum_map *m, long ti0, long tj0, long nu, long nv)
+{
+	free(m->win);
+	m->bytes -= (size_t)(m->wnu * m->wnv) * sizeof *m->win;
+	m->wti = ti0, m->wtj = tj0, m->wnu = nu, m->wnv = nv;
+	m->win = mem_calloc((size_t)(nu * nv), sizeof *m->win);
+	mem_huge(m->win, (size_t)(nu * nv) * sizeof *m->win); /* (a large one: fewer page faults) */
+	m->bytes += (size_t)(nu * nv) * sizeof *m->win;
+}
+
 /* Widens the window to hold tiles [ti0, ti1] × [tj0, tj1] (and the window
  * it had), when that costs at most WIN_MIN + 8·(tiles + more) entries: so a
  * map's tiles are found by indexing an array, and the window costs at most
@@ -278,12 +290,7 @@ static bool win_grow(struct illum_map *m, long ti0, long ti1, long tj0, long tj1
 	double nu = (double)(ti1 - ti0) + 1, nv = (double)(tj1 - tj0) + 1;
 	if (nu * nv > (double)WIN_MAX || nu * nv > (double)WIN_MIN + 8 * ((double)m->ntiles + (double)more))
 		return false;
-	free(m->win);
-	m->bytes -= (size_t)(m->wnu * m->wnv) * sizeof *m->win;
-	m->wti = ti0, m->wtj = tj0, m->wnu = (long)nu, m->wnv = (long)nv;
-	m->win = mem_calloc((size_t)(m->wnu * m->wnv), sizeof *m->win);
-	mem_huge(m->win, (size_t)(m->wnu * m->wnv) * sizeof *m->win); /* (a large one: fewer page faults) */
-	m->bytes += (size_t)(m->wnu * m->wnv) * sizeof *m->win;
+	win_new(m, ti0, tj0, (long)nu, (long)nv);
 	if (m->slots)
 		memset(m->slots, 0, sizeof *m->slots * (size_t)m->nslots);
 	m->nhashed = 0;
@@ -1552,10 +1559,10 @@ static void *grow(void *buf, size_t *cap, size_t n, size_t sz)
 	return mem_realloc(buf, c * sz);
 }
 
-/* The loop weights and ranges and the zeroed node weights, from the map's
- * scratch. */
 #define FP_DENSE 4096 /* weights of a footprint's box zeroed at once, at most (32 KiB) */
 
+/* The loop weights and ranges and the node weights (zeroed, or each row as
+ * it is written: F->sparse), from the map's scratch. */
 static void fp_alloc(struct fp *F)
 {
 	struct illum_map *m = F->m;
@@ -1860,23 +1867,58 @@ static bool fp_setup(struct fp *F, struct illum_map *m, const double (*uv)[2], i
 	return true;
 }
 
-/* illum_deposit_poly, one footprint at a time. */
-static void poly_one(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
+/* Whether footprint uv[0..n) may have node rows in band k of nb: false only when
+ * its corners' v, widened by two rows (snap, the tents), lie in other
+ * bands' stripes (a test before fp_setup, the tenth of a footprint's cost
+ * that every band would pay for every footprint). */
+static bool may_be_mine(const struct illum_map *m, const double (*uv)[2], int n, int k, int nb)
+{
+	const struct axis *a = &m->ax[1];
+	if (a->wraps)
+		return true;
+	double lo = INFINITY, hi = -INFINITY;
+	for (int c = 0; c < n; c++) {
+		double y = (uv[c][1] - a->lo) / a->step;
+		lo = y < lo ? y : lo, hi = y > hi ? y : hi;
+	}
+	if (!(lo > -0x1p30 && hi < 0x1p30) || (a->bounded && (lo < 0 || hi > (double)(a->n - 1))))
+		return true; /* (beyond an edge: clamped onto it later) */
+	long j0 = (long)floor(lo) - 2, j1 = (long)ceil(hi) + 2;
+	if (j1 - j0 >= 16 * ILLUM_TILE * nb) /* a stripe of every band */
+		return true;
+	for (long j = j0; j <= j1; j++)
+		if (band_of(j, nb) == k)
+			return true;
+	return false;
+}
+
+/* illum_deposit_poly, one footprint at a time, into the node rows of band
+ * `band` of nb alone (m: that band's part of the map; nb = 1: all rows). */
+static void poly_in_band(struct illum_map *m, const double (*uv)[2], int n, const double energy[3], int band,
+                         int nb)
 {
 	if (!uv || n < 1 || !corners_finite(uv, n)) {
-		m->dropped++;
+		m->dropped += band == 0;
 		return;
 	}
 	struct fp F;
 	struct pt2 *c;
 	bool poly;
-	if (!fp_setup(&F, m, uv, n, energy, &c, &poly))
+	if ((nb > 1 && !may_be_mine(m, uv, n, band, nb)) || !fp_setup(&F, m, uv, n, energy, &c, &poly))
+		return;
+	F.band = band, F.nb = nb;
+	if (nb > 1 && !fp_any_mine(&F))
 		return;
 	if (!fp_run(&F) && poly) { /* every row below noise: cannot happen for a real area */
 		fp_point(&F, c);
 		fp_run(&F);
 	}
 	m->finished = false;
+}
+
+static void poly_one(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
+{
+	poly_in_band(m, uv, n, energy, 0, 1);
 }
 
 void illum_deposit_poly(struct illum_map *m, const double (*uv)[2], int n, const double energy[3])
@@ -1910,23 +1952,29 @@ struct fp_done {
 #define POLY_ITEM 256
 #define POLY_ROUND_BYTES ((double)(16 << 20))
 
-/* About the bytes footprint p's weights take in step 1: the columns written
- * in each row (its area and edges in node units, as cells touched) and four
+double illum_footprint_cells(const double (*uv)[2], int n, double du, double dv)
+{
+	double area = 0, edges = 0;
+	for (int c = 0; c < n; c++) {
+		const double *a = uv[c], *b = uv[(c + 1) % n];
+		area += (a[0] - uv[0][0]) * (b[1] - uv[0][1]) - (b[0] - uv[0][0]) * (a[1] - uv[0][1]);
+		edges += fabs(b[0] - a[0]) / du + fabs(b[1] - a[1]) / dv;
+	}
+	return 0.5 * fabs(area) / (du * dv) + edges + 1;
+}
+
+/* About the bytes footprint p's weights take in step 1: twice the cells it
+ * touches (illum_footprint_cells; the columns written in its rows) and four
  * numbers a row (pre and the row's columns, struct fp). */
 static double poly_bytes(const struct illum_map *m, const struct illum_poly *p)
 {
 	if (!p->uv || p->n < 1)
 		return 0;
-	double area = 0, edges = 0, lo = INFINITY, hi = -INFINITY;
-	for (int c = 0; c < p->n; c++) {
-		const double *a = p->uv[c], *b = p->uv[(c + 1) % p->n];
-		double ax = a[0] / m->ax[0].step, ay = a[1] / m->ax[1].step;
-		double bx = b[0] / m->ax[0].step, by = b[1] / m->ax[1].step;
-		area += ax * by - bx * ay;
-		edges += fabs(bx - ax) + fabs(by - ay);
-		lo = ay < lo ? ay : lo, hi = ay > hi ? ay : hi;
-	}
-	double bytes = 8 * (0.5 * fabs(area) + 2 * edges + 4 * (hi - lo + 3) + 4);
+	double lo = INFINITY, hi = -INFINITY;
+	for (int c = 0; c < p->n; c++)
+		lo = p->uv[c][1] < lo ? p->uv[c][1] : lo, hi = p->uv[c][1] > hi ? p->uv[c][1] : hi;
+	double bytes = 8 * (2 * illum_footprint_cells(p->uv, p->n, m->ax[0].step, m->ax[1].step) +
+	                    4 * ((hi - lo) / m->ax[1].step + 3));
 	return isfinite(bytes) ? bytes : 0;
 }
 
@@ -2030,61 +2078,16 @@ struct poly_bands {
 	int nb;
 };
 
-/* Whether footprint p may have node rows in band k of nb: false only when
- * its corners' v, widened by two rows (snap, the tents), lie in other
- * bands' stripes (a test before fp_setup, the tenth of a footprint's cost
- * that every band would pay for every footprint). */
-static bool may_be_mine(const struct illum_map *m, const struct illum_poly *p, int k, int nb)
-{
-	const struct axis *a = &m->ax[1];
-	if (a->wraps)
-		return true;
-	double lo = INFINITY, hi = -INFINITY;
-	for (int c = 0; c < p->n; c++) {
-		double y = (p->uv[c][1] - a->lo) / a->step;
-		lo = y < lo ? y : lo, hi = y > hi ? y : hi;
-	}
-	if (!(lo > -0x1p30 && hi < 0x1p30) || (a->bounded && (lo < 0 || hi > (double)(a->n - 1))))
-		return true; /* (beyond an edge: clamped onto it later) */
-	long j0 = (long)floor(lo) - 2, j1 = (long)ceil(hi) + 2;
-	if (j1 - j0 >= 16 * ILLUM_TILE * nb) /* a stripe of every band */
-		return true;
-	for (long j = j0; j <= j1; j++)
-		if (band_of(j, nb) == k)
-			return true;
-	return false;
-}
-
-/* Band k of the footprints (a parallel_for item): each set up, and those
- * with node rows in the band integrated and written there, as poly_one
- * does. A footprint across two bands is integrated by both (a few: bands
+/* Band k of the footprints (a parallel_for item): those with node rows in
+ * the band integrated and written there (poly_in_band). A footprint across two bands is integrated by both (a few: bands
  * are stripes of 32 node rows), but its weights are written where they
  * were made, still in cache. */
 static void poly_band(void *ctx, long k, int worker)
 {
 	(void)worker;
 	const struct poly_bands *B = ctx;
-	struct illum_map *m = B->part[k];
-	for (long i = 0; i < B->n; i++) {
-		const struct illum_poly *p = &B->p[i];
-		if (!p->uv || p->n < 1 || !corners_finite(p->uv, p->n)) {
-			m->dropped += k == 0;
-			continue;
-		}
-		struct fp F;
-		struct pt2 *c;
-		bool poly;
-		if (!may_be_mine(m, p, (int)k, B->nb) || !fp_setup(&F, m, p->uv, p->n, p->e, &c, &poly))
-			continue;
-		F.band = (int)k, F.nb = B->nb;
-		if (!fp_any_mine(&F))
-			continue;
-		if (!fp_run(&F) && poly) { /* as poly_one */
-			fp_point(&F, c);
-			fp_run(&F);
-		}
-		m->finished = false;
-	}
+	for (long i = 0; i < B->n; i++)
+		poly_in_band(B->part[k], B->p[i].uv, B->p[i].n, B->p[i].e, (int)k, B->nb);
 }
 
 /* Whether the footprints p[0..n) are shared out evenly enough among nb
@@ -2131,12 +2134,8 @@ static void poly_window(struct illum_map *m, const struct illum_poly *p, long n)
 /* Gives part (a band's share of m, no tiles yet) a window where m has one. */
 static void part_window(struct illum_map *part, const struct illum_map *m)
 {
-	if (!m->win)
-		return;
-	part->wti = m->wti, part->wtj = m->wtj, part->wnu = m->wnu, part->wnv = m->wnv;
-	part->win = mem_calloc((size_t)(m->wnu * m->wnv), sizeof *part->win);
-	mem_huge(part->win, (size_t)(m->wnu * m->wnv) * sizeof *part->win);
-	part->bytes += (size_t)(m->wnu * m->wnv) * sizeof *part->win;
+	if (m->win)
+		win_new(part, m->wti, m->wtj, m->wnu, m->wnv);
 }
 
 void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)

@@ -191,6 +191,12 @@ struct illum_poly {
  * bit, as depositing them one by one, for any thread count. */
 void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads);
 
+/* About how many grid cells (du × dv) polygon uv[0..n) touches: its area in
+ * cells plus its perimeter in cells (the cells its edges cross) plus one.
+ * A thin slanted sliver whose bounding box spans thousands of cells touches
+ * only those along it; its bounding box would overcount it by far. */
+double illum_footprint_cells(const double (*uv)[2], int n, double du, double dv);
+
 /* Adds src's energies, Σw² and counts into dst (same object and grid, else
  * false and dst untouched). dst must not be finished afterwards until
  * illum_finish is called again. */

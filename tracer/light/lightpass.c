@@ -1317,21 +1317,6 @@ static int level_of(double size, double cell, int nl)
 #define FOOTPRINT_MAX_CELLS 1024 /* larger footprints are deposited at their corners
                                      (deposit_levels) */
 
-/* About how many grid cells (du × dv) polygon uv[0..n) touches: its area in
- * cells plus its perimeter in cells (the cells its edges cross) plus one.
- * A thin slanted sliver whose bounding box spans thousands of cells touches
- * only those along it; its bounding box would overcount it by far. */
-static double footprint_cells(const double (*uv)[2], int n, double du, double dv)
-{
-	double area = 0, edges = 0;
-	for (int c = 0; c < n; c++) {
-		const double *a = uv[c], *b = uv[(c + 1) % n];
-		area += (a[0] - uv[0][0]) * (b[1] - uv[0][1]) - (b[0] - uv[0][0]) * (a[1] - uv[0][1]);
-		edges += fabs(b[0] - a[0]) / du + fabs(b[1] - a[1]) / dv;
-	}
-	return 0.5 * fabs(area) / (du * dv) + edges + 1;
-}
-
 /* Deposits a surface's shaft footprints p[0..np) and point records
  * s[0..ns) (of spread sz) into the levels lv[0..nl) (lv[0] exists; cell the
  * finest level's), each at the level of its size (level_of), making levels
@@ -1340,7 +1325,7 @@ static double footprint_cells(const double (*uv)[2], int n, double du, double dv
  * unit before any deposit, so the result is the same for any order and
  * thread count). A footprint under a quarter of a cell a side is a point
  * deposit at its centre; one touching more than FOOTPRINT_MAX_CELLS of its
- * level's cells (footprint_cells: by area and edges, not bounding box; nl =
+ * level's cells (illum_footprint_cells: by area and edges, not bounding box; nl =
  * 1: a fixed grid) gives its energy to its corners. */
 static void deposit_levels(struct illum_map **lv, const struct object *o, double cell, int nl,
                            const struct prec *const *p, long np, const struct illum_splat *s, const double *sz,
@@ -1388,7 +1373,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 				ps[m++] = (struct illum_splat){cu, cv, {pp[i].e[0], pp[i].e[1], pp[i].e[2]}};
 				continue;
 			}
-			if (footprint_cells(pp[i].uv, pp[i].n, du, dv) <= FOOTPRINT_MAX_CELLS) {
+			if (illum_footprint_cells(pp[i].uv, pp[i].n, du, dv) <= FOOTPRINT_MAX_CELLS) {
 				pp[keep++] = pp[i];
 				continue;
 			}
