@@ -2079,9 +2079,10 @@ struct poly_bands {
 };
 
 /* Band k of the footprints (a parallel_for item): those with node rows in
- * the band integrated and written there (poly_in_band). A footprint across two bands is integrated by both (a few: bands
- * are stripes of 32 node rows), but its weights are written where they
- * were made, still in cache. */
+ * the band integrated and written there (poly_in_band). A footprint
+ * across two bands is integrated by both (a few: bands are stripes of 32
+ * node rows), but its weights are written where they were made, still in
+ * cache. */
 static void poly_band(void *ctx, long k, int worker)
 {
 	(void)worker;
