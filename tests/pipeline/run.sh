@@ -241,6 +241,11 @@ run -q $M --load-maps "$tmp/v.maps" -o "$tmp/x.exr" $T/maps.scn
 want_rc 66; has err "^arvo: error: '$tmp/v.maps' was saved by arvo 0\.0\.9; this is arvo [0-9.]+ \(save the maps again with --save-maps\)$"
 report "a map file of another arvo version: refused, exit 66"
 
+head -c 10 "$tmp/m.maps" > "$tmp/cut.maps"
+run -q $M --load-maps "$tmp/cut.maps" -o "$tmp/x.exr" $T/maps.scn
+want_rc 66; is err "arvo: error: '$tmp/cut.maps' is damaged (cut short or corrupt)"; absent x.exr
+report "a map file cut short within its format number: refused as damaged, exit 66"
+
 head -c 100 "$tmp/m.maps" > "$tmp/cut.maps"
 run -q $M --load-maps "$tmp/cut.maps" -o "$tmp/x.exr" $T/maps.scn
 want_rc 66; is err "arvo: error: '$tmp/cut.maps' is damaged (cut short or corrupt)"

@@ -2269,15 +2269,16 @@ static const char *check_header(FILE *f, const struct scene *s, int nprims, cons
                                 int32_t *passes, char *err, size_t n)
 {
 	char magic[8], version[17] = {0};
-	uint32_t format;
+	uint32_t format = 1; /* ARVOMAP1's, which does not say it */
 	uint64_t hash;
 	int32_t prims;
 	if (fread(magic, 8, 1, f) != 1 || (memcmp(magic, "ARVOMAPS", 8) && memcmp(magic, "ARVOMAP1", 8)))
 		snprintf(err, n, "'%s' is not an arvo map file", path);
-	else if (!memcmp(magic, "ARVOMAP1", 8) || !get_u32(f, &format) || format != MAP_FORMAT)
+	else if (memcmp(magic, "ARVOMAP1", 8) && !get_u32(f, &format))
+		snprintf(err, n, "'%s' is damaged (cut short or corrupt)", path);
+	else if (format != MAP_FORMAT)
 		snprintf(err, n, "'%s' is a map file of format %u; this arvo reads format %u "
-		         "(save the maps again with --save-maps)", path,
-		         memcmp(magic, "ARVOMAP1", 8) ? format : 1u, MAP_FORMAT);
+		         "(save the maps again with --save-maps)", path, format, MAP_FORMAT);
 	else if (fread(version, 16, 1, f) != 1 || strcmp(version, ARVO_VERSION) != 0)
 		snprintf(err, n, "'%s' was saved by arvo %.16s; this is arvo %s (save the maps again "
 		         "with --save-maps)", path, version, ARVO_VERSION);
