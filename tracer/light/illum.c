@@ -1761,6 +1761,36 @@ static void gacc_add_fx(struct gacc *g, struct fx d, double unit)
 	g->count += g->count < UINT32_MAX;
 }
 
+/* fp_emit on a grey map (white light) that cannot saturate: the same
+ * numbers, with the conversions that need no saturation (fx_from_fast:
+ * the cumulative share never passes F->e[0] < 2^32; fx_add_fast) and each
+ * tile looked up once for the nodes of the row it holds. */
+static void fp_emit_grey(struct fp *F, long k)
+{
+	struct illum_map *m = F->m;
+	const double *w = F->w;
+	long o = F->woff[k], fj = vnode(&F->ax[1], F->ax[1].n0 + k), rem = tile_rem(fj) * ILLUM_TILE;
+	double C = F->pre[k], e = F->e[0], total = F->total, unit = m->unit;
+	struct fx cum = e > 0 ? fx_from_fast(e * (C / total)) : (struct fx){0, 0};
+	long lti = LONG_MIN;
+	struct gacc *row = NULL; /* tile lti's row fj */
+	for (long i = F->clo[k]; i <= F->chi[k]; i++) {
+		if (w[o + i] == 0)
+			continue;
+		C += w[o + i];
+		struct fx x = e > 0 ? fx_from_fast(e * (C / total)) : (struct fx){0, 0}, d = fx_sub(x, cum);
+		cum = x;
+		long fi = vnode(&F->ax[0], F->ax[0].n0 + i), ti = floordiv(fi);
+		if (ti != lti)
+			row = tile_of(m, fi, fj, true)->g + rem, lti = ti;
+		struct gacc *g = row + tile_rem(fi);
+		double xd = fx_to_double(d) * unit;
+		fx_add_fast(&g->e, d);
+		g->sq += (float)(xd * xd);
+		g->count += g->count < UINT32_MAX;
+	}
+}
+
 /* Quantises node row k (from n0) cumulatively into the map: C repeats the
  * additions of fp_row_sums from pre[k], so the row ends exactly where the
  * next one starts, whoever writes it. */
@@ -1772,6 +1802,10 @@ static void fp_emit(struct fp *F, long k)
 	struct fx cum[3], d[3];
 	bool white = F->e[0] == F->e[1] && F->e[1] == F->e[2];
 	int nc = white ? 1 : 3;
+	if (F->m->grey && F->e[0] < 0x1p31 && F->m->bound < 0x1p31 * F->m->unit) {
+		fp_emit_grey(F, k);
+		return;
+	}
 	fp_cum(F, nc, C, cum, NULL);
 	for (long i = F->clo[k]; i <= F->chi[k]; i++) {
 		if (w[o + i] == 0)
