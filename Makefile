@@ -36,7 +36,8 @@ endif
 HOT_C = tracer/eyepass.c tracer/bvh.c tracer/camera.c tracer/shape.c tracer/shapes/sphere.c \
         tracer/render.c tracer/material.c tracer/leafbox.c tracer/surface.c tracer/shapes/box.c \
         tracer/shapes/torus.c tracer/shapes/cone.c tracer/shapes/cylinder.c tracer/pattern.c \
-        tracer/noisepat.c common/xform.c tracer/light/illum.c tracer/shapes/plane.c
+        tracer/noisepat.c common/xform.c tracer/light/illum.c tracer/shapes/plane.c \
+        tracer/light/lightpass.c tracer/light/polygon.c
 ifneq ($(MODE),debug)
 $(HOT_C:%.c=$(BUILD)/%.o): OPT := $(subst -O2,-O3,$(OPT)) -fno-math-errno
 endif
