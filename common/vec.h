@@ -43,6 +43,10 @@ static inline struct vec3 v_madd(struct vec3 a, struct vec3 b, double s) { retur
  * calls; on a tie these give b) */
 static inline double d_min(double a, double b) { return a < b ? a : b; }
 static inline double d_max(double a, double b) { return a > b ? a : b; }
+/* fmax and fmin as libm gives them (maxsd and minsd where neither is NaN,
+ * the other where one is), inline: from libm they are calls. */
+static inline double fmax_(double a, double b) { return a > b || b != b ? a : b; }
+static inline double fmin_(double a, double b) { return a < b || b != b ? a : b; }
 static inline struct vec3 v_min(struct vec3 a, struct vec3 b) { return v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
 static inline struct vec3 v_max(struct vec3 a, struct vec3 b) { return v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
 static inline double v_comp(struct vec3 a, int i) { return i == 0 ? a.x : i == 1 ? a.y : a.z; }

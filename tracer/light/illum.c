@@ -521,7 +521,7 @@ static double max_curve_length(const struct object *o, const struct uv_range *r,
 				len += v_len(v_sub(p, prev));
 			prev = p;
 		}
-		best = fmax(best, len);
+		best = fmax_(best, len);
 	}
 	return best;
 }
@@ -1407,10 +1407,10 @@ static void vaxis_init(struct vaxis *A, const struct axis *a, long s, double lo,
 	A->clamped = !a->wraps;
 	A->L = a->bounded ? 0 : -(long)(PLANE_LIMIT / (double)s);
 	A->H = a->bounded ? (a->n - 1 + s - 1) / s : (long)(PLANE_LIMIT / (double)s);
-	double c0 = floor(lo), c1 = fmax(c0, ceil(hi) - 1);
+	double c0 = floor(lo), c1 = fmax_(c0, ceil(hi) - 1);
 	if (A->clamped) {
-		c0 = fmin(fmax(c0, (double)A->L - 1), (double)A->H);
-		c1 = fmin(fmax(c1, (double)A->L - 1), (double)A->H);
+		c0 = fmin_(fmax_(c0, (double)A->L - 1), (double)A->H);
+		c1 = fmin_(fmax_(c1, (double)A->L - 1), (double)A->H);
 	}
 	A->c0 = (long)c0;
 	A->c1 = (long)c1;
@@ -1484,7 +1484,7 @@ static double corner_coord(const struct axis *a, double x, const double *prev)
 	if (a->wraps)
 		return *prev + remainder(x - *prev, per);
 	double lo = a->bounded ? 0 : -PLANE_LIMIT, hi = a->bounded ? per - 1 : PLANE_LIMIT;
-	return fmin(fmax(x, lo - POLY_FAR), hi + POLY_FAR);
+	return fmin_(fmax_(x, lo - POLY_FAR), hi + POLY_FAR);
 }
 
 /* The corners in map node units (node i at i), snapped as axis_split snaps

@@ -205,7 +205,7 @@ struct worker {
 	char pad[128];              /* keeps the next worker's fields off these cache lines */
 };
 
-static double maxc(struct vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+static double maxc(struct vec3 a) { return fmax_(a.x, fmax_(a.y, a.z)); }
 
 /* ==== which objects can form caustics ==================================== */
 
@@ -261,7 +261,7 @@ static void cone_box(struct vec3 L, struct bbox bb, struct vec3 *axis, double *c
 	for (int k = 0; k < 8; k++) {
 		struct vec3 q = v_sub(v3(k & 1 ? bb.hi.x : bb.lo.x, k & 2 ? bb.hi.y : bb.lo.y, k & 4 ? bb.hi.z : bb.lo.z), L);
 		double l = v_len(q);
-		m = l > 0 ? fmin(m, v_dot(q, a) / l) : -1;
+		m = l > 0 ? fmin_(m, v_dot(q, a) / l) : -1;
 	}
 	if (m > 1e-6)
 		*axis = a, *cosmax = m - 1e-9; /* the rounding of the corners' cosines */
@@ -323,9 +323,9 @@ static struct target beam_to(const struct scene *s, struct vec3 D, struct vec3 c
 		struct hit h;
 		if (bbox_finite(ob)) {
 			struct vec3 oc = bbox_centre(ob);
-			back = fmax(back, v_len(v_sub(oc, c)) + bbox_radius(ob));
+			back = fmax_(back, v_len(v_sub(oc, c)) + bbox_radius(ob));
 		} else if (shape_intersect(s->objects[i], &(struct ray){c, v_neg(D)}, 0, INFINITY, &h)) {
-			back = fmax(back, h.t);
+			back = fmax_(back, h.t);
 		}
 	}
 	back = 2 * back + 1;
@@ -729,7 +729,7 @@ static void aim(const struct light *l, const struct target *t, double sx, double
 		double rr = t->radius * sqrt(sx);
 		*o = v_add(t->origin, v_add(v_scale(t->t1, rr * cos(ph)), v_scale(t->t2, rr * sin(ph))));
 	} else {
-		double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax(0, 1 - ct * ct));
+		double ct = 1 - sx * (1 - t->cosmax), st = sqrt(fmax_(0, 1 - ct * ct));
 		*d = v_add(v_scale(t->axis, ct), v_add(v_scale(t->t1, st * cos(ph)), v_scale(t->t2, st * sin(ph))));
 	}
 }
@@ -879,8 +879,8 @@ static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx
 			du -= floor(du + 0.5);
 		if (shape_uv_range(mid->obj, &rg) && rg.v_wraps)
 			dv -= floor(dv + 0.5);
-		double sz = fmax(fabs(uv[2][0] - uv[0][0]), fabs(uv[3][0] - uv[1][0])) +
-		            fmax(fabs(uv[2][1] - uv[0][1]), fabs(uv[3][1] - uv[1][1]));
+		double sz = fmax_(fabs(uv[2][0] - uv[0][0]), fabs(uv[3][0] - uv[1][0])) +
+		            fmax_(fabs(uv[2][1] - uv[0][1]), fabs(uv[3][1] - uv[1][1]));
 		ok = du * du + dv * dv <= 0.04 * sz * sz;
 	}
 	w->lands.n = mark;
@@ -985,7 +985,7 @@ static void run_shafts(struct worker *w, const struct item *it)
 		for (int c = 0; c < 3; c++)
 			if (c != J->o->channel)
 				S.e0[c] = 0;
-	S.cutoff = J->o->min_weight * fmax(S.e0[0], fmax(S.e0[1], S.e0[2]));
+	S.cutoff = J->o->min_weight * fmax_(S.e0[0], fmax_(S.e0[1], S.e0[2]));
 	w->refract = l->photons_refraction;
 	w->reflect = l->photons_reflection;
 	w->band = J->band;
@@ -1056,7 +1056,7 @@ static void run_item(struct worker *w, const struct item *it)
 		for (int c = 0; c < 3; c++)
 			if (c != J->o->channel)
 				e0[c] = 0;
-	double cutoff = J->o->min_weight * fmax(e0[0], fmax(e0[1], e0[2]));
+	double cutoff = J->o->min_weight * fmax_(e0[0], fmax_(e0[1], e0[2]));
 	uint64_t key = ((uint64_t)it->light << 40) ^ ((uint64_t)it->target << 20) ^ 0x5A17u ^ J->o->seed_key;
 	bool beam = l->kind == LIGHT_PARALLEL;
 	w->refract = l->photons_refraction;
@@ -1263,7 +1263,7 @@ static struct illum_spec choose_spec(const struct object *o, const struct vec3 *
 				ex[i] = ex[j];
 				ex[j] = t;
 			}
-	double area = ex[0] * fmax(ex[1], ex[0] * 1e-3);
+	double area = ex[0] * fmax_(ex[1], ex[0] * 1e-3);
 	double cell = illum_auto_cell(0.9 * (double)k, area, per_node);
 	struct illum_spec sp = {0, cell > 0 ? cell : 0.01};
 	return sp;
@@ -1293,7 +1293,7 @@ static struct illum_spec shaft_spec(const struct object *o, const struct prec *c
 	if (np && (opt->pixel_width > 0 || opt->pixel_angle > 0)) {
 		px = order_nth(sz, np, np / 2);
 	}
-	cell = fmax(cell, px);
+	cell = fmax_(cell, px);
 	free(sz);
 	if (k > 16 * np) /* mostly point deposits (folds, silhouettes): their rule */
 		return choose_spec(o, pts, k, 0);
@@ -1361,8 +1361,8 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 		for (long i = 0; i < n; i++) {
 			double u0 = pp[i].uv[0][0], u1 = u0, v0 = pp[i].uv[0][1], v1 = v0;
 			for (int c = 1; c < pp[i].n; c++) {
-				u0 = fmin(u0, pp[i].uv[c][0]), u1 = fmax(u1, pp[i].uv[c][0]);
-				v0 = fmin(v0, pp[i].uv[c][1]), v1 = fmax(v1, pp[i].uv[c][1]);
+				u0 = fmin_(u0, pp[i].uv[c][0]), u1 = fmax_(u1, pp[i].uv[c][0]);
+				v0 = fmin_(v0, pp[i].uv[c][1]), v1 = fmax_(v1, pp[i].uv[c][1]);
 			}
 			if ((u1 - u0) < 0.25 * du && (v1 - v0) < 0.25 * dv) {
 				/* much smaller than a cell: its tent integrals are the tents
@@ -1608,7 +1608,7 @@ static double legacy_gain(const struct scene *s, const struct light *l, struct b
 		double fp = l->fade_power > 0 ? l->fade_power : 1;
 		g *= 2 / (1 + pow(d / l->fade_distance, fp));
 	}
-	return fmax(g, 1e-12);
+	return fmax_(g, 1e-12);
 }
 
 /* Shafts: target t grown by 1.5 rows of its grid (in sx, the grid's
@@ -1625,7 +1625,7 @@ static void widen(struct target *t)
 		t->radius *= sqrt(f);
 		t->omega = M_PI * t->radius * t->radius;
 	} else if (t->cosmax > -1) { /* a cone: sx is 1 − cos θ */
-		t->cosmax = fmax(-1, 1 - (1 - t->cosmax) * f);
+		t->cosmax = fmax_(-1, 1 - (1 - t->cosmax) * f);
 		t->omega = 2 * M_PI * (1 - t->cosmax);
 	}
 }
@@ -1670,7 +1670,7 @@ static long plan(struct job *J)
 			double share = (double)J->o->rays * tg[k].omega / total;
 			/* shafts: a grid cell costs about two rays (a corner, its
 			 * centre) before any subdivision */
-			tg[k].side = (long)fmax(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 2 : share) + 0.5));
+			tg[k].side = (long)fmax_(J->o->shafts ? 2 : 1, floor(sqrt(J->o->shafts ? share / 2 : share) + 0.5));
 			if (J->o->shafts)
 				widen(&tg[k]);
 			long nr = J->o->shafts ? tg[k].side : tg[k].side * tg[k].side;
@@ -1963,7 +1963,7 @@ double lp_difference(const struct lp_result *a, const struct lp_result *b)
 		double du = 1, dv = 1;
 		if (a->maps[k])
 			illum_grid(a->maps[k], &nu, &nv, &du, &dv);
-		B.bu = fmax(eu / 48, du), B.bv = fmax(ev / 48, dv);
+		B.bu = fmax_(eu / 48, du), B.bv = fmax_(ev / 48, dv);
 		bin_levels(&B, a, o, 1);
 		for (long i = 0; i < B.cap; i++)
 			if (B.key[i] != INT64_MIN)
