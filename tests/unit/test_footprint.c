@@ -8,6 +8,7 @@
  * Random numbers: geo_rand.h, fixed seeds. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "../../tracer/light/illum.h"
@@ -163,6 +164,49 @@ static void t_geometry(void)
 /* A polygon covering exactly cell [i,i+1]×[j,j+1] gives each corner node ¼
  * of the energy, exactly, in either winding, on the plane, inside a sphere's
  * map and across its seam. */
+/* poly_moments over every edge, as Green's theorem writes it (the two
+ * edges at p[0], whose terms are ±0, included): the reference that
+ * poly_moments, which leaves those two out, must match bit for bit. */
+static struct moments moments_all_edges(const struct pt2 *p, int n, struct pt2 o)
+{
+	double a = 0, sx = 0, sy = 0, sxy = 0;
+	for (int k = 0; k < n; k++) {
+		const struct pt2 *q = &p[k + 1 < n ? k + 1 : 0];
+		double x0 = p[k].x - p[0].x, y0 = p[k].y - p[0].y, x1 = q->x - p[0].x, y1 = q->y - p[0].y;
+		double c = x0 * y1 - x1 * y0;
+		a += c;
+		sx += (x0 + x1) * c;
+		sy += (y0 + y1) * c;
+		sxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * c;
+	}
+	struct moments m = {a / 2, sx / 6, sy / 6, sxy / 24};
+	double dx = p[0].x - o.x, dy = p[0].y - o.y;
+	return (struct moments){m.a, m.x + dx * m.a, m.y + dy * m.a, m.xy + dx * m.y + dy * m.x + dx * dy * m.a};
+}
+
+static void t_moments_bits(void)
+{
+	rng_seed(11);
+	long differ = 0, cases = 0;
+	for (int t = 0; t < 20000; t++) {
+		struct pt2 p[8], o = {rndr(-3, 3), rndr(-3, 3)};
+		int n = 1 + (int)(rng_next() % 8), kind = (int)(rng_next() % 5);
+		double scale = kind == 3 ? 1e-9 : kind == 4 ? 1e6 : 1;
+		for (int k = 0; k < n; k++) {
+			p[k] = (struct pt2){scale * rndr(-1, 1), scale * rndr(-1, 1)};
+			if (kind == 1) /* collinear */
+				p[k] = (struct pt2){p[0].x + (double)k * 0.25, p[0].y - (double)k * 0.5};
+			if (kind == 2 && k % 2) /* signed zeros and exact repeats */
+				p[k] = rng_next() % 2 ? p[0] : (struct pt2){-0.0, 0.0};
+		}
+		struct moments a = poly_moments(p, n, o), b = moments_all_edges(p, n, o);
+		differ += memcmp(&a, &b, sizeof a) != 0;
+		cases++;
+	}
+	printf("# %ld polygons, %ld differ from the all-edges sum\n", cases, differ);
+	CHECK(differ == 0);
+}
+
 static void t_one_cell(void)
 {
 	static const enum object_kind kinds[] = {OBJ_PLANE, OBJ_SPHERE, OBJ_SPHERE};
@@ -770,6 +814,7 @@ static void threads_case(bool white, bool narrow)
 int main(void)
 {
 	RUN(t_geometry);
+	RUN(t_moments_bits);
 	RUN(t_one_cell);
 	RUN(t_triangles);
 	RUN(t_tiny);

@@ -24,9 +24,14 @@ double poly_area(const struct pt2 *p, int n)
 struct moments poly_moments(const struct pt2 *p, int n, struct pt2 o)
 {
 	double a = 0, sx = 0, sy = 0, sxy = 0;
-	for (int k = 0; k < n; k++) {
-		const struct pt2 *q = &p[k + 1 < n ? k + 1 : 0];
-		double x0 = p[k].x - p[0].x, y0 = p[k].y - p[0].y, x1 = q->x - p[0].x, y1 = q->y - p[0].y;
+	/* the two edges at p[0] are left out: a corner there is (0, 0) exactly,
+	 * so their c_k is ±0 and all they would add to a sum is ±0, which
+	 * leaves it as it is (a sum that starts at +0 is never −0) for finite
+	 * corners */
+	double x1 = n > 1 ? p[1].x - p[0].x : 0, y1 = n > 1 ? p[1].y - p[0].y : 0;
+	for (int k = 1; k + 1 < n; k++) {
+		double x0 = x1, y0 = y1; /* p[k] − p[0], as the previous edge's end */
+		x1 = p[k + 1].x - p[0].x, y1 = p[k + 1].y - p[0].y;
 		double c = x0 * y1 - x1 * y0;
 		a += c;
 		sx += (x0 + x1) * c;
