@@ -1434,16 +1434,17 @@ struct cellw {
 	double lo, hi, org;
 	double al[2], be[2];
 	bool has[2];
+	bool reg;     /* al = {1, 0}, be = {−1, 1}, both nodes (an unclamped cell) */
 };
 
 static struct cellw vcell(const struct vaxis *A, long c, double r)
 {
 	double o = (double)c - r, o1 = (double)(c + 1) - r; /* as the neighbours compute them */
 	if (A->clamped && c < A->L) /* all below node L lands on it */
-		return (struct cellw){-INFINITY, (double)A->L - r, o, {0, 1}, {0, 0}, {false, true}};
+		return (struct cellw){-INFINITY, (double)A->L - r, o, {0, 1}, {0, 0}, {false, true}, false};
 	if (A->clamped && c >= A->H)
-		return (struct cellw){(double)A->H - r, INFINITY, o, {1, 0}, {0, 0}, {true, false}};
-	return (struct cellw){o, o1, o, {1, 0}, {-1, 1}, {true, true}};
+		return (struct cellw){(double)A->H - r, INFINITY, o, {1, 0}, {0, 0}, {true, false}, false};
+	return (struct cellw){o, o1, o, {1, 0}, {-1, 1}, {true, true}, true};
 }
 
 /* One polygon deposit in progress. */
@@ -1636,6 +1637,19 @@ __attribute__((always_inline)) static inline void fp_add(struct fp *F, long cu, 
                                                          const struct cellw *wv, struct moments mo, double sc,
                                                          bool sparse)
 {
+	if (wu->reg && wv->reg) {
+		/* the four weights below with the factors 1, 0 and −1 multiplied
+		 * out: the same sums, less the terms that are ±0 (which change a
+		 * nonzero sum not at all, and a weight only in the sign of a zero,
+		 * which the += leaves at +0: no weight is ever −0) */
+		double w[4] = {((mo.a - mo.y) - mo.x) + mo.xy, mo.x - mo.xy, mo.y - mo.xy, mo.xy};
+		for (int b = 0; b < 2; b++)
+			for (int a = 0; a < 2; a++) {
+				long r = cv + b - F->ax[1].n0, c = cu + a - F->ax[0].n0;
+				*(sparse ? fp_at(F, r, c) : &F->w[r * F->cols + c]) += sc * w[2 * b + a];
+			}
+		return;
+	}
 	for (int b = 0; b < 2; b++)
 		for (int a = 0; a < 2; a++) {
 			if (!wu->has[a] || !wv->has[b])
