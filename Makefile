@@ -37,7 +37,11 @@ HOT_C = tracer/eyepass.c tracer/bvh.c tracer/camera.c tracer/shape.c tracer/shap
         tracer/render.c tracer/material.c tracer/leafbox.c tracer/surface.c tracer/shapes/box.c \
         tracer/shapes/torus.c tracer/shapes/cone.c tracer/shapes/cylinder.c tracer/pattern.c \
         tracer/noisepat.c common/xform.c tracer/light/illum.c tracer/shapes/plane.c \
-        tracer/light/lightpass.c tracer/light/polygon.c
+        tracer/light/lightpass.c tracer/light/polygon.c tracer/csg.c tracer/polysolve.c \
+        tracer/shapes/blob.c tracer/shapes/lathe.c tracer/shapes/mesh.c \
+        tracer/shapes/outline.c tracer/shapes/poly.c tracer/shapes/polygon.c tracer/shapes/prism.c \
+        tracer/shapes/sor.c tracer/shapes/superellipsoid.c tracer/shapes/text.c tracer/shapes/triangle.c \
+        tracer/shapes/disc.c
 ifneq ($(MODE),debug)
 $(HOT_C:%.c=$(BUILD)/%.o): OPT := $(subst -O2,-O3,$(OPT)) -fno-math-errno
 endif
