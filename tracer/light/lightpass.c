@@ -854,10 +854,38 @@ static bool footprint(const struct landing *q[4], double uv[4][2])
 	return area != 0 && isfinite(area);
 }
 
+#define SHAFT_MEMO 8 /* the first landings of a shaft's corner 0 whose footprints it keeps */
+
+/* The footprints of the paths of a shaft's corner 0, each worked out once
+ * (footprint() depends on the four landings alone): the test for a whole
+ * shaft, linear_enough and the deposits read the same ones. Entry k is the
+ * path of corner 0's landing k, with its first landing of that signature
+ * in each other corner (find_sig), when all four have one. */
+struct fp_memo {
+	bool known[SHAFT_MEMO];
+	bool convex[SHAFT_MEMO];     /* footprint()'s answer */
+	double uv[SHAFT_MEMO][4][2]; /* and its corners */
+};
+
+/* footprint(q, uv) for the path of corner 0's landing k (q[0] is it),
+ * from the memo or worked out and kept. */
+static bool footprint_kept(struct fp_memo *fm, long k, const struct landing *q[4], double uv[4][2])
+{
+	if (k < 0 || k >= SHAFT_MEMO)
+		return footprint(q, uv);
+	if (!fm->known[k]) {
+		fm->convex[k] = footprint(q, fm->uv[k]);
+		fm->known[k] = true;
+	}
+	memcpy(uv, fm->uv[k], sizeof fm->uv[k]);
+	return fm->convex[k];
+}
+
 /* Does the centre ray of a shaft land, for every path, where the corners'
  * bilinear middle says (within a fifth of the footprint's size in (u,v))?
  * If not, the path bends the shaft too much to spread its flux evenly. */
-static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx, double sy, const struct corner c[4])
+static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx, double sy, const struct corner c[4],
+                          struct fp_memo *fm)
 {
 	long mark = w->lands.n;
 	struct corner m = corner_at(w, S, sx, sy);
@@ -867,7 +895,7 @@ static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx
 		                              find_sig(w, c[2], w->lands.l[i].sig), find_sig(w, c[3], w->lands.l[i].sig)};
 		const struct landing *mid = find_sig(w, m, q[0]->sig);
 		double uv[4][2];
-		if (!mid || !footprint(q, uv)) {
+		if (!mid || !footprint_kept(fm, i - c[0].first, q, uv)) {
 			ok = false;
 			break;
 		}
@@ -902,6 +930,8 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
                   double sy1, const struct corner c[4])
 {
 	bool whole = true;
+	struct fp_memo fm;
+	memset(fm.known, 0, sizeof fm.known);
 	for (int k = 0; k < 4 && whole; k++)
 		for (long i = c[k].first; whole && i < c[k].first + c[k].n; i++)
 			for (int j = 0; j < 4 && whole; j++)
@@ -910,11 +940,11 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 		const struct landing *q[4] = {&w->lands.l[i], find_sig(w, c[1], w->lands.l[i].sig),
 		                              find_sig(w, c[2], w->lands.l[i].sig), find_sig(w, c[3], w->lands.l[i].sig)};
 		double uv[4][2];
-		whole = footprint(q, uv);
+		whole = footprint_kept(&fm, i - c[0].first, q, uv);
 	}
 	double sxm = 0.5 * (sx0 + sx1), sym = 0.5 * (sy0 + sy1);
 	if (lv < SHAFT_LEVELS && c[0].n + c[1].n + c[2].n + c[3].n > 0 &&
-	    (!whole || !linear_enough(w, S, sxm, sym, c))) {
+	    (!whole || !linear_enough(w, S, sxm, sym, c, &fm))) {
 		long mark = w->lands.n;
 		struct corner a = corner_at(w, S, sxm, sy0), b = corner_at(w, S, sx0, sym), m = corner_at(w, S, sxm, sym);
 		struct corner d = corner_at(w, S, sx1, sym), e = corner_at(w, S, sxm, sy1);
@@ -932,7 +962,9 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 			const struct landing *q[4] = {find_sig(w, c[0], L->sig), find_sig(w, c[1], L->sig),
 			                              find_sig(w, c[2], L->sig), find_sig(w, c[3], L->sig)};
 			double uv[4][2];
-			bool all = q[0] && q[1] && q[2] && q[3], convex = all && footprint(q, uv);
+			bool all = q[0] && q[1] && q[2] && q[3];
+			/* (q[0] is corner 0's first landing of this path: the memo's entry) */
+			bool convex = all && footprint_kept(&fm, q[0] - &w->lands.l[c[0].first], q, uv);
 			int nv = convex ? 4 : all ? hull4(uv) : 0;
 			if (!nv) { /* a point deposit of this corner's quarter, as wide as the
 			               other corners' landings on the same surface are far */
