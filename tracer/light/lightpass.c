@@ -932,10 +932,15 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 	bool whole = true;
 	struct fp_memo fm;
 	memset(fm.known, 0, sizeof fm.known);
-	for (int k = 0; k < 4 && whole; k++)
-		for (long i = c[k].first; whole && i < c[k].first + c[k].n; i++)
-			for (int j = 0; j < 4 && whole; j++)
-				whole = find_sig(w, c[j], w->lands.l[i].sig) != NULL;
+	const struct landing *l = w->lands.l;
+	if (c[0].n == 1 && c[1].n == 1 && c[2].n == 1 && c[3].n == 1) /* one path each (the usual case) */
+		whole = l[c[0].first].sig == l[c[1].first].sig && l[c[0].first].sig == l[c[2].first].sig &&
+		        l[c[0].first].sig == l[c[3].first].sig;
+	else
+		for (int k = 0; k < 4 && whole; k++)
+			for (long i = c[k].first; whole && i < c[k].first + c[k].n; i++)
+				for (int j = 0; j < 4 && whole; j++)
+					whole = find_sig(w, c[j], l[i].sig) != NULL;
 	for (long i = c[0].first; whole && i < c[0].first + c[0].n; i++) {
 		const struct landing *q[4] = {&w->lands.l[i], find_sig(w, c[1], w->lands.l[i].sig),
 		                              find_sig(w, c[2], w->lands.l[i].sig), find_sig(w, c[3], w->lands.l[i].sig)};
@@ -956,7 +961,10 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 		return;
 	}
 	double share = 0.25 / (double)(1L << (2 * lv));
-	for (int k = 0; k < 4; k++)
+	/* a whole shaft's paths are all corner 0's, each with a convex
+	 * footprint: the other corners' landings would find theirs and add
+	 * nothing */
+	for (int k = 0; k < (whole ? 1 : 4); k++)
 		for (long i = c[k].first; i < c[k].first + c[k].n; i++) {
 			const struct landing *L = &w->lands.l[i];
 			const struct landing *q[4] = {find_sig(w, c[0], L->sig), find_sig(w, c[1], L->sig),
