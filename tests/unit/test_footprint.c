@@ -188,7 +188,7 @@ static struct moments moments_all_edges(const struct pt2 *p, int n, struct pt2 o
 static void t_moments_bits(void)
 {
 	rng_seed(11);
-	long differ = 0, cases = 0;
+	long differ = 0, cases = 0, clips = 0;
 	for (int t = 0; t < 20000; t++) {
 		struct pt2 p[8], o = {rndr(-3, 3), rndr(-3, 3)};
 		int n = 1 + (int)(rng_next() % 8), kind = (int)(rng_next() % 5);
@@ -203,9 +203,18 @@ static void t_moments_bits(void)
 		struct moments a = poly_moments(p, n, o), b = moments_all_edges(p, n, o);
 		differ += memcmp(&a, &b, sizeof a) != 0;
 		cases++;
+		/* poly_clip_range given the corners' range: poly_clip_slab's corners */
+		int axis = (int)(rng_next() % 2);
+		double mn = axis ? p[0].y : p[0].x, mx = mn, lo = scale * rndr(-1.2, 1), hi = lo + scale * rndr(0, 1);
+		for (int k = 1; k < n; k++)
+			mn = fmin(mn, axis ? p[k].y : p[k].x), mx = fmax(mx, axis ? p[k].y : p[k].x);
+		struct pt2 o1[32], o2[32], t1[16], t2[16];
+		int k1 = poly_clip_slab(p, n, axis, lo, hi, o1, t1), k2 = poly_clip_range(p, n, axis, lo, hi, mn, mx, o2, t2);
+		clips += k1 != k2 || memcmp(o1, o2, sizeof o1[0] * (size_t)(k1 > 0 ? k1 : 0)) != 0;
 	}
-	printf("# %ld polygons, %ld differ from the all-edges sum\n", cases, differ);
+	printf("# %ld polygons, %ld differ from the all-edges sum, %ld clipped otherwise\n", cases, differ, clips);
 	CHECK(differ == 0);
+	CHECK(clips == 0);
 }
 
 /* fmax_ and fmin_ (common/vec.h), which replaced libm's calls on the

@@ -1608,7 +1608,7 @@ static const struct pt2 *fp_slab(struct fp *F, int l, const struct cellw *wv, in
 		*k = F->l->len[l];
 		return p;
 	}
-	*k = poly_clip_slab(p, F->l->len[l], 1, wv->lo, wv->hi, F->slab, F->tmp);
+	*k = poly_clip_range(p, F->l->len[l], 1, wv->lo, wv->hi, F->ylo[l], F->yhi[l], F->slab, F->tmp);
 	return F->slab;
 }
 
@@ -1694,7 +1694,7 @@ __attribute__((always_inline)) static inline void fp_cell_row_as(struct fp *F, l
 			if (lo >= wu.lo && hi <= wu.hi)
 				c = p, kc = k;
 			else
-				c = F->cell, kc = poly_clip_slab(p, k, 0, wu.lo, wu.hi, F->cell, F->tmp);
+				c = F->cell, kc = poly_clip_range(p, k, 0, wu.lo, wu.hi, lo, hi, F->cell, F->tmp);
 			if (kc >= 3)
 				fp_add(F, cu, cv, &wu, &wv, poly_moments(c, kc, (struct pt2){wu.org, wv.org}), F->sc[l],
 				       sparse);

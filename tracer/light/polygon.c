@@ -78,16 +78,11 @@ ALWAYS_INLINE int clip_side(const struct pt2 *p, int n, int axis, double b, bool
 	return k;
 }
 
-/* poly_clip_slab on a constant axis. */
-ALWAYS_INLINE int clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
-                            struct pt2 *tmp)
+/* poly_clip_slab on a constant axis, the corners' least and greatest
+ * coordinate on it given (mn, mx). */
+ALWAYS_INLINE int clip_range(const struct pt2 *p, int n, int axis, double lo, double hi, double mn, double mx,
+                             struct pt2 *out, struct pt2 *tmp)
 {
-	double mn = coord(p[0], axis), mx = mn;
-	for (int i = 1; i < n; i++) {
-		double c = coord(p[i], axis); /* finite: no fmin/fmax (libm calls) needed */
-		mn = c < mn ? c : mn;
-		mx = c > mx ? c : mx;
-	}
 	if (mx < lo || mn > hi) /* wholly outside; a bound only touched still clips */
 		return 0;
 	bool cut_lo = mn < lo, cut_hi = mx > hi; /* the sides that cut anything */
@@ -104,10 +99,29 @@ ALWAYS_INLINE int clip_slab(const struct pt2 *p, int n, int axis, double lo, dou
 	return n;
 }
 
+/* poly_clip_slab on a constant axis. */
+ALWAYS_INLINE int clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
+                            struct pt2 *tmp)
+{
+	double mn = coord(p[0], axis), mx = mn;
+	for (int i = 1; i < n; i++) {
+		double c = coord(p[i], axis); /* finite: no fmin/fmax (libm calls) needed */
+		mn = c < mn ? c : mn;
+		mx = c > mx ? c : mx;
+	}
+	return clip_range(p, n, axis, lo, hi, mn, mx, out, tmp);
+}
+
 int poly_clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
                    struct pt2 *tmp)
 {
 	return axis ? clip_slab(p, n, 1, lo, hi, out, tmp) : clip_slab(p, n, 0, lo, hi, out, tmp);
+}
+
+int poly_clip_range(const struct pt2 *p, int n, int axis, double lo, double hi, double mn, double mx,
+                    struct pt2 *out, struct pt2 *tmp)
+{
+	return axis ? clip_range(p, n, 1, lo, hi, mn, mx, out, tmp) : clip_range(p, n, 0, lo, hi, mn, mx, out, tmp);
 }
 
 static double orient(struct pt2 a, struct pt2 b, struct pt2 c)

@@ -47,6 +47,12 @@ struct moments poly_moments(const struct pt2 *p, int n, struct pt2 o);
 int poly_clip_slab(const struct pt2 *p, int n, int axis, double lo, double hi, struct pt2 *out,
                    struct pt2 *tmp);
 
+/* poly_clip_slab where the least and greatest of the corners' coordinates
+ * on the axis are known (mn, mx): the same result, without looking for
+ * them. */
+int poly_clip_range(const struct pt2 *p, int n, int axis, double lo, double hi, double mn, double mx,
+                    struct pt2 *out, struct pt2 *tmp);
+
 /* The first pair of non-adjacent edges of p[0..n) that cross properly (each
  * edge's ends strictly on opposite sides of the other's line): edges a < b
  * (edge k runs p[k]→p[k+1]) and the crossing point. False for a simple
