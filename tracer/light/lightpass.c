@@ -903,9 +903,10 @@ static bool linear_enough(struct worker *w, const struct shaft_ctx *S, double sx
 		double cv = 0.25 * (uv[0][1] + uv[1][1] + uv[2][1] + uv[3][1]);
 		double du = mid->u - cu, dv = mid->v - cv;
 		struct uv_range rg;
-		if (shape_uv_range(mid->obj, &rg) && rg.u_wraps)
+		bool ranged = shape_uv_range(mid->obj, &rg);
+		if (ranged && rg.u_wraps)
 			du -= floor(du + 0.5);
-		if (shape_uv_range(mid->obj, &rg) && rg.v_wraps)
+		if (ranged && rg.v_wraps)
 			dv -= floor(dv + 0.5);
 		double sz = fmax_(fabs(uv[2][0] - uv[0][0]), fabs(uv[3][0] - uv[1][0])) +
 		            fmax_(fabs(uv[2][1] - uv[0][1]), fabs(uv[3][1] - uv[1][1]));
