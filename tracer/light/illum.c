@@ -2004,7 +2004,7 @@ double illum_footprint_cells(const double (*uv)[2], int n, double du, double dv)
 {
 	double area = 0, edges = 0;
 	for (int c = 0; c < n; c++) {
-		const double *a = uv[c], *b = uv[(c + 1) % n];
+		const double *a = uv[c], *b = uv[c + 1 < n ? c + 1 : 0];
 		area += (a[0] - uv[0][0]) * (b[1] - uv[0][1]) - (b[0] - uv[0][0]) * (a[1] - uv[0][1]);
 		edges += fabs(b[0] - a[0]) / du + fabs(b[1] - a[1]) / dv;
 	}

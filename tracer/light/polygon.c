@@ -132,11 +132,11 @@ static double orient(struct pt2 a, struct pt2 b, struct pt2 c)
 bool poly_crossing(const struct pt2 *p, int n, int *a, int *b, struct pt2 *x)
 {
 	for (int i = 0; i < n; i++) {
-		struct pt2 p0 = p[i], p1 = p[(i + 1) % n];
+		struct pt2 p0 = p[i], p1 = p[i + 1 < n ? i + 1 : 0];
 		for (int j = i + 2; j < n; j++) {
 			if (i == 0 && j == n - 1) /* adjacent through the closing edge */
 				continue;
-			struct pt2 q0 = p[j], q1 = p[(j + 1) % n];
+			struct pt2 q0 = p[j], q1 = p[j + 1 < n ? j + 1 : 0];
 			double o0 = orient(q0, q1, p0), o1 = orient(q0, q1, p1);
 			if (!((o0 < 0 && o1 > 0) || (o0 > 0 && o1 < 0)))
 				continue;
