@@ -1810,16 +1810,16 @@ static void fp_emit_grey(struct fp *F, long k)
  * next one starts, whoever writes it. */
 static void fp_emit(struct fp *F, long k)
 {
+	if (F->m->grey && F->e[0] < 0x1p31 && F->m->bound < 0x1p31 * F->m->unit) {
+		fp_emit_grey(F, k);
+		return;
+	}
 	const double *w = F->w;
 	long o = F->woff[k], fj = vnode(&F->ax[1], F->ax[1].n0 + k);
 	double C = F->pre[k];
 	struct fx cum[3], d[3];
 	bool white = F->e[0] == F->e[1] && F->e[1] == F->e[2];
 	int nc = white ? 1 : 3;
-	if (F->m->grey && F->e[0] < 0x1p31 && F->m->bound < 0x1p31 * F->m->unit) {
-		fp_emit_grey(F, k);
-		return;
-	}
 	fp_cum(F, nc, C, cum, NULL);
 	for (long i = F->clo[k]; i <= F->chi[k]; i++) {
 		if (w[o + i] == 0)

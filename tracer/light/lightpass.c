@@ -933,7 +933,7 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 	bool whole = true;
 	struct fp_memo fm;
 	memset(fm.known, 0, sizeof fm.known);
-	const struct landing *l = w->lands.l;
+	const struct landing *l = w->lands.l; /* (for the test alone: tracing a corner may move it) */
 	if (c[0].n == 1 && c[1].n == 1 && c[2].n == 1 && c[3].n == 1) /* one path each (the usual case) */
 		whole = l[c[0].first].sig == l[c[1].first].sig && l[c[0].first].sig == l[c[2].first].sig &&
 		        l[c[0].first].sig == l[c[3].first].sig;
