@@ -404,6 +404,58 @@ static void t_threads(void)
 	}
 }
 
+/* The same for white light (a grey map, whose bands skip the splats of
+ * the other bands' 32-row stripes before splitting them, illum.c
+ * band_skips): on a plane (a dense core, far-flung splats, rows on and
+ * half a row off the stripes' edges), on a cylinder (v bounded and not
+ * wrapping: splats at and beyond its ends, clamped) and on a sphere (u
+ * wrapping, v bounded), any thread count as one by one. */
+static void t_threads_grey(void)
+{
+	enum { N = 100000 };
+	static struct illum_splat sp[N];
+	static const enum object_kind kinds[] = {OBJ_PLANE, OBJ_CYLINDER, OBJ_SPHERE};
+	for (int shape = 0; shape < 3; shape++) {
+		rng_seed(11 + shape);
+		struct object o = prim(kinds[shape]);
+		struct illum_map *one = shape ? map_res(&o, 200) : map_cell(&o, 0.01);
+		for (int k = 0; k < N; k++) {
+			double e = rnd(), u, v;
+			if (shape == 0) {
+				double r = k % 10 ? 0.3 * rnd() : 40 * rnd(), a = rndr(0, 2 * M_PI);
+				u = r * cos(a), v = r * sin(a);
+				if (k % 7 == 0) /* on a stripe's edge (32 rows of 0.01), or half a row off it */
+					v = 0.32 * (double)((k / 7) % 9 - 4) + 0.005 * (double)((k / 63) % 3 - 1);
+			} else {
+				u = rnd(), v = k % 5 ? rnd() : rndr(-0.02, 0.02) + (k % 2 ? 1 : 0);
+				if (k % 11 == 0) /* exactly on the ends */
+					v = k % 2 ? 1 : 0;
+			}
+			sp[k] = (struct illum_splat){u, v, {e, e, e}};
+		}
+		sp[17].v = NAN; /* dropped once, whatever the thread count */
+		for (int k = 0; k < N; k++)
+			illum_deposit(one, sp[k].u, sp[k].v, sp[k].e);
+		double rem1[3];
+		illum_finish(one, true, rem1);
+		struct nodes *s1 = nodes_of(one);
+		CHECK(s1->n > 1000 && s1->n < MAXN);
+		printf("# grey %s: %d nodes, %ld tiles\n", shape == 0 ? "plane" : shape == 1 ? "cylinder" : "sphere",
+		       s1->n, illum_tiles(one));
+		static const int threads[] = {1, 2, 3, 4};
+		for (int t = 0; t < 4; t++) {
+			/* a new map, grey (one, made colour by its single deposits, is
+			 * not; illum_new_like(one) would not be either) */
+			struct illum_map *m = shape ? map_res(&o, 200) : map_cell(&o, 0.01);
+			illum_deposit_all(m, sp, N, threads[t]);
+			CHECK(illum_memory(m) < illum_memory(one)); /* one channel a node */
+			check_same_map(one, s1, rem1, m, threads[t]);
+		}
+		free(s1);
+		illum_free(one);
+	}
+}
+
 /* illum_deposit_runs reads the splats where they lie (a record whose first
  * member is the splat; runs of any length, empty ones too, across the prep
  * chunks, with other records between them) and gives the map illum_deposit_all gives the same splats in
@@ -555,12 +607,15 @@ static void t_grey(void)
 	struct illum_map *one = map_cell(&o, 0.01); /* one by one: colour from the first */
 	for (int k = 0; k < N; k++)
 		illum_deposit(one, sp[k].u, sp[k].v, sp[k].e);
-	struct illum_map *g = illum_new_like(one), *w1 = illum_new_like(one), *w2 = illum_new_like(one);
+	/* new maps, grey (a map made like one would be colour, as one is) */
+	struct illum_map *g = map_cell(&o, 0.01), *w1 = map_cell(&o, 0.01), *w2 = map_cell(&o, 0.01);
 	illum_deposit_all(g, sp, H, 2); /* grey */
+	size_t grey_bytes = illum_memory(g);
 	illum_deposit_all(g, sp + H, N - H, 2); /* made colour */
 	for (int k = 0; k < H; k++)
 		illum_deposit(w1, sp[k].u, sp[k].v, sp[k].e);
 	illum_deposit_all(w2, sp, H, 1); /* grey throughout */
+	CHECK(illum_memory(g) > grey_bytes && illum_memory(w2) < illum_memory(w1)); /* made colour; grey */
 	double r1[3], rg[3], rw1[3], rw2[3], t1[3], tg[3], tw1[3], tw2[3];
 	illum_finish(one, true, r1);
 	illum_finish_mt(g, true, rg, 2);
@@ -582,10 +637,10 @@ static void t_grey(void)
 	}
 	CHECK(bad == 0);
 	/* merges: grey into grey, colour into grey, grey into colour */
-	struct illum_map *c2 = illum_new_like(one), *m1 = illum_new_like(one), *m2 = illum_new_like(one);
+	struct illum_map *c2 = map_cell(&o, 0.01), *m1 = map_cell(&o, 0.01), *m2 = map_cell(&o, 0.01);
 	for (int k = H; k < N; k++)
 		illum_deposit(c2, sp[k].u, sp[k].v, sp[k].e);
-	struct illum_map *w3 = illum_new_like(one);
+	struct illum_map *w3 = map_cell(&o, 0.01);
 	illum_deposit_all(w3, sp, H, 2);
 	CHECK(illum_merge(m1, w3) && illum_merge(m1, c2)); /* m1: grey, then colour */
 	CHECK(illum_merge(m2, c2) && illum_merge(m2, w3)); /* m2: colour, then a grey one added */
@@ -820,6 +875,7 @@ int main(void)
 	RUN(t_plane_sparse);
 	RUN(t_lookup_edges);
 	RUN(t_threads);
+	RUN(t_threads_grey);
 	RUN(t_runs);
 	RUN(t_merge);
 	RUN(t_grey);

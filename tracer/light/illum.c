@@ -1154,6 +1154,47 @@ __attribute__((always_inline)) static inline void grey_add(struct band_pos *P, l
 	g->count += g->count < UINT32_MAX;
 }
 
+/* Which splats band k of nb can skip without splitting them: a splat's
+ * two node rows lie in the 32-row stripe (band_of) where its row
+ * coordinate t = (v − lo) / step lies, when t is half a row or more inside
+ * it; x = (v − lo)·(1 / step) is within 10^-6 rows of t (snap moves it by
+ * SNAP at most, the product differs from the quotient by a few ulps of
+ * |t| <= 2^30). Not on a wrapping axis (fmod), nor within a row and a half
+ * of a bounded axis's ends or the plane's limits (clamped), where the
+ * splat is split as before. */
+struct band_skip {
+	double lo, inv, xlo, xhi; /* x's origin and scale; the range where the test holds */
+	long k;                   /* the band */
+	int nb;
+	bool on;
+};
+
+static struct band_skip band_skip_for(const struct axis *a, long k, int nb)
+{
+	struct band_skip b = {a->lo, 1 / a->step, 0, 0, k, nb, nb > 1 && !a->wraps};
+	b.xlo = a->bounded ? 1.5 : -PLANE_LIMIT + 1.5;
+	b.xhi = a->bounded ? (double)(a->n - 1) - 1.5 : PLANE_LIMIT - 1.5;
+	return b;
+}
+
+/* Is splat row coordinate v surely none of band b's? (NaN: no.) */
+__attribute__((always_inline)) static inline bool band_skips(const struct band_skip *b, double v)
+{
+	double x = (v - b->lo) * b->inv;
+	if (!(x >= b->xlo && x <= b->xhi))
+		return false;
+	double y = x * (1.0 / 32);
+	long st = (long)y; /* the stripe: floor(y), inline (|y| < 2^26) */
+	if ((double)st > y)
+		st--;
+	double r = x - 32 * (double)st; /* x's place in it */
+	if (!(r >= 0.5 && r <= 30.5))
+		return false;
+	int band = (b->nb & (b->nb - 1)) == 0 ? (int)((unsigned long)st & (unsigned long)(b->nb - 1))
+	                                       : (int)(((st % b->nb) + b->nb) % b->nb);
+	return band != b->k;
+}
+
 /* Step 3 for band k of nb: its tiles are made and its nodes accumulated,
  * deposits in order; prep: D->p holds their splits. */
 __attribute__((always_inline)) static inline void accumulate_band(struct deposit_job *D, long k, bool prep)
@@ -1161,8 +1202,11 @@ __attribute__((always_inline)) static inline void accumulate_band(struct deposit
 	struct illum_map *m = D->m;
 	const struct axis *ax = &m->ax[0], *ay = &m->ax[1];
 	struct band_pos P = {D + k, m, LONG_MIN, LONG_MIN, NULL, m->inv_unit, m->bound < 0x1p32 * m->unit, m->grey};
+	const struct band_skip bs = band_skip_for(ay, k, D->nb);
 	for (long q = 0, r = 0; q < D->n; q++) {
 		struct illum_splat sp = splat_at(D, q, &r); /* r: the run of splat q */
+		if (!prep && bs.on && band_skips(&bs, sp.v))
+			continue;
 		double e[3];
 		/* a grey map's splats are white: the valid ones have e[0] > 0 */
 		bool fast = P.grey && P.finite;
@@ -1783,7 +1827,7 @@ static void fp_emit_grey(struct fp *F, long k)
 {
 	struct illum_map *m = F->m;
 	const double *w = F->w;
-	long o = F->woff[k], fj = vnode(&F->ax[1], F->ax[1].n0 + k), rem = tile_rem(fj) * ILLUM_TILE;
+	long o = F->woff[k], fj = vnode(&F->ax[1], F->ax[1].n0 + k), rem = tile_rem(fj) * ILLUM_TILE, tj = floordiv(fj);
 	double C = F->pre[k], e = F->e[0], total = F->total, unit = m->unit;
 	struct fx cum = e > 0 ? fx_from_fast(e * (C / total)) : (struct fx){0, 0};
 	long lti = LONG_MIN;
@@ -1795,8 +1839,10 @@ static void fp_emit_grey(struct fp *F, long k)
 		struct fx x = e > 0 ? fx_from_fast(e * (C / total)) : (struct fx){0, 0}, d = fx_sub(x, cum);
 		cum = x;
 		long fi = vnode(&F->ax[0], F->ax[0].n0 + i), ti = floordiv(fi);
-		if (ti != lti)
-			row = tile_of(m, fi, fj, true)->g + rem, lti = ti;
+		if (ti != lti) { /* a tile the window holds, straight from it; else tile_of */
+			const int32_t *ws = win_slot(m, ti, tj);
+			row = (ws && *ws > 0 ? m->tiles[*ws - 1] : tile_of(m, fi, fj, true))->g + rem, lti = ti;
+		}
 		struct gacc *g = row + tile_rem(fi);
 		double xd = fx_to_double(d) * unit;
 		fx_add_fast(&g->e, d);
