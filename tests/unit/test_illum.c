@@ -520,15 +520,16 @@ static void t_runs(void)
 		for (int i = 0; i < 2; i++)
 			gr[at++] = (struct gsrec){{0.5, 0.5, 1e3}, NULL};
 	}
-	struct illum_map *white = illum_new_like(one);
+	struct illum_map *white = map_cell(&o, 0.01); /* grey, as the light pass's maps (one is colour) */
 	illum_deposit_all(white, ws, N, 1);
 	double remw[3];
 	illum_finish(white, true, remw);
 	struct nodes *sw = nodes_of(white);
 	CHECK(sw->n > 1000 && sw->n < MAXN && remw[0] > 0 && remw[1] == remw[0]);
 	for (int t = 0; t < 3; t++) {
-		struct illum_map *m = illum_new_like(one);
+		struct illum_map *m = map_cell(&o, 0.01);
 		illum_deposit_runs(m, gruns, R, threads[t]);
+		CHECK(illum_memory(m) < illum_memory(one)); /* grey: one channel a node */
 		check_same_map(white, sw, remw, m, threads[t]);
 	}
 	free(sw);
