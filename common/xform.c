@@ -84,7 +84,7 @@ static struct xform rot_axis(int k, double deg)
 	double a = deg * M_PI / 180.0, c = cos(a), s = sin(a);
 	/* exact values at multiples of 90 degrees (no 6e-17 residues) */
 	if (fmod(deg, 90.0) == 0) {
-		long q = ((long)(deg / 90.0) % 4 + 4) % 4;
+		long q = ((long)(fmod(deg, 360.0) / 90.0) + 4) % 4; /* (an angle past 2^63 quarter turns, too) */
 		c = q == 0 ? 1 : q == 2 ? -1 : 0;
 		s = q == 1 ? 1 : q == 3 ? -1 : 0;
 	}

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/resource.h>
 
+#include "../lexer/lexer.h"
 #include "../parser/parser.h"
 #include "internal.h"
 
@@ -1118,6 +1119,16 @@ void eval_default_options(struct eval_options *o)
 	o->max_steps = 1000000000;
 	o->max_objects = 1000000;
 	o->debug_out = stdout;
+}
+
+const char *eval_undeclarable(const char *name, int len)
+{
+	char buf[64];
+	if (len <= 0 || len >= (int)sizeof buf) /* (no reserved or built-in name is that long) */
+		return NULL;
+	memcpy(buf, name, (size_t)len);
+	buf[len] = 0;
+	return lex_keyword(buf, len) != TK_IDENT ? "a reserved word" : builtin_is_name(buf) ? "a built-in name" : NULL;
 }
 
 /* -D NAME=VALUE: a float, or a string when VALUE is quoted. */

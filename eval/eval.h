@@ -37,6 +37,9 @@ struct eval_options {
 };
 
 void eval_default_options(struct eval_options *o);
+/* Why name[0..len) cannot be declared (by -D or #declare): "a reserved
+ * word" or "a built-in name"; NULL when it can. */
+const char *eval_undeclarable(const char *name, int len);
 /* Reads, parses and evaluates the scene file at path into *out (which
  * eval_scene initialises). Returns 0 on success, 65 when the scene has errors
  * (reported to diag), 66 when the file itself, or a file it includes or

@@ -121,6 +121,17 @@ want_rc 0; has out '^N=4.00 '; report "Declare=NAME=VALUE (POV-Ray form)"
 run -D N=1 -D N=3 --check $D/defines.scn
 want_rc 0; has out '^N=3.00 '; report "a later -D of the same name wins"
 
+run -D N=1e-310 --check $D/defines.scn
+want_rc 0; has out '^N=0.00 '; report "-D takes a number too small for a normal double, as #declare does"
+
+run -D clock=7 --check $D/defines.scn
+want_rc 64; is err "arvo: error: bad declaration 'clock=7': 'clock' is a built-in name and cannot be declared (see --clock)
+(see 'arvo --help')"; empty out; report "-D of a built-in name: exit 64, as #declare refuses it"
+
+run -D sphere=1 --check $D/defines.scn
+want_rc 64; has err "^arvo: error: bad declaration 'sphere=1': 'sphere' is a reserved word and cannot be declared$"
+report "-D of a reserved word: exit 64"
+
 run --clock 0.25 --frame 7 --check $D/defines.scn
 want_rc 0; has out '^clock=0.25 frame=7$'; report "--clock and --frame"
 
