@@ -792,6 +792,7 @@ static void threads_case(bool white, bool narrow)
 	enum { N = 17000 }; /* more than one round of illum_deposit_poly_all (POLY_ROUND) */
 	static double corners[N][6][2];
 	static struct illum_poly p[N];
+	static const struct illum_poly *pp[N]; /* (illum_deposit_poly_all reads them by pointer) */
 	static const enum object_kind kinds[] = {OBJ_PLANE, OBJ_TORUS, OBJ_SPHERE};
 	for (int shape = 0; shape < (narrow ? 1 : 3); shape++) {
 		rng_seed(61 + shape);
@@ -807,6 +808,7 @@ static void threads_case(bool white, bool narrow)
 			double x = rnd();
 			p[k] = (struct illum_poly){(const double (*)[2])corners[k], n,
 			                           {x, white ? x : 1e-9 * rnd(), white ? x : 0}};
+			pp[k] = &p[k];
 		}
 		corners[17][1][0] = NAN;
 		for (int k = 0; k < N; k++)
@@ -818,7 +820,7 @@ static void threads_case(bool white, bool narrow)
 		static const int threads[] = {1, 2, 3, 7};
 		for (int t = 0; t < 4; t++) {
 			struct illum_map *m = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
-			illum_deposit_poly_all(m, p, N, threads[t]);
+			illum_deposit_poly_all(m, pp, N, threads[t]);
 			/* a grey map's tiles: 120 bytes for four nodes, a colour one's 280 */
 			CHECK(white == (illum_memory(m) < 0.6 * illum_memory(one)));
 			struct nodes *s2 = nodes_of(m);

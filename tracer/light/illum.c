@@ -2073,7 +2073,7 @@ static double poly_bytes(const struct illum_map *m, const struct illum_poly *p)
 }
 
 struct poly_round {
-	const struct illum_poly *p;       /* the round's footprints */
+	const struct illum_poly *const *p; /* the round's footprints */
 	long n;
 	long item;                        /* footprints per step-1 item (POLY_ITEM, fewer in a small
 	                                     round: four items a thread at least) */
@@ -2092,7 +2092,7 @@ static void poly_weigh(void *ctx, long k, int worker)
 	struct poly_round *R = ctx;
 	struct illum_map *m = R->scratch[worker];
 	for (long i = k * R->item; i < R->n && i < (k + 1) * R->item; i++) {
-		const struct illum_poly *p = &R->p[i];
+		const struct illum_poly *p = R->p[i];
 		struct fp_done *d = &R->done[i];
 		memset(d, 0, sizeof *d);
 		if (!p->uv || p->n < 1 || !corners_finite(p->uv, p->n)) {
@@ -2166,7 +2166,7 @@ static void poly_write(void *ctx, long k, int worker)
 
 /* Footprints written band by band (poly_band). */
 struct poly_bands {
-	const struct illum_poly *p;
+	const struct illum_poly *const *p;
 	long n;
 	struct illum_map **part; /* per band: the tiles it writes, and its scratch */
 	int nb;
@@ -2182,21 +2182,21 @@ static void poly_band(void *ctx, long k, int worker)
 	(void)worker;
 	const struct poly_bands *B = ctx;
 	for (long i = 0; i < B->n; i++)
-		poly_in_band(B->part[k], B->p[i].uv, B->p[i].n, B->p[i].e, (int)k, B->nb);
+		poly_in_band(B->part[k], B->p[i]->uv, B->p[i]->n, B->p[i]->e, (int)k, B->nb);
 }
 
 /* Whether the footprints p[0..n) are shared out evenly enough among nb
  * bands, by the band of each one's first corner (in a sample), to be
  * written band by band (poly_band): no band has more than 60 % of them. */
-static bool bands_even(const struct illum_map *m, const struct illum_poly *p, long n, int nb)
+static bool bands_even(const struct illum_map *m, const struct illum_poly *const *p, long n, int nb)
 {
 	long cnt[64] = {0}, all = 0, most = 0, stride = n / WIN_SAMPLE + 1;
 	for (long k = 0; k < n; k += stride) {
-		if (!p[k].uv || p[k].n < 1 || !isfinite(p[k].uv[0][1]))
+		if (!p[k]->uv || p[k]->n < 1 || !isfinite(p[k]->uv[0][1]))
 			continue;
 		long j0, j1;
 		double f;
-		axis_split(&m->ax[1], p[k].uv[0][1], &j0, &j1, &f);
+		axis_split(&m->ax[1], p[k]->uv[0][1], &j0, &j1, &f);
 		int b = band_of(j0, nb);
 		cnt[b]++, all++;
 		most = cnt[b] > most ? cnt[b] : most;
@@ -2208,18 +2208,18 @@ static bool bands_even(const struct illum_map *m, const struct illum_poly *p, lo
  * the first corner of a sample of them: their tiles are then found by
  * indexing an array, not through the hash (which was a tenth of a shaft
  * pass's time, and its growing tables fresh memory). */
-static void poly_window(struct illum_map *m, const struct illum_poly *p, long n)
+static void poly_window(struct illum_map *m, const struct illum_poly *const *p, long n)
 {
 	long stride = n / WIN_SAMPLE + 1, ns = 0;
 	int32_t *ti = mem_alloc(sizeof *ti * (size_t)(n / stride + 1));
 	int32_t *tj = mem_alloc(sizeof *tj * (size_t)(n / stride + 1));
 	for (long k = 0; k < n; k += stride) {
-		if (!p[k].uv || p[k].n < 1 || !isfinite(p[k].uv[0][0]) || !isfinite(p[k].uv[0][1]))
+		if (!p[k]->uv || p[k]->n < 1 || !isfinite(p[k]->uv[0][0]) || !isfinite(p[k]->uv[0][1]))
 			continue;
 		long i0, i1, j0, j1;
 		double f;
-		axis_split(&m->ax[0], p[k].uv[0][0], &i0, &i1, &f);
-		axis_split(&m->ax[1], p[k].uv[0][1], &j0, &j1, &f);
+		axis_split(&m->ax[0], p[k]->uv[0][0], &i0, &i1, &f);
+		axis_split(&m->ax[1], p[k]->uv[0][1], &j0, &j1, &f);
 		ti[ns] = (int32_t)floordiv(i0), tj[ns++] = (int32_t)floordiv(j0);
 	}
 	win_fit(m, ti, tj, ns, n);
@@ -2233,14 +2233,14 @@ static void part_window(struct illum_map *part, const struct illum_map *m)
 		win_new(part, m->wti, m->wtj, m->wnu, m->wnv);
 }
 
-void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads)
+void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *const *p, long n, int threads)
 {
 	int nb = threads < 1 ? 1 : threads > 64 ? 64 : threads;
 	double more = 0;
 	bool white = true;
 	for (long i = 0; i < n; i++) {
-		more += energy_max(p[i].e);
-		white = white && p[i].e[0] == p[i].e[1] && p[i].e[1] == p[i].e[2];
+		more += energy_max(p[i]->e);
+		white = white && p[i]->e[0] == p[i]->e[1] && p[i]->e[1] == p[i]->e[2];
 	}
 	if (!white) /* (white light, the usual case: a grey map stays grey, its tiles a third the size) */
 		ungrey(m);
@@ -2249,7 +2249,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 		poly_window(m, p, n);
 	if (nb == 1 || n < 1024) {
 		for (long i = 0; i < n; i++)
-			poly_one(m, p[i].uv, p[i].n, p[i].e);
+			poly_one(m, p[i]->uv, p[i]->n, p[i]->e);
 		return;
 	}
 	if (bands_even(m, p, n, nb)) { /* one thread per band of node rows (band_of), each writing its
@@ -2283,7 +2283,7 @@ void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, lon
 		R.p = p + at;
 		R.n = 0;
 		while (R.n < nround && at + R.n < n && (R.n == 0 || bytes < POLY_ROUND_BYTES))
-			bytes += poly_bytes(m, &p[at + R.n++]);
+			bytes += poly_bytes(m, p[at + R.n++]);
 		R.item = R.n / (4 * nb) + 1 < POLY_ITEM ? R.n / (4 * nb) + 1 : POLY_ITEM;
 		parallel_for((R.n + R.item - 1) / R.item, nb, poly_weigh, &R);
 		parallel_for(nb, nb, poly_write, &R);

@@ -186,10 +186,11 @@ struct illum_poly {
 	double e[3];           /* energy per channel */
 };
 
-/* illum_deposit_poly for p[0..n), on up to `threads` threads (each writes
- * the nodes of its own stripes of rows). The result is the same, bit for
- * bit, as depositing them one by one, for any thread count. */
-void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *p, long n, int threads);
+/* illum_deposit_poly for *p[0..n) (pointers: the footprints stay where
+ * their maker keeps them), on up to `threads` threads (each writes the
+ * nodes of its own stripes of rows). The result is the same, bit for bit,
+ * as depositing them one by one, for any thread count. */
+void illum_deposit_poly_all(struct illum_map *m, const struct illum_poly *const *p, long n, int threads);
 
 /* About how many grid cells (du × dv) polygon uv[0..n) touches: its area in
  * cells plus its perimeter in cells (the cells its edges cross) plus one.

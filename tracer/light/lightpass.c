@@ -164,10 +164,11 @@ struct landbuf {
 
 /* A shaft's footprint on a receiver, kept until the maps exist. */
 struct prec {
-	const struct object *obj;
+	struct illum_poly poly;   /* the deposit: its corners (uv below, pointed at once the work item is
+	                             done: work), their number (4, or 3 for a fold's hull) and the
+	                             shaft's energy along this path (W); the maps read it in place */
 	double uv[4][2];          /* corners in (u,v), unwrapped across seams */
-	int nv;                   /* corners used: 4, or 3 for a fold's hull */
-	double e[3];              /* the shaft's energy along this path (W) */
+	const struct object *obj;
 	double px;                /* a pixel's width where corner 0 lands (lp_opts' view; 0 without
 	                             one), for shaft_spec */
 	double size;              /* world diameter of the footprint */
@@ -994,11 +995,11 @@ static void shaft(struct worker *w, const struct shaft_ctx *S, int lv, double sx
 			double px = o->pixel_width > 0   ? o->pixel_width
 			            : o->pixel_angle > 0 ? v_len(v_sub(L->p, o->eye)) * o->pixel_angle
 			                                 : 0;
-			struct prec pr = {L->obj, {{0}}, nv, {0, 0, 0}, px, 0};
+			struct prec pr = {{NULL, nv, {0, 0, 0}}, {{0}}, L->obj, px, 0};
 			memcpy(pr.uv, uv, sizeof uv);
 			for (int j = 0; j < 4; j++) {
 				for (int ch = 0; ch < 3; ch++)
-					pr.e[ch] += q[j]->e[ch] * share;
+					pr.poly.e[ch] += q[j]->e[ch] * share;
 				for (int m = j + 1; m < 4; m++) {
 					double x = v_len(v_sub(q[j]->p, q[m]->p));
 					pr.size = x > pr.size ? x : pr.size; /* fmax: pr.size is never NaN */
@@ -1212,7 +1213,10 @@ static void work(void *ctx, long k, int worker)
 	else
 		run_item(w, &J->items[k]);
 	struct span *sp = &J->spans[k];
-	*sp = (struct span){NULL, NULL, NULL, 0, recbuf_item(&w->precs), w->precs.n - w->precs.item0,
+	struct prec *pc = recbuf_item(&w->precs); /* where they stay from now on */
+	for (long i = 0; i < w->precs.n - w->precs.item0; i++)
+		pc[i].poly.uv = (const double(*)[2])pc[i].uv;
+	*sp = (struct span){NULL, NULL, NULL, 0, pc, w->precs.n - w->precs.item0,
 	                    recbuf_item(&w->recx), 0, {NULL}};
 	list_distinct(sp, (const struct rec *)(const void *)w->stage.r, w->stage.n, sp->p, sp->np);
 	keep_item(w, sp);
@@ -1372,7 +1376,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
                            const struct prec *const *p, long np, const struct illum_splat *s, const double *sz,
                            long ns, int threads)
 {
-	struct illum_poly *pp = mem_alloc_huge(sizeof *pp * (size_t)(np ? np : 1));
+	const struct illum_poly **pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1)); /* in place (prec) */
 	struct illum_splat *ps = mem_alloc_huge(sizeof *ps * (size_t)(ns + 4 * np + 1)); /* (what is written
 	                                                                                    is touched) */
 	/* each one's level, found once (not once a level) */
@@ -1385,8 +1389,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 		long n = 0, m = 0;
 		for (long i = 0; i < np; i++)
 			if (lp[i] == l)
-				pp[n++] = (struct illum_poly){(const double(*)[2])p[i]->uv, p[i]->nv,
-				                              {p[i]->e[0], p[i]->e[1], p[i]->e[2]}};
+				pp[n++] = &p[i]->poly;
 		for (long i = 0; i < ns; i++)
 			if (ls[i] == l)
 				ps[m++] = s[i];
@@ -1400,27 +1403,27 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
 		double du, dv;
 		illum_grid(lv[l], &nu, &nv, &du, &dv);
 		for (long i = 0; i < n; i++) {
-			double u0 = pp[i].uv[0][0], u1 = u0, v0 = pp[i].uv[0][1], v1 = v0;
-			for (int c = 1; c < pp[i].n; c++) {
-				u0 = fmin_(u0, pp[i].uv[c][0]), u1 = fmax_(u1, pp[i].uv[c][0]);
-				v0 = fmin_(v0, pp[i].uv[c][1]), v1 = fmax_(v1, pp[i].uv[c][1]);
+			const struct illum_poly *q = pp[i];
+			double u0 = q->uv[0][0], u1 = u0, v0 = q->uv[0][1], v1 = v0;
+			for (int c = 1; c < q->n; c++) {
+				u0 = fmin_(u0, q->uv[c][0]), u1 = fmax_(u1, q->uv[c][0]);
+				v0 = fmin_(v0, q->uv[c][1]), v1 = fmax_(v1, q->uv[c][1]);
 			}
 			if ((u1 - u0) < 0.25 * du && (v1 - v0) < 0.25 * dv) {
 				/* much smaller than a cell: its tent integrals are the tents
 				 * at its centre to second order, so a point deposit there */
 				double cu = 0, cv = 0;
-				for (int c = 0; c < pp[i].n; c++)
-					cu += pp[i].uv[c][0] / pp[i].n, cv += pp[i].uv[c][1] / pp[i].n;
-				ps[m++] = (struct illum_splat){cu, cv, {pp[i].e[0], pp[i].e[1], pp[i].e[2]}};
+				for (int c = 0; c < q->n; c++)
+					cu += q->uv[c][0] / q->n, cv += q->uv[c][1] / q->n;
+				ps[m++] = (struct illum_splat){cu, cv, {q->e[0], q->e[1], q->e[2]}};
 				continue;
 			}
-			if (illum_footprint_cells(pp[i].uv, pp[i].n, du, dv) <= FOOTPRINT_MAX_CELLS) {
-				pp[keep++] = pp[i];
+			if (illum_footprint_cells(q->uv, q->n, du, dv) <= FOOTPRINT_MAX_CELLS) {
+				pp[keep++] = q;
 				continue;
 			}
-			for (int c = 0; c < pp[i].n; c++)
-				ps[m++] = (struct illum_splat){pp[i].uv[c][0], pp[i].uv[c][1],
-				                               {pp[i].e[0] / pp[i].n, pp[i].e[1] / pp[i].n, pp[i].e[2] / pp[i].n}};
+			for (int c = 0; c < q->n; c++)
+				ps[m++] = (struct illum_splat){q->uv[c][0], q->uv[c][1], {q->e[0] / q->n, q->e[1] / q->n, q->e[2] / q->n}};
 		}
 		illum_deposit_poly_all(lv[l], pp, keep, threads);
 		illum_deposit_all(lv[l], ps, m, threads);
