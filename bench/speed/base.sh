@@ -9,7 +9,8 @@
 #
 # ARVO_BASE is required (build it from an older commit: git worktree add
 # /tmp/old REV && make -C /tmp/old); BASE_LABEL names it in base.txt (say,
-# the commit; not a path). RUNS (default 5) runs of each binary,
+# the commit; not a path), NEW_LABEL the new one (default: this tree's
+# commit, read at the start). RUNS (default 5) runs of each binary,
 # alternating; every figure is a median. THREADS (default 2) as run.sh.
 # Rows (the same commands as run.sh's):
 #   eye spheres|grid N    eye-pass seconds (--stats), 640x480, N = 100k, 1M
@@ -40,6 +41,9 @@ trap 'rm -rf "$tmp"' EXIT INT TERM
 ARVO_DATA_DIR=${ARVO_DATA_DIR:-$root/stdlib-scenes}
 export ARVO_DATA_DIR
 csv=$res/base.csv
+# the tree's commit, read before this script writes its results into it
+# (NEW_LABEL overrides: when ARVO is not this tree's build)
+new_label=${NEW_LABEL:-$(git -C "$root" describe --always --dirty 2> /dev/null || echo "this tree")}
 
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR) print v[int((NR + 1) / 2)] }'; }
 stat_of() { awk -v k="$1" 'index($0, k) { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+$/) { print $i; exit } }' "$2"; }
@@ -100,7 +104,7 @@ pair "loop1m" wall -q --max-objects 2000000 --rays 0 --threads "$THREADS" --widt
 
 {
 	echo "bench/speed/base.sh: medians of $RUNS runs by turns, $THREADS threads"
-	echo "new:  $(git -C "$root" describe --always --dirty 2> /dev/null || echo "this tree") ($("$ARVO" --version))"
+	echo "new:  $new_label ($("$ARVO" --version))"
 	echo "base: ${BASE_LABEL:-ARVO_BASE} ($("$ARVO_BASE" --version))"
 	echo "load average at the end: $(cut -d" " -f1-3 /proc/loadavg)"
 	column -s, -t < "$csv"
