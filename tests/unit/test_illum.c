@@ -395,7 +395,10 @@ static void t_threads(void)
 		printf("# %s: %d nodes, %ld tiles\n", shape ? "torus" : "plane", s1->n, illum_tiles(one));
 		static const int threads[] = {1, 2, 3, 7};
 		for (int t = 0; t < 4; t++) {
-			struct illum_map *m = illum_new_like(one);
+			/* a new map: grey until this first batch, coloured, is scanned
+			 * (illum_new_like(one) would be colour already, and split the
+			 * batch in step 1) */
+			struct illum_map *m = shape ? map_res(&o, 96) : map_cell(&o, 0.01);
 			illum_deposit_all(m, sp, N, threads[t]);
 			check_same_map(one, s1, rem1, m, threads[t]);
 		}
