@@ -1376,7 +1376,7 @@ static void deposit_levels(struct illum_map **lv, const struct object *o, double
                            const struct prec *const *p, long np, const struct illum_splat *s, const double *sz,
                            long ns, int threads)
 {
-	const struct illum_poly **pp = mem_alloc(sizeof *pp * (size_t)(np ? np : 1)); /* in place (prec) */
+	const struct illum_poly **pp = mem_alloc_huge(sizeof *pp * (size_t)(np ? np : 1)); /* in place (prec) */
 	struct illum_splat *ps = mem_alloc_huge(sizeof *ps * (size_t)(ns + 4 * np + 1)); /* (what is written
 	                                                                                    is touched) */
 	/* each one's level, found once (not once a level) */
