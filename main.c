@@ -477,11 +477,11 @@ static int parse_args(int argc, char **argv, struct options *o)
 			const char *d = !strcmp(a, "-D") ? next : a[0] == 'D' ? a + 8 : a + 2;
 			if (!valid_define(d))
 				return usage_error("bad declaration '%s' (expected NAME=number or NAME=\"string\")", d);
-			const char *why = eval_undeclarable(d, (int)(strchr(d, '=') - d));
+			int nlen = (int)(strchr(d, '=') - d); /* (valid_define: there is one) */
+			const char *why = eval_undeclarable(d, nlen);
 			if (why)
-				return usage_error("bad declaration '%s': '%.*s' is %s and cannot be declared%s", d,
-				                   (int)(strchr(d, '=') - d), d, why,
-				                   !strncmp(d, "clock=", 6) ? " (see --clock)" : "");
+				return usage_error("bad declaration '%s': '%.*s' is %s and cannot be declared%s", d, nlen, d,
+				                   why, !strncmp(d, "clock=", 6) ? " (see --clock)" : "");
 			if (o->ndefines >= 256)
 				return usage_error("too many -D declarations (at most %s)", "256");
 			o->defines[o->ndefines++] = d;
